@@ -1,0 +1,25 @@
+# cmake --install puts headers, libraries and GPHRConfig.cmake so that a Trilinos application
+# writes find_package(GPHR REQUIRED) and links GPHR::gphr.
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+get_property(_gphr_pkgs GLOBAL PROPERTY GPHR_PACKAGES)
+foreach(_t IN LISTS _gphr_pkgs)
+  get_target_property(_src ${_t} SOURCE_DIR)
+  install(DIRECTORY ${_src}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+endforeach()
+set_target_properties(gphr_trilinos PROPERTIES EXPORT_NAME trilinos_deps)
+install(TARGETS gphr gphr_trilinos ${_gphr_pkgs} EXPORT GPHRTargets
+        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+if(TARGET gphr_cli)
+  install(TARGETS gphr_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+endif()
+install(EXPORT GPHRTargets NAMESPACE GPHR:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/GPHR)
+configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/GPHRConfig.cmake.in
+  ${CMAKE_CURRENT_BINARY_DIR}/GPHRConfig.cmake INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/GPHR)
+write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/GPHRConfigVersion.cmake
+  COMPATIBILITY SameMinorVersion)
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/GPHRConfig.cmake ${CMAKE_CURRENT_BINARY_DIR}/GPHRConfigVersion.cmake
+  DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/GPHR)

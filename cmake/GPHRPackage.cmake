@@ -1,0 +1,49 @@
+# gphr_add_package(NAME <name> SOURCES <files...> DEPENDS <targets...>)
+# One library per package (DESIGN.md), headers under packages/<name>/include/gphr/<name>/.
+function(gphr_add_package)
+  cmake_parse_arguments(P "" "NAME" "SOURCES;DEPENDS" ${ARGN})
+  set(_t gphr_${P_NAME})
+  add_library(${_t} ${P_SOURCES})
+  add_library(GPHR::${P_NAME} ALIAS ${_t})
+  target_include_directories(${_t} PUBLIC
+    $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
+    $<INSTALL_INTERFACE:include>)
+  target_link_libraries(${_t} PUBLIC ${P_DEPENDS})
+  target_compile_options(${_t} PRIVATE -Wall -Wextra ${GPHR_ARCH_FLAGS})
+  set_target_properties(${_t} PROPERTIES EXPORT_NAME ${P_NAME})
+  set_property(GLOBAL APPEND PROPERTY GPHR_PACKAGES ${_t})
+endfunction()
+
+# gphr_add_test(NAME <name> SOURCES <files...> DEPENDS <targets...> [RANKS n...] [LABELS ...])
+# Each test binary has GPHR's gtest main (Tpetra::ScopeGuard + an MPI reduction of the result).
+# RANKS lists the MPI rank counts it runs with (default 1); rank counts > 1 run under mpirun.
+function(gphr_add_test)
+  cmake_parse_arguments(T "" "NAME;TIMEOUT" "SOURCES;DEPENDS;RANKS;LABELS" ${ARGN})
+  if(NOT GPHR_ENABLE_TESTS)
+    return()
+  endif()
+  if(NOT T_RANKS)
+    set(T_RANKS 1)
+  endif()
+  if(NOT T_TIMEOUT)
+    set(T_TIMEOUT 300)
+  endif()
+  add_executable(${T_NAME} ${T_SOURCES})
+  target_link_libraries(${T_NAME} PRIVATE ${T_DEPENDS} gphr_testmain GTest::gtest)
+  target_compile_options(${T_NAME} PRIVATE -Wall -Wextra ${GPHR_ARCH_FLAGS})
+  foreach(_np IN LISTS T_RANKS)
+    if(_np EQUAL 1)
+      add_test(NAME ${T_NAME} COMMAND ${T_NAME})
+      set(_tn ${T_NAME})
+    else()
+      set(_tn ${T_NAME}_np${_np})
+      add_test(NAME ${_tn} COMMAND ${MPIEXEC_EXECUTABLE} ${GPHR_MPIEXEC_FLAGS} ${MPIEXEC_NUMPROC_FLAG} ${_np}
+               $<TARGET_FILE:${T_NAME}>)
+    endif()
+    set_tests_properties(${_tn} PROPERTIES TIMEOUT ${T_TIMEOUT} PROCESSORS ${_np}
+      LABELS "${T_LABELS};np${_np}" ENVIRONMENT "OPENBLAS_NUM_THREADS=1;OMP_NUM_THREADS=1")
+  endforeach()
+endfunction()
+
+# mpirun refuses root without these; more ranks than cores needs oversubscribe (PLATFORM.md).
+set(GPHR_MPIEXEC_FLAGS --allow-run-as-root --oversubscribe CACHE STRING "Flags for mpirun in tests")

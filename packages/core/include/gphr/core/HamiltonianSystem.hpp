@@ -1,0 +1,65 @@
+#pragma once
+// The Hamiltonian contract (paper eq:Ham with eq:decomp):
+//   H(y) = 1/2 y^T L y + y^T f + c + N(y),   N(y) = v^T G(y),   y' = J_{2n} grad H(y),
+// L symmetric (a Tpetra::CrsMatrix on the state map), N given by a NonlinearTerm's row kernel.
+#include "gphr/core/NonlinearAssembly.hpp"
+#include "gphr/core/PhaseSpace.hpp"
+
+namespace gphr {
+
+class HamiltonianSystem {
+ public:
+  HamiltonianSystem(RCP<const PhaseSpace> space, RCP<const CrsMatrix> L, RCP<const Vector> f,
+                    Scalar c, RCP<const NonlinearTerm> nonlinear);
+
+  // The shifted system of paper Sec. 3.3 (eq:shiftH): state y_s = y - y0 and
+  // H_s(y_s) = H(y_s + y0) = 1/2 y_s^T L y_s + y_s^T (f + L y0) + H(y0) + v^T (G(y_s + y0) - G(y0)).
+  // Its initial state is 0 and G_s(y0) = 0, the hypotheses of prop:ham_cons.
+  RCP<HamiltonianSystem> shifted(const Vector& y0) const;
+  // The accumulated shift (null if unshifted): the physical state is y_s + reference().
+  RCP<const Vector> reference() const { return assembly_.reference(); }
+
+  const PhaseSpace& space() const { return *space_; }
+  const RCP<const PhaseSpace>& spacePtr() const { return space_; }
+  const RCP<const Map>& map() const { return space_->map(); }
+  const CrsMatrix& linearPart() const { return *L_; }
+  const Vector& linearForce() const { return *f_; }
+  Scalar constant() const { return c_; }
+  const NonlinearTerm& nonlinearTerm() const { return assembly_.term(); }
+  RCP<const NonlinearTerm> nonlinearTermPtr() const { return term_; }
+
+  Scalar hamiltonian(const Vector& y) const;
+  Scalar nonlinearValue(const Vector& y) const;
+  // out = grad H(y) = L y + f + J_G^T v.
+  void gradient(const Vector& y, Vector& out) const;
+  // out = G(y) (unshifted row values G(y + reference())), a vector on the row map of G.
+  void nonlinearRows(const Vector& y, Vector& out) const;
+  // out = grad N(y) = J_G(y)^T v.
+  void nonlinearGradient(const Vector& y, Vector& out) const;
+  // The Jacobian J_G(y) (d x 2n) on nonlinearTerm().jacobianGraph().
+  RCP<CrsMatrix> createJacobianG() const;
+  void jacobianG(const Vector& y, CrsMatrix& out) const;
+  // Hessian of N as a CrsMatrix on hessianGraph(false).
+  RCP<CrsMatrix> createHessianN() const;
+  void hessianN(const Vector& y, CrsMatrix& out) const;
+  // target += scale * Hess H(y) = scale * (L + Hess N(y)); target fill-active, graph from
+  // hessianGraph(). Off-rank contributions are summed in at target.fillComplete().
+  void addHessian(const Vector& y, Scalar scale, CrsMatrix& target) const;
+  // Sparsity of Hess H = pattern(L) + pattern(Hess N), plus the (i, partner(i)) entries of J
+  // when withCanonical is set (the Newton matrices of the time integrators need them).
+  RCP<const CrsGraph> hessianGraph(bool withCanonical) const;
+  // Apply the linear part: out += scale * L y.
+  void addLinearPart(Scalar scale, CrsMatrix& target) const;
+
+ private:
+  RCP<const PhaseSpace> space_;
+  RCP<const CrsMatrix> L_;
+  RCP<const Vector> f_;
+  Scalar c_;
+  RCP<const NonlinearTerm> term_;
+  mutable NonlinearAssembly assembly_;
+  mutable RCP<Vector> work_;
+  mutable RCP<const CrsGraph> hessGraph_[2];
+};
+
+}  // namespace gphr

@@ -1,0 +1,56 @@
+#pragma once
+// Assembles, from the row kernel of a NonlinearTerm evaluated on all of this rank's rows of G,
+// the distributed quantities of the full model: N(y) = v^T G, grad N = J_G^T v, J_G and the
+// Hessian of N = sum_i v_i Hess G_i. No scene writes these assemblies itself.
+//
+// The evaluation point is y + yRef (yRef = 0 unless the system is shifted, paper eq:shiftH),
+// and N subtracts v^T G(yRef). Buffers are allocated once here, never in a time loop.
+#include "gphr/core/NonlinearTerm.hpp"
+
+namespace gphr {
+
+class NonlinearAssembly {
+ public:
+  explicit NonlinearAssembly(RCP<const NonlinearTerm> term);
+
+  const NonlinearTerm& term() const { return *term_; }
+  // Set the reference point of the shift: later evaluations use y + yRef and N subtracts
+  // v^T G(yRef). Pass nullptr for no shift.
+  void setReference(const RCP<const Vector>& yRef);
+  const RCP<const Vector>& reference() const { return yRef_; }
+
+  // Evaluate the kernel at y (+ yRef); derivatives only as asked.
+  void evaluate(const Vector& y, bool withGradient, bool withHessian);
+
+  // After evaluate(): N = sum_i v_i (G_i - G_i(yRef)) (a collective reduction).
+  Scalar value() const;
+  // After evaluate(..., true, ...): out = scale * J_G^T v + beta * out  (grad N when scale = 1).
+  void addGradient(Vector& out, Scalar scale, Scalar beta) const;
+  // After evaluate(..., true, ...): out = J_G, filled on jacobianGraph().
+  void fillJacobian(CrsMatrix& out) const;
+  // After evaluate(..., ..., true): target += scale * Hess N. target must be fill-active and its
+  // graph contain hessianGraph()'s entries; off-rank rows are summed in at fillComplete.
+  void addHessian(CrsMatrix& target, Scalar scale) const;
+  // Sparsity of the Hessian of N on the state map: all pairs of one stencil.
+  void insertHessianPattern(CrsGraph& graph) const;
+  // Upper bound of the Hessian entries of each owned state row (graphs are static-profile):
+  // sum of the sizes of the stencils that contain the row, summed over ranks.
+  std::vector<size_t> hessianRowBounds() const;
+
+  // Values of G at the local rows after evaluate() (G(y + yRef), not shifted).
+  const HostView1& rowValues() const { return batch_.g; }
+
+ private:
+  RCP<const NonlinearTerm> term_;
+  RCP<const Map> overlapMap_;  // = column map of J_G: owned + ghost state entries
+  RCP<Import> importer_;
+  RCP<Vector> yOverlap_, gradOverlap_, yWork_, gradOwned_;
+  RCP<const Vector> yRef_;
+  std::vector<LO> stencilLids_;  // stencil entries as local ids of overlapMap_
+  RowBatch batch_;
+  std::vector<Scalar> gRef_;  // G_i(yRef)
+  mutable std::vector<GO> colBuf_;
+  mutable std::vector<Scalar> valBuf_;
+};
+
+}  // namespace gphr

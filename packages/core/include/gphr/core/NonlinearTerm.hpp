@@ -1,0 +1,116 @@
+#pragma once
+// The decomposed nonlinearity N(y) = v^T G(y) of paper eq:decomp, G : R^{2n} -> R^d, given
+// row by row: row i of G depends only on the entries of y in its *stencil* (s1 + s2 of them,
+// paper rmk:decomp). A scene supplies a row kernel; everything else (N, grad N = J_G^T v, J_G,
+// the Hessian of N, and later the sampled rows of the hyper-reduced model) is assembled by GPHR
+// from that one kernel.
+//
+// Row-kernel contract (a copyable functor, see RowKernelTerm below):
+//   int stencilSize(GO row) const;          // s = number of stencil entries of this row
+//   KOKKOS_INLINE_FUNCTION
+//   void operator()(GO row, const Scalar* vals, Scalar& g, Scalar* grad, Scalar* hess) const;
+//     vals: y at the row's stencil (stencil order), g: G_row(y);
+//     grad (may be nullptr): dG_row/dvals (s entries);
+//     hess (may be nullptr): d^2 G_row/dvals^2, s x s row-major.
+#include <string>
+#include <vector>
+
+#include "gphr/core/Types.hpp"
+
+namespace gphr {
+
+// Global stencil of this rank's rows of G: row r's entries are gids[offsets[r] .. offsets[r+1]),
+// listed in the kernel's order.
+struct Stencil {
+  std::vector<size_t> offsets{0};
+  std::vector<GO> gids;
+  LO numRows() const { return static_cast<LO>(offsets.size()) - 1; }
+  LO size(LO r) const { return static_cast<LO>(offsets[r + 1] - offsets[r]); }
+};
+
+// A batch of rows to evaluate: for entry e, row id rows(e), stencil values
+// values(offsets(e) .. offsets(e+1)). Outputs are filled where their view is non-empty:
+// g(e); grad packed like values; hess at hessOffsets(e) .. + s*s.
+struct RowBatch {
+  Kokkos::View<GO*, Kokkos::HostSpace> rows;
+  OffsetView offsets, hessOffsets;
+  HostView1 values, g, grad, hess;
+  LO size() const { return static_cast<LO>(rows.extent(0)); }
+  // Allocate for the given stencil layout (done once, outside any time loop).
+  void allocate(const std::vector<GO>& rowIds, const std::vector<size_t>& stencilOffsets,
+                bool withGradient, bool withHessian);
+};
+
+class NonlinearTerm {
+ public:
+  virtual ~NonlinearTerm() = default;
+
+  GO numTerms() const { return static_cast<GO>(rowMap_->getGlobalNumElements()); }
+  const RCP<const Map>& rowMap() const { return rowMap_; }
+  const RCP<const Map>& stateMap() const { return stateMap_; }
+  const RCP<const Vector>& weights() const { return weights_; }
+  const Stencil& stencil() const { return stencil_; }
+  int maxStencilSize() const { return maxStencil_; }
+  // Polynomial degree of G in y (0 if not polynomial): AVF picks its quadrature from it.
+  int polynomialDegree() const { return degree_; }
+  // Sparsity of J_G (d rows x 2n columns): row map rowMap(), domain stateMap(), range rowMap().
+  const RCP<const CrsGraph>& jacobianGraph() const { return jacobianGraph_; }
+
+  // Run the row kernel on every entry of the batch (Kokkos::parallel_for over the entries).
+  virtual void evaluate(const RowBatch& batch) const = 0;
+
+ protected:
+  NonlinearTerm(RCP<const Map> rowMap, RCP<const Map> stateMap, Stencil stencil,
+                RCP<const Vector> weights, int degree);
+
+ private:
+  RCP<const Map> rowMap_, stateMap_;
+  Stencil stencil_;
+  RCP<const Vector> weights_;
+  int degree_;
+  int maxStencil_ = 0;
+  RCP<const CrsGraph> jacobianGraph_;
+};
+
+// The one place a row kernel is called: a parallel_for over the rows of a batch. The virtual
+// call is per batch, never per row.
+template <class Kernel>
+class RowKernelTerm final : public NonlinearTerm {
+ public:
+  RowKernelTerm(const Kernel& kernel, RCP<const Map> rowMap, RCP<const Map> stateMap,
+                Stencil stencil, RCP<const Vector> weights, int degree)
+      : NonlinearTerm(rowMap, stateMap, std::move(stencil), weights, degree), kernel_(kernel) {}
+
+  const Kernel& kernel() const { return kernel_; }
+
+  void evaluate(const RowBatch& b) const override {
+    const Kernel k = kernel_;
+    const auto rows = b.rows;
+    const auto off = b.offsets;
+    const auto hoff = b.hessOffsets;
+    const auto vals = b.values;
+    const auto g = b.g;
+    const auto grad = b.grad;
+    const auto hess = b.hess;
+    const bool wantG = g.extent(0) > 0, wantGrad = grad.extent(0) > 0, wantHess = hess.extent(0) > 0;
+    Kokkos::parallel_for(
+        "gphr::rowKernel", Kokkos::RangePolicy<ExecSpace>(0, b.size()), KOKKOS_LAMBDA(const LO e) {
+          Scalar ge = 0.0;
+          k(rows(e), &vals(off(e)), ge, wantGrad ? &grad(off(e)) : nullptr,
+            wantHess ? &hess(hoff(e)) : nullptr);
+          if (wantG) g(e) = ge;
+        });
+  }
+
+ private:
+  Kernel kernel_;
+};
+
+template <class Kernel>
+RCP<const NonlinearTerm> makeRowKernelTerm(const Kernel& kernel, RCP<const Map> rowMap,
+                                           RCP<const Map> stateMap, Stencil stencil,
+                                           RCP<const Vector> weights, int degree) {
+  return rcp(new RowKernelTerm<Kernel>(kernel, rowMap, stateMap, std::move(stencil), weights, degree));
+}
+
+}  // namespace gphr

@@ -1,0 +1,37 @@
+#pragma once
+// The phase space R^{2n} of y = (q, p) as a Tpetra map, and the canonical Poisson tensor
+// J_{2n} = [[0, I], [-I, 0]] (paper eq:full_model) applied without forming it.
+//
+// Layout: global ids 0..n-1 are q, n..2n-1 are p. Each rank owns a block [a, b) of the n
+// degrees of freedom *for both components*, stored locally as q_a..q_{b-1}, p_a..p_{b-1}; so q_i
+// and its partner p_i always live on the same rank and J is a local permutation with signs.
+#include "gphr/core/Types.hpp"
+
+namespace gphr {
+
+class PhaseSpace {
+ public:
+  // n degrees of freedom per component, split as evenly as Tpetra splits n over the ranks.
+  PhaseSpace(GO n, const RCP<const Comm>& comm);
+
+  GO n() const { return n_; }
+  GO fullDim() const { return 2 * n_; }
+  LO numLocalDofs() const { return nLocal_; }
+  GO firstLocalDof() const { return first_; }
+  // State map (2n entries) and the map of the n degrees of freedom (e.g. grid points).
+  const RCP<const Map>& map() const { return map_; }
+  const RCP<const Map>& dofMap() const { return dofMap_; }
+  RCP<const Comm> comm() const { return map_->getComm(); }
+
+  // out = J x, out = J^T x. x and out are vectors on map(); out must not alias x.
+  void applyJ(const MultiVector& x, MultiVector& out) const;
+  void applyJT(const MultiVector& x, MultiVector& out) const;
+
+ private:
+  GO n_;
+  LO nLocal_;
+  GO first_;
+  RCP<const Map> map_, dofMap_;
+};
+
+}  // namespace gphr

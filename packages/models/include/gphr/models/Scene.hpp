@@ -1,0 +1,80 @@
+#pragma once
+// A scene of the paper's Sec. 5: a row kernel, a linear part, an initial state and a parameter
+// box, nothing else. Everything derived (gradients, Jacobians, Hessians, the shift, time
+// integration) comes from packages/core and packages/timeint.
+#include <Teuchos_ParameterList.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "gphr/core/HamiltonianSystem.hpp"
+
+namespace gphr {
+
+struct ParameterBox {
+  std::vector<std::string> names;
+  std::vector<std::pair<double, double>> bounds;
+  // Throws InputError naming the parameter, its value and the box when mu lies outside.
+  void check(const std::vector<double>& mu) const;
+};
+
+// A scene instantiated at one parameter value.
+struct SceneInstance {
+  RCP<HamiltonianSystem> system;  // shifted when asked (then y0 = 0 and system->reference() holds it)
+  RCP<Vector> y0;                 // initial state of `system`
+  RCP<const Vector> physicalInitialState;  // the unshifted initial state
+};
+
+class Scene {
+ public:
+  virtual ~Scene() = default;
+  virtual std::string name() const = 0;
+  virtual const ParameterBox& parameterBox() const = 0;
+  // Unshifted Hamiltonian system and initial state at parameter mu (not checked against the box:
+  // tests use e.g. eps = 0 for the linear NLS).
+  virtual std::pair<RCP<HamiltonianSystem>, RCP<Vector>> build(const RCP<const Comm>& comm,
+                                                              const std::vector<double>& mu) const = 0;
+  // build() then, if shift is set, the shifted system of paper eq:shiftH with y0 = 0.
+  SceneInstance instantiate(const RCP<const Comm>& comm, const std::vector<double>& mu, bool shift) const;
+};
+
+// The NLS scene (paper eq:schrodinger): u = q + i p on [-L, L), L = pi/0.11, n points,
+// H = 1/2 q^T(-Dxx)q + 1/2 p^T(-Dxx)p - eps/4 sum_i (q_i^2 + p_i^2)^2  (not scaled by dx; doc/scenes.md).
+class Nls1d final : public Scene {
+ public:
+  explicit Nls1d(GO n, double halfLength = 3.14159265358979323846 / 0.11);
+  std::string name() const override { return "nls1d"; }
+  const ParameterBox& parameterBox() const override { return box_; }
+  std::pair<RCP<HamiltonianSystem>, RCP<Vector>> build(const RCP<const Comm>& comm,
+                                                      const std::vector<double>& mu) const override;
+  GO n() const { return n_; }
+
+ private:
+  GO n_;
+  double L_;
+  ParameterBox box_;
+};
+
+// The 2D shallow-water scene (paper eq:2Dsw_eq_final, potential form): y = (chi, Phi) on
+// [-2, 2)^2 with nx points per direction, H = gamma/2 sum_i chi_i^2 + gamma/2 sum_i chi_i
+// [(D1 Phi)_i^2 + (D2 Phi)_i^2] (not scaled by the cell area; doc/scenes.md).
+class Swe2d final : public Scene {
+ public:
+  explicit Swe2d(GO nx, double halfLength = 2.0);
+  std::string name() const override { return "swe2d"; }
+  const ParameterBox& parameterBox() const override { return box_; }
+  std::pair<RCP<HamiltonianSystem>, RCP<Vector>> build(const RCP<const Comm>& comm,
+                                                      const std::vector<double>& mu) const override;
+  GO nx() const { return nx_; }
+
+ private:
+  GO nx_;
+  double L_;
+  ParameterBox box_;
+};
+
+// NLS discrete mass sum_i (q_i^2 + p_i^2) of a physical (unshifted) state: a quadratic invariant
+// that IMR conserves exactly.
+double nlsMass(const Vector& y);
+
+}  // namespace gphr

@@ -1,0 +1,70 @@
+#include <cmath>
+
+#include "gphr/core/Error.hpp"
+#include "gphr/models/Scene.hpp"
+
+namespace gphr {
+
+namespace {
+// Row kernel of the NLS: stencil (q_i, p_i), G_i = -eps/4 (q_i^2 + p_i^2)^2.
+struct NlsKernel {
+  double eps;
+  KOKKOS_INLINE_FUNCTION
+  void operator()(GO, const Scalar* y, Scalar& g, Scalar* grad, Scalar* hess) const {
+    const Scalar q = y[0], p = y[1], r = q * q + p * p;
+    g = -0.25 * eps * r * r;
+    if (grad) {
+      grad[0] = -eps * r * q;
+      grad[1] = -eps * r * p;
+    }
+    if (hess) {
+      hess[0] = -eps * (3 * q * q + p * p);
+      hess[1] = hess[2] = -2 * eps * q * p;
+      hess[3] = -eps * (q * q + 3 * p * p);
+    }
+  }
+};
+}  // namespace
+
+Nls1d::Nls1d(GO n, double halfLength) : n_(n), L_(halfLength) {
+  GPHR_REQUIRE(n >= 3, InputError, "nls1d: n = ", n, " is not allowed: n must be >= 3");
+  GPHR_REQUIRE(halfLength > 0, InputError, "nls1d: half length ", halfLength, " must be > 0");
+  box_.names = {"eps"};
+  box_.bounds = {{0.9, 1.1}};
+}
+
+std::pair<RCP<HamiltonianSystem>, RCP<Vector>> Nls1d::build(const RCP<const Comm>& comm,
+                                                           const std::vector<double>& mu) const {
+  GPHR_REQUIRE(mu.size() == 1, InputError, "nls1d takes one parameter (eps), got ", mu.size());
+  const double eps = mu[0], dx = 2 * L_ / n_, c = 1.0 / (dx * dx);
+  auto space = rcp(new PhaseSpace(n_, comm));
+  const auto& map = space->map();
+  // L = blockdiag(-Dxx, -Dxx), periodic second-order central differences.
+  auto L = rcp(new CrsMatrix(map, 3));
+  auto y0 = rcp(new Vector(map));
+  Stencil st;
+  {
+    auto yv = y0->getLocalViewHost(Tpetra::Access::OverwriteAll);
+    for (LO il = 0; il < space->numLocalDofs(); ++il) {
+      const GO i = space->firstLocalDof() + il;
+      const GO im = (i + n_ - 1) % n_, ip = (i + 1) % n_;
+      for (GO off : {GO(0), n_})
+        L->insertGlobalValues(off + i, Teuchos::tuple<GO>(off + im, off + i, off + ip),
+                              Teuchos::tuple<Scalar>(-c, 2 * c, -c));
+      const double x = -L_ + i * dx, amp = std::sqrt(2.0) / std::cosh(x);
+      yv(il, 0) = amp * std::cos(0.5 * x);
+      yv(space->numLocalDofs() + il, 0) = amp * std::sin(0.5 * x);
+      st.gids.push_back(i);
+      st.gids.push_back(n_ + i);
+      st.offsets.push_back(st.gids.size());
+    }
+  }
+  L->fillComplete(map, map);
+  auto v = rcp(new Vector(space->dofMap()));
+  v->putScalar(1.0);
+  auto term = makeRowKernelTerm(NlsKernel{eps}, space->dofMap(), map, std::move(st), v, 4);
+  auto system = rcp(new HamiltonianSystem(space, L, rcp(new Vector(map)), 0.0, term));
+  return {system, y0};
+}
+
+}  // namespace gphr

@@ -1,0 +1,164 @@
+// Finite-difference checks of the assemblies every model path relies on, for both scenes:
+// grad H against H, J_G against G, Hess N against grad N. Central differences with step h
+// have truncation error O(h^2 |f'''|) and round-off O(eps_mach |f| / h); with h = 1e-5 relative
+// to the point both stay below 1e-8 relative here, so the 1e-6 bound has a margin of
+// 100 without being loose enough to pass a wrong sign or a missing term (those give O(1)).
+#include <gtest/gtest.h>
+
+#include "TestUtils.hpp"
+#include "gphr/models/Scene.hpp"
+
+using namespace gphr;
+
+namespace {
+
+struct Case {
+  std::string name;
+  std::shared_ptr<Scene> scene;
+  std::vector<double> mu;
+  bool shift;
+};
+
+std::vector<Case> cases() {
+  return {{"nls", std::make_shared<Nls1d>(64), {1.0932}, false},
+          {"nls_shifted", std::make_shared<Nls1d>(64), {0.95}, true},
+          {"swe", std::make_shared<Swe2d>(8), {1.6435, 0.7762}, false},
+          {"swe_shifted", std::make_shared<Swe2d>(8), {1.2, 1.1}, true}};
+}
+
+// A generic evaluation point: the initial state plus a smooth perturbation (so that every
+// term, e.g. the SWE's Phi gradients, is non-zero).
+RCP<Vector> point(const SceneInstance& s) {
+  auto y = rcp(new Vector(*s.y0, Teuchos::Copy));
+  Vector pert(y->getMap());
+  test::fillByGid(pert, 0.3, 1);
+  y->update(1.0, pert, 1.0);
+  return y;
+}
+
+constexpr double kTol = 1e-6;  // the bound; see the header comment for the margin
+
+class SceneFD : public ::testing::TestWithParam<int> {};
+
+TEST_P(SceneFD, GradientMatchesFiniteDifferenceOfH) {
+  const Case c = cases()[GetParam()];
+  auto s = c.scene->instantiate(test::comm(), c.mu, c.shift);
+  const auto& sys = *s.system;
+  auto y = point(s);
+  Vector g(sys.map()), d(sys.map()), yp(sys.map()), ym(sys.map());
+  sys.gradient(*y, g);
+  for (unsigned seed = 2; seed < 5; ++seed) {
+    test::fillByGid(d, 1.0, seed);
+    const double h = 1e-5 * y->norm2() / d.norm2();
+    yp.update(1.0, *y, h, d, 0.0);
+    ym.update(1.0, *y, -h, d, 0.0);
+    const double fd = (sys.hamiltonian(yp) - sys.hamiltonian(ym)) / (2 * h), exact = g.dot(d);
+    EXPECT_LE(std::abs(fd - exact), kTol * std::abs(exact)) << c.name << " seed " << seed;
+  }
+}
+
+TEST_P(SceneFD, JacobianGMatchesFiniteDifferenceOfG) {
+  const Case c = cases()[GetParam()];
+  auto s = c.scene->instantiate(test::comm(), c.mu, c.shift);
+  const auto& sys = *s.system;
+  auto y = point(s);
+  auto JG = sys.createJacobianG();
+  sys.jacobianG(*y, *JG);
+  const auto rowMap = sys.nonlinearTerm().rowMap();
+  Vector d(sys.map()), yp(sys.map()), ym(sys.map()), gp(rowMap), gm(rowMap), Jd(rowMap);
+  test::fillByGid(d, 1.0, 7);
+  const double h = 1e-5 * y->norm2() / d.norm2();
+  yp.update(1.0, *y, h, d, 0.0);
+  ym.update(1.0, *y, -h, d, 0.0);
+  sys.nonlinearRows(yp, gp);
+  sys.nonlinearRows(ym, gm);
+  gp.update(-1.0 / (2 * h), gm, 1.0 / (2 * h));
+  JG->apply(d, Jd);
+  gp.update(-1.0, Jd, 1.0);
+  EXPECT_LE(gp.norm2(), kTol * Jd.norm2()) << c.name;
+  // J_G^T v must be the gradient of N.
+  Vector gradN(sys.map()), JtV(sys.map());
+  sys.nonlinearGradient(*y, gradN);
+  JG->apply(*sys.nonlinearTerm().weights(), JtV, Teuchos::TRANS);
+  JtV.update(-1.0, gradN, 1.0);
+  EXPECT_LE(JtV.norm2(), 1e-13 * gradN.norm2()) << c.name;
+}
+
+TEST_P(SceneFD, HessianMatchesFiniteDifferenceOfGradient) {
+  const Case c = cases()[GetParam()];
+  auto s = c.scene->instantiate(test::comm(), c.mu, c.shift);
+  const auto& sys = *s.system;
+  auto y = point(s);
+  auto Hn = sys.createHessianN();
+  sys.hessianN(*y, *Hn);
+  Vector d(sys.map()), yp(sys.map()), ym(sys.map()), gp(sys.map()), gm(sys.map()), Hd(sys.map());
+  test::fillByGid(d, 1.0, 11);
+  const double h = 1e-5 * y->norm2() / d.norm2();
+  yp.update(1.0, *y, h, d, 0.0);
+  ym.update(1.0, *y, -h, d, 0.0);
+  sys.nonlinearGradient(yp, gp);
+  sys.nonlinearGradient(ym, gm);
+  gp.update(-1.0 / (2 * h), gm, 1.0 / (2 * h));
+  Hn->apply(d, Hd);
+  gp.update(-1.0, Hd, 1.0);
+  EXPECT_LE(gp.norm2(), kTol * Hd.norm2()) << c.name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, SceneFD, ::testing::Range(0, 4));
+
+// eq:shiftH: H_s(y_s) = H(y_s + y0) exactly (to round-off of the sums, ~1e-14 relative).
+TEST(Shift, ShiftedHamiltonianEqualsOriginalAtTranslatedState) {
+  for (const auto& c : cases()) {
+    auto [sys, y0] = c.scene->build(test::comm(), c.mu);
+    auto shifted = sys->shifted(*y0);
+    Vector ys(sys->map()), y(sys->map()), g(sys->map()), gs(sys->map());
+    test::fillByGid(ys, 0.2, 3);
+    y.update(1.0, ys, 1.0, *y0, 0.0);
+    const double H = sys->hamiltonian(y), Hs = shifted->hamiltonian(ys);
+    EXPECT_NEAR(Hs, H, 1e-12 * std::abs(H)) << c.name;
+    EXPECT_NEAR(shifted->hamiltonian(Vector(sys->map())), sys->hamiltonian(*y0), 1e-12 * std::abs(H));
+    sys->gradient(y, g);
+    shifted->gradient(ys, gs);
+    gs.update(-1.0, g, 1.0);
+    EXPECT_LE(gs.norm2(), 1e-12 * g.norm2()) << c.name;
+  }
+}
+
+// J^T J = I exactly (J only permutes and flips signs); x^T J x = 0 up to the round-off of a
+// dot product of 2n terms summed in another order (<= 2n eps ||x||^2).
+TEST(PhaseSpace, CanonicalTensorIdentities) {
+  PhaseSpace ps(37, test::comm());
+  Vector x(ps.map()), Jx(ps.map()), back(ps.map());
+  test::fillByGid(x, 1.0, 5);
+  ps.applyJ(x, Jx);
+  EXPECT_LE(std::abs(x.dot(Jx)), 2 * 74 * 2.3e-16 * x.dot(x));
+  ps.applyJT(Jx, back);
+  back.update(-1.0, x, 1.0);
+  EXPECT_EQ(back.normInf(), 0.0);
+  // J e_0 = -e_n (the p-row of q_0): column 0 of J is (0, -I)^T.
+  Vector e(ps.map());
+  e.replaceGlobalValue(0, 0.0);
+  if (ps.map()->isNodeGlobalElement(0)) e.replaceGlobalValue(0, 1.0);
+  ps.applyJ(e, Jx);
+  EXPECT_EQ(Jx.norm1(), 1.0);
+  double val = 0.0;
+  if (ps.map()->isNodeGlobalElement(37)) val = Jx.getData()[ps.map()->getLocalElement(37)];
+  double gval = 0.0;
+  Teuchos::reduceAll(*test::comm(), Teuchos::REDUCE_SUM, val, Teuchos::outArg(gval));
+  EXPECT_EQ(gval, -1.0);
+}
+
+TEST(Scenes, RejectBadSizesAndParameters) {
+  EXPECT_THROW(Nls1d(-4), InputError);
+  EXPECT_THROW(Swe2d(2), InputError);
+  Nls1d nls(16);
+  EXPECT_THROW(nls.parameterBox().check({1.5}), InputError);
+  EXPECT_NO_THROW(nls.parameterBox().check({1.0}));
+  try {
+    nls.parameterBox().check({0.5});
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("eps = 0.5"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace

@@ -1,0 +1,107 @@
+#pragma once
+// The one implicit time scheme of GPHR, written once for the full (Tpetra), reduced and
+// hyper-reduced (small dense) systems:
+//
+//   y1 = y0 + dt J  sum_q w_q grad H(y0 + s_q (y1 - y0))                            (*)
+//
+// With the 1-point Gauss rule (s = 1/2, w = 1) (*) is the implicit midpoint rule (IMR); with a
+// Gauss-Legendre rule exact for the degree of grad H along the segment, (*) is the Average
+// Vector Field method (AVF), which conserves H exactly when (*) is solved exactly:
+// H(y1) - H(y0) = (y1 - y0)^T gbar = gbar^T R for the Newton residual R, so |dH| <= |gbar| |R|.
+//
+// (*) is solved by Newton's method with the exact Jacobian
+//   K = I - dt J Hbar,  Hbar = sum_q w_q s_q Hess H(y_q);
+// the backend solves the equivalent (J^T K) dx = (J^T - dt Hbar) dx = -J^T R, whose matrix needs
+// no product with J and has the sparsity of Hess H plus the canonical pairs.
+//
+// Backend concept (see FullModelBackend and, for reduced systems, DenseBackend):
+//   using Vector;  Vector create() const;
+//   void gradient(const Vector& y, Vector& g);           // g = grad H(y)
+//   void applyJ(const Vector& x, Vector& out);  void applyJT(const Vector& x, Vector& out);
+//   void beginNewtonMatrix();                            // M = J^T
+//   void addHessian(const Vector& y, double scale);     // M += scale Hess H(y)
+//   void endNewtonMatrix();
+//   int solveNewton(const Vector& rhs, Vector& dx);      // M dx = rhs; returns linear iterations
+//   static void update(Vector& y, double a, const Vector& x, double b);  // y = a x + b y
+//   static void update(Vector& y, double a, const Vector& x, double b, const Vector& z, double c);
+//   static double norm(const Vector& x);  static void assign(Vector& y, const Vector& x);
+#include <Teuchos_ParameterList.hpp>
+#include <cmath>
+#include <string>
+
+#include "gphr/core/Error.hpp"
+#include "gphr/timeint/Quadrature.hpp"
+
+namespace gphr {
+
+struct StepReport {
+  int newtonIterations = 0;
+  int linearIterations = 0;
+  double residualNorm = 0.0;  // ||R(y1)|| at acceptance
+};
+
+struct NewtonOptions {
+  double tolerance = 1e-10;  // on ||R||_2, as the paper's Newton tolerance
+  int maxIterations = 25;
+};
+
+template <class Backend>
+class AveragedGradientScheme {
+ public:
+  using Vector = typename Backend::Vector;
+
+  AveragedGradientScheme(Backend& backend, QuadratureRule rule, NewtonOptions opts)
+      : be_(backend), rule_(std::move(rule)), opts_(opts), yq_(be_.create()), gsum_(be_.create()),
+        g_(be_.create()), res_(be_.create()), rhs_(be_.create()), dx_(be_.create()) {}
+
+  const QuadratureRule& rule() const { return rule_; }
+  const NewtonOptions& options() const { return opts_; }
+
+  // Solve (*) for y1, starting from the guess in y1. Throws SolverError if Newton fails;
+  // `step` and `time` only label that message.
+  StepReport step(const Vector& y0, Vector& y1, double dt, long step = 0, double time = 0.0) {
+    StepReport rep;
+    for (;;) {
+      rep.residualNorm = residual(y0, y1, dt);
+      if (rep.residualNorm <= opts_.tolerance) return rep;
+      GPHR_REQUIRE(std::isfinite(rep.residualNorm) && rep.newtonIterations < opts_.maxIterations,
+                   SolverError, "Newton did not converge at step ", step, " (t = ", time,
+                   "): residual norm ", rep.residualNorm, " after ", rep.newtonIterations,
+                   " iterations (tolerance ", opts_.tolerance, ", at most ", opts_.maxIterations, ")");
+      be_.beginNewtonMatrix();
+      for (int q = 0; q < rule_.size(); ++q) {
+        Backend::update(yq_, 1.0 - rule_.nodes[q], y0, rule_.nodes[q], y1, 0.0);
+        be_.addHessian(yq_, -dt * rule_.weights[q] * rule_.nodes[q]);
+      }
+      be_.endNewtonMatrix();
+      be_.applyJT(res_, rhs_);
+      Backend::update(rhs_, -1.0, rhs_, 0.0);
+      rep.linearIterations += be_.solveNewton(rhs_, dx_);
+      Backend::update(y1, 1.0, dx_, 1.0);
+      ++rep.newtonIterations;
+    }
+  }
+
+  // Average gradient gbar = sum_q w_q grad H(y0 + s_q (y1 - y0)) of the last residual().
+  const Vector& averageGradient() const { return gsum_; }
+
+  // R = y1 - y0 - dt J gbar; returns ||R||.
+  double residual(const Vector& y0, const Vector& y1, double dt) {
+    for (int q = 0; q < rule_.size(); ++q) {
+      Backend::update(yq_, 1.0 - rule_.nodes[q], y0, rule_.nodes[q], y1, 0.0);
+      be_.gradient(yq_, g_);
+      Backend::update(gsum_, rule_.weights[q], g_, q == 0 ? 0.0 : 1.0);
+    }
+    be_.applyJ(gsum_, res_);
+    Backend::update(res_, 1.0, y1, -1.0, y0, -dt);
+    return Backend::norm(res_);
+  }
+
+ private:
+  Backend& be_;
+  QuadratureRule rule_;
+  NewtonOptions opts_;
+  Vector yq_, gsum_, g_, res_, rhs_, dx_;
+};
+
+}  // namespace gphr

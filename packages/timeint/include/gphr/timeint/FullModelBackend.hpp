@@ -1,0 +1,47 @@
+#pragma once
+// Backend of AveragedGradientScheme for the full model on Tpetra: the Newton matrix
+// M = J^T - dt Hbar is assembled as a CrsMatrix on the Hessian graph (plus canonical pairs) and
+// solved with Belos (through Belos::SolverFactory) and an optional Ifpack2 preconditioner.
+// Configured by a ParameterList (validParameters() documents it).
+#include <Teuchos_ParameterList.hpp>
+#include <memory>
+
+#include "gphr/core/HamiltonianSystem.hpp"
+
+namespace gphr {
+
+class FullModelBackend {
+ public:
+  using Vector = gphr::Vector;
+
+  // linearSolver: see validParameters(); validated here.
+  FullModelBackend(RCP<const HamiltonianSystem> system, Teuchos::ParameterList linearSolver);
+  ~FullModelBackend();
+  static Teuchos::ParameterList validParameters();
+
+  Vector create() const { return Vector(system_->map()); }
+  void gradient(const Vector& y, Vector& g) { system_->gradient(y, g); }
+  void applyJ(const Vector& x, Vector& out) { system_->space().applyJ(x, out); }
+  void applyJT(const Vector& x, Vector& out) { system_->space().applyJT(x, out); }
+  void beginNewtonMatrix();
+  void addHessian(const Vector& y, double scale) { system_->addHessian(y, scale, *newtonMatrix_); }
+  void endNewtonMatrix();
+  int solveNewton(const Vector& rhs, Vector& dx);
+
+  static void update(Vector& y, double a, const Vector& x, double b) { y.update(a, x, b); }
+  static void update(Vector& y, double a, const Vector& x, double b, const Vector& z, double c) {
+    y.update(a, x, b, z, c);
+  }
+  static double norm(const Vector& x) { return x.norm2(); }
+  static void assign(Vector& y, const Vector& x) { Tpetra::deep_copy(y, x); }
+
+  const HamiltonianSystem& system() const { return *system_; }
+
+ private:
+  struct Solver;  // Belos + Ifpack2 objects, kept out of this header (compile cost)
+  RCP<const HamiltonianSystem> system_;
+  RCP<CrsMatrix> newtonMatrix_;
+  std::unique_ptr<Solver> solver_;
+};
+
+}  // namespace gphr

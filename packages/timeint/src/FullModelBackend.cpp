@@ -1,0 +1,106 @@
+// Belos and Ifpack2 are instantiated in this one file only (PLATFORM.md: heavy instantiations
+// stay out of widely included headers).
+#include "gphr/timeint/FullModelBackend.hpp"
+
+#include <BelosLinearProblem.hpp>
+#include <BelosSolverFactory.hpp>
+#include <BelosTpetraAdapter.hpp>
+#include <Ifpack2_Factory.hpp>
+
+#include "gphr/core/Error.hpp"
+#include "gphr/core/ParameterValidation.hpp"
+
+namespace gphr {
+
+using BelosProblem = Belos::LinearProblem<Scalar, MultiVector, Operator>;
+using BelosSolver = Belos::SolverManager<Scalar, MultiVector, Operator>;
+using Preconditioner = Ifpack2::Preconditioner<Scalar, LO, GO, Node>;
+
+struct FullModelBackend::Solver {
+  RCP<BelosSolver> belos;
+  RCP<BelosProblem> problem;
+  RCP<Preconditioner> prec;
+  double tolerance = 1e-12;
+};
+
+Teuchos::ParameterList FullModelBackend::validParameters() {
+  Teuchos::ParameterList pl("linearSolver");
+  setChoiceParameter(pl, "method", "GMRES", Teuchos::tuple<std::string>("GMRES", "TFQMR", "BICGSTAB"),
+                     "Belos solver for the Newton systems of the full model");
+  setDoubleParameter(pl, "tolerance", 1e-12, 1e-16, 1e-2,
+                     "relative residual tolerance of each linear solve");
+  setIntParameter(pl, "maxIterations", 500, 1, 100000, "iteration limit of each linear solve");
+  setChoiceParameter(pl, "preconditioner", "RILUK",
+                     Teuchos::tuple<std::string>("RILUK", "ILUT", "RELAXATION", "none"),
+                     "Ifpack2 preconditioner (per-rank, additive Schwarz without overlap)");
+  setIntParameter(pl, "iluFill", 1, 0, 10, "level of fill of RILUK");
+  return pl;
+}
+
+FullModelBackend::FullModelBackend(RCP<const HamiltonianSystem> system, Teuchos::ParameterList ls)
+    : system_(system), solver_(new Solver) {
+  validateParameters(ls, validParameters(), "linearSolver");
+  newtonMatrix_ = rcp(new CrsMatrix(system_->hessianGraph(true)));
+  solver_->tolerance = ls.get<double>("tolerance");
+  auto belosParams = Teuchos::parameterList();
+  belosParams->set("Convergence Tolerance", solver_->tolerance);
+  belosParams->set("Maximum Iterations", ls.get<int>("maxIterations"));
+  belosParams->set("Num Blocks", std::min(ls.get<int>("maxIterations"), 200));
+  belosParams->set("Implicit Residual Scaling", "Norm of RHS");
+  belosParams->set("Explicit Residual Scaling", "Norm of RHS");
+  Belos::SolverFactory<Scalar, MultiVector, Operator> factory;
+  solver_->belos = factory.create(ls.get<std::string>("method"), belosParams);
+  solver_->problem = rcp(new BelosProblem());
+  const std::string pt = ls.get<std::string>("preconditioner");
+  if (pt != "none") {
+    // Ifpack2 needs a fill-complete matrix to set up; assemble J^T once for the structure.
+    beginNewtonMatrix();
+    newtonMatrix_->fillComplete(system_->map(), system_->map());
+    solver_->prec = Ifpack2::Factory::create<Tpetra::RowMatrix<Scalar, LO, GO, Node>>(pt, newtonMatrix_);
+    Teuchos::ParameterList pp;
+    if (pt == "RILUK") pp.set("fact: iluk level-of-fill", ls.get<int>("iluFill"));
+    if (pt == "RELAXATION") pp.set("relaxation: type", "Symmetric Gauss-Seidel");
+    solver_->prec->setParameters(pp);
+    solver_->prec->initialize();
+  }
+}
+
+FullModelBackend::~FullModelBackend() = default;
+
+void FullModelBackend::beginNewtonMatrix() {
+  auto& M = *newtonMatrix_;
+  if (M.isFillComplete()) M.resumeFill();
+  M.setAllToScalar(0.0);
+  // M = J^T: (J^T)_{i, n+i} = -1 (q rows), (J^T)_{n+i, i} = +1 (p rows).
+  const auto& map = system_->map();
+  const GO n = system_->space().n();
+  for (LO i = 0; i < static_cast<LO>(map->getNodeNumElements()); ++i) {
+    const GO gi = map->getGlobalElement(i);
+    const bool isQ = gi < n;
+    M.sumIntoGlobalValues(gi, Teuchos::tuple<GO>(isQ ? gi + n : gi - n), Teuchos::tuple<Scalar>(isQ ? -1.0 : 1.0));
+  }
+}
+
+void FullModelBackend::endNewtonMatrix() {
+  newtonMatrix_->fillComplete(system_->map(), system_->map());
+  if (!solver_->prec.is_null()) solver_->prec->compute();
+}
+
+int FullModelBackend::solveNewton(const Vector& rhs, Vector& dx) {
+  dx.putScalar(0.0);
+  auto& p = *solver_->problem;
+  p.setOperator(newtonMatrix_);
+  p.setLHS(Teuchos::rcpFromRef(static_cast<MultiVector&>(dx)));
+  p.setRHS(Teuchos::rcpFromRef(static_cast<const MultiVector&>(rhs)));
+  if (!solver_->prec.is_null()) p.setRightPrec(solver_->prec);
+  p.setProblem();
+  solver_->belos->setProblem(solver_->problem);
+  const Belos::ReturnType ret = solver_->belos->solve();
+  const int iters = solver_->belos->getNumIters();
+  GPHR_REQUIRE(ret == Belos::Converged, SolverError, "linear solve of the Newton system did not reach ",
+               "relative tolerance ", solver_->tolerance, " in ", iters,
+               " iterations (raise linearSolver.maxIterations or change linearSolver.preconditioner)");
+  return iters;
+}
+
+}  // namespace gphr

@@ -1,0 +1,35 @@
+#include "gphr/timeint/Integrator.hpp"
+
+#include "gphr/core/ParameterValidation.hpp"
+#include "gphr/timeint/FullModelBackend.hpp"
+
+namespace gphr {
+
+Teuchos::ParameterList integratorValidParameters() {
+  Teuchos::ParameterList pl("integrator");
+  setChoiceParameter(pl, "scheme", "avf", Teuchos::tuple<std::string>("imr", "avf"),
+                     "imr: implicit midpoint (symplectic); avf: Average Vector Field (conserves H)");
+  setIntParameter(pl, "quadraturePoints", 0, 0, 64,
+                  "AVF Gauss-Legendre points; 0 = fewest exact for the scene's G");
+  setDoubleParameter(pl, "newtonTolerance", 1e-10, 1e-15, 1e-2,
+                     "Newton stops when ||R||_2 <= this (the paper uses 1e-10)");
+  setIntParameter(pl, "maxNewtonIterations", 25, 1, 1000, "Newton iteration limit per step");
+  pl.sublist("linearSolver") = FullModelBackend::validParameters();
+  return pl;
+}
+
+QuadratureRule quadratureFor(const std::string& scheme, int quadraturePoints, int degree) {
+  if (scheme == "imr") return gaussLegendre(1);
+  GPHR_REQUIRE(scheme == "avf", InputError, "integrator scheme '", scheme, "' is not one of 'imr', 'avf'");
+  if (quadraturePoints > 0) return gaussLegendre(quadraturePoints);
+  return gaussLegendre(degree > 0 ? gaussPointsForDegree(degree) : 3);
+}
+
+NewtonOptions newtonOptionsFrom(const Teuchos::ParameterList& pl) {
+  NewtonOptions o;
+  o.tolerance = pl.get<double>("newtonTolerance");
+  o.maxIterations = pl.get<int>("maxNewtonIterations");
+  return o;
+}
+
+}  // namespace gphr

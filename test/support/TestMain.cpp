@@ -1,0 +1,20 @@
+// GPHR's gtest main: Tpetra::ScopeGuard (MPI + Kokkos), then RUN_ALL_TESTS, then a reduction of
+// the result over ranks so that a failure on any rank fails the test on all (PLATFORM.md).
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <Tpetra_Core.hpp>
+
+int main(int argc, char** argv) {
+  Tpetra::ScopeGuard scope(&argc, &argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  if (rank != 0) {  // one rank prints; all run
+    auto& listeners = ::testing::UnitTest::GetInstance()->listeners();
+    delete listeners.Release(listeners.default_result_printer());
+  }
+  int local = RUN_ALL_TESTS(), global = 0;
+  MPI_Allreduce(&local, &global, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  return global;
+}
