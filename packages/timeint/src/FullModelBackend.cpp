@@ -16,6 +16,9 @@ using BelosProblem = Belos::LinearProblem<Scalar, MultiVector, Operator>;
 using BelosSolver = Belos::SolverManager<Scalar, MultiVector, Operator>;
 using Preconditioner = Ifpack2::Preconditioner<Scalar, LO, GO, Node>;
 
+// A Newton direction from a linear solve with this relative residual still contracts Newton.
+constexpr double kUsefulTolerance = 1e-6;
+
 struct FullModelBackend::Solver {
   RCP<BelosSolver> belos;
   RCP<BelosProblem> problem;
@@ -97,8 +100,16 @@ int FullModelBackend::solveNewton(const Vector& rhs, Vector& dx) {
   solver_->belos->setProblem(solver_->problem);
   const Belos::ReturnType ret = solver_->belos->solve();
   const int iters = solver_->belos->getNumIters();
-  GPHR_REQUIRE(ret == Belos::Converged, SolverError, "linear solve of the Newton system did not reach ",
-               "relative tolerance ", solver_->tolerance, " in ", iters,
+  // Near round-off GMRES can stop short of a very tight tolerance (implicit and explicit residuals
+  // part ways); Newton checks the true residual anyway, so only a useless direction is an error.
+  double achieved = ret == Belos::Converged ? 0.0 : 1.0;
+  try {
+    achieved = solver_->belos->achievedTol();
+  } catch (const std::exception&) {  // not implemented by every Belos solver
+  }
+  GPHR_REQUIRE(ret == Belos::Converged || achieved <= kUsefulTolerance, SolverError,
+               "linear solve of the Newton system reached only relative residual ", achieved,
+               " (tolerance ", solver_->tolerance, ") in ", iters,
                " iterations (raise linearSolver.maxIterations or change linearSolver.preconditioner)");
   return iters;
 }

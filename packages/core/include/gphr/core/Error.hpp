@@ -23,7 +23,7 @@ namespace detail {
 template <class... Args>
 std::string concat(const Args&... args) {
   std::ostringstream os;
-  os.precision(17);
+  os.precision(12);
   (os << ... << args);
   return os.str();
 }
