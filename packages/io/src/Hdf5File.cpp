@@ -1,0 +1,243 @@
+#include "gphr/io/Hdf5File.hpp"
+
+#include <Teuchos_DefaultMpiComm.hpp>
+#include <cstdio>
+
+#include "gphr/core/Error.hpp"
+
+namespace gphr {
+
+namespace {
+
+MPI_Comm rawComm(const RCP<const Comm>& comm) {
+  auto mpi = Teuchos::rcp_dynamic_cast<const Teuchos::MpiComm<int>>(comm);
+  return mpi.is_null() ? MPI_COMM_SELF : (*mpi->getRawMpiComm())();
+}
+
+// RAII for HDF5 identifiers.
+struct Id {
+  hid_t id;
+  herr_t (*closer)(hid_t);
+  ~Id() {
+    if (id >= 0) closer(id);
+  }
+};
+
+void check(herr_t status, const std::string& what, const std::string& path) {
+  GPHR_REQUIRE(status >= 0, InputError, "HDF5 file '", path, "': ", what, " failed");
+}
+
+hid_t collectiveTransfer() {
+  hid_t p = H5Pcreate(H5P_DATASET_XFER);
+  H5Pset_dxpl_mpio(p, H5FD_MPIO_COLLECTIVE);
+  return p;
+}
+
+}  // namespace
+
+Hdf5File::Hdf5File(const std::string& path, const RCP<const Comm>& comm, Mode mode) : path_(path), comm_(comm) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors become exceptions with the file name
+  Id fapl{H5Pcreate(H5P_FILE_ACCESS), H5Pclose};
+  H5Pset_fapl_mpio(fapl.id, rawComm(comm), MPI_INFO_NULL);
+  if (mode == Mode::Create) {
+    file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.id);
+    GPHR_REQUIRE(file_ >= 0, InputError, "cannot create HDF5 file '", path, "' (is the directory writable?)");
+  } else {
+    file_ = H5Fopen(path.c_str(), mode == Mode::ReadOnly ? H5F_ACC_RDONLY : H5F_ACC_RDWR, fapl.id);
+    GPHR_REQUIRE(file_ >= 0, InputError, "cannot open HDF5 file '", path,
+                 "': missing, truncated or not an HDF5 file");
+  }
+}
+
+Hdf5File::~Hdf5File() { close(); }
+
+void Hdf5File::close() {
+  if (file_ >= 0) H5Fclose(file_);
+  file_ = -1;
+}
+
+bool Hdf5File::exists(const std::string& name) const {
+  // Check each path component so that a missing parent is "false", not an error.
+  size_t pos = 0;
+  while ((pos = name.find('/', pos + 1)) != std::string::npos)
+    if (H5Lexists(file_, name.substr(0, pos).c_str(), H5P_DEFAULT) <= 0) return false;
+  return H5Lexists(file_, name.c_str(), H5P_DEFAULT) > 0;
+}
+
+void Hdf5File::createGroup(const std::string& name) {
+  Id g{H5Gcreate2(file_, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose};
+  check(g.id, "creating group '" + name + "'", path_);
+}
+
+hid_t Hdf5File::openDataset(const std::string& name) const {
+  GPHR_REQUIRE(exists(name), InputError, "HDF5 file '", path_, "' has no dataset '", name, "'");
+  hid_t d = H5Dopen2(file_, name.c_str(), H5P_DEFAULT);
+  check(d, "opening dataset '" + name + "'", path_);
+  return d;
+}
+
+namespace {
+// File-space selection of this rank's entries of `count` states: columns [a, a+m) and
+// [n+a, n+a+m). HDF5 orders the selected elements row-major, which is the local layout
+// (q block then p block) of each state.
+void selectLocal(hid_t space, hsize_t count, const PhaseSpace& ps) {
+  const hsize_t m = ps.numLocalDofs(), a = ps.firstLocalDof(), n = ps.n();
+  if (m == 0 || count == 0) {
+    H5Sselect_none(space);
+    return;
+  }
+  hsize_t start[2] = {0, a}, cnt[2] = {count, m};
+  H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, cnt, nullptr);
+  start[1] = n + a;
+  H5Sselect_hyperslab(space, H5S_SELECT_OR, start, nullptr, cnt, nullptr);
+}
+}  // namespace
+
+void Hdf5File::writeStates(const std::string& name, const MultiVector& states, const PhaseSpace& ps) {
+  const hsize_t count = states.getNumVectors(), N = ps.fullDim(), local = 2 * ps.numLocalDofs();
+  hsize_t dims[2] = {count, N};
+  Id fspace{H5Screate_simple(2, dims, nullptr), H5Sclose};
+  Id dset{H5Dcreate2(file_, name.c_str(), H5T_NATIVE_DOUBLE, fspace.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+          H5Dclose};
+  check(dset.id, "creating dataset '" + name + "'", path_);
+  std::vector<double> buf(count * local);
+  auto v = states.getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (hsize_t j = 0; j < count; ++j)
+    for (hsize_t i = 0; i < local; ++i) buf[j * local + i] = v(i, j);
+  selectLocal(fspace.id, count, ps);
+  hsize_t mdims[1] = {count * local};
+  Id mspace{H5Screate_simple(1, mdims, nullptr), H5Sclose};
+  if (count * local == 0) H5Sselect_none(mspace.id);
+  Id xfer{collectiveTransfer(), H5Pclose};
+  check(H5Dwrite(dset.id, H5T_NATIVE_DOUBLE, mspace.id, fspace.id, xfer.id, buf.data()),
+        "writing dataset '" + name + "'", path_);
+}
+
+RCP<MultiVector> Hdf5File::readStates(const std::string& name, const PhaseSpace& ps) const {
+  Id dset{openDataset(name), H5Dclose};
+  Id fspace{H5Dget_space(dset.id), H5Sclose};
+  hsize_t dims[2] = {0, 0};
+  GPHR_REQUIRE(H5Sget_simple_extent_ndims(fspace.id) == 2, InputError, "HDF5 file '", path_,
+               "': dataset '", name, "' is not a 2-D array of states");
+  H5Sget_simple_extent_dims(fspace.id, dims, nullptr);
+  GPHR_REQUIRE(dims[1] == static_cast<hsize_t>(ps.fullDim()), InputError, "HDF5 file '", path_,
+               "': dataset '", name, "' holds states of size ", dims[1], " but the model has size ",
+               ps.fullDim());
+  const hsize_t count = dims[0], local = 2 * ps.numLocalDofs();
+  std::vector<double> buf(std::max<hsize_t>(count * local, 1));
+  selectLocal(fspace.id, count, ps);
+  hsize_t mdims[1] = {std::max<hsize_t>(count * local, 1)};
+  Id mspace{H5Screate_simple(1, mdims, nullptr), H5Sclose};
+  if (count * local == 0) H5Sselect_none(mspace.id);
+  Id xfer{collectiveTransfer(), H5Pclose};
+  check(H5Dread(dset.id, H5T_NATIVE_DOUBLE, mspace.id, fspace.id, xfer.id, buf.data()),
+        "reading dataset '" + name + "' (truncated file?)", path_);
+  auto out = rcp(new MultiVector(ps.map(), count));
+  auto v = out->getLocalViewHost(Tpetra::Access::OverwriteAll);
+  for (hsize_t j = 0; j < count; ++j)
+    for (hsize_t i = 0; i < local; ++i) v(i, j) = buf[j * local + i];
+  return out;
+}
+
+void Hdf5File::writeArray(const std::string& name, const std::vector<double>& data, size_t rows, size_t cols) {
+  GPHR_REQUIRE(data.size() == rows * cols, InputError, "writeArray '", name, "': ", data.size(),
+               " values for a ", rows, " x ", cols, " array");
+  hsize_t dims[2] = {rows, cols};
+  Id fspace{H5Screate_simple(2, dims, nullptr), H5Sclose};
+  Id dset{H5Dcreate2(file_, name.c_str(), H5T_NATIVE_DOUBLE, fspace.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+          H5Dclose};
+  check(dset.id, "creating dataset '" + name + "'", path_);
+  const bool root = comm_->getRank() == 0;
+  hsize_t mdims[1] = {std::max<size_t>(data.size(), 1)};
+  Id mspace{H5Screate_simple(1, mdims, nullptr), H5Sclose};
+  if (!root || data.empty()) {
+    H5Sselect_none(fspace.id);
+    H5Sselect_none(mspace.id);
+  }
+  Id xfer{collectiveTransfer(), H5Pclose};
+  const double dummy = 0.0;
+  check(H5Dwrite(dset.id, H5T_NATIVE_DOUBLE, mspace.id, fspace.id, xfer.id, data.empty() ? &dummy : data.data()),
+        "writing dataset '" + name + "'", path_);
+}
+
+std::vector<double> Hdf5File::readArray(const std::string& name, size_t* rows, size_t* cols) const {
+  Id dset{openDataset(name), H5Dclose};
+  Id fspace{H5Dget_space(dset.id), H5Sclose};
+  hsize_t dims[2] = {1, 1};
+  const int nd = H5Sget_simple_extent_ndims(fspace.id);
+  GPHR_REQUIRE(nd >= 1 && nd <= 2, InputError, "HDF5 file '", path_, "': dataset '", name, "' is not 1-D or 2-D");
+  H5Sget_simple_extent_dims(fspace.id, dims, nullptr);
+  if (nd == 1) dims[1] = 1;
+  std::vector<double> out(dims[0] * dims[1]);
+  Id xfer{collectiveTransfer(), H5Pclose};
+  check(H5Dread(dset.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, xfer.id, out.data()),
+        "reading dataset '" + name + "' (truncated file?)", path_);
+  if (rows) *rows = dims[0];
+  if (cols) *cols = dims[1];
+  return out;
+}
+
+void Hdf5File::setAttribute(const std::string& object, const std::string& key, const std::string& value) {
+  Id type{H5Tcopy(H5T_C_S1), H5Tclose};
+  H5Tset_size(type.id, std::max<size_t>(value.size(), 1));
+  Id space{H5Screate(H5S_SCALAR), H5Sclose};
+  if (H5Aexists_by_name(file_, object.c_str(), key.c_str(), H5P_DEFAULT) > 0)
+    H5Adelete_by_name(file_, object.c_str(), key.c_str(), H5P_DEFAULT);
+  Id attr{H5Acreate_by_name(file_, object.c_str(), key.c_str(), type.id, space.id, H5P_DEFAULT, H5P_DEFAULT,
+                            H5P_DEFAULT),
+          H5Aclose};
+  check(attr.id, "creating attribute '" + key + "' on '" + object + "'", path_);
+  std::string padded = value.empty() ? std::string(1, '\0') : value;
+  check(H5Awrite(attr.id, type.id, padded.data()), "writing attribute '" + key + "'", path_);
+}
+
+void Hdf5File::setAttribute(const std::string& object, const std::string& key, const std::vector<double>& value) {
+  hsize_t dims[1] = {std::max<size_t>(value.size(), 1)};
+  Id space{H5Screate_simple(1, dims, nullptr), H5Sclose};
+  if (H5Aexists_by_name(file_, object.c_str(), key.c_str(), H5P_DEFAULT) > 0)
+    H5Adelete_by_name(file_, object.c_str(), key.c_str(), H5P_DEFAULT);
+  Id attr{H5Acreate_by_name(file_, object.c_str(), key.c_str(), H5T_NATIVE_DOUBLE, space.id, H5P_DEFAULT,
+                            H5P_DEFAULT, H5P_DEFAULT),
+          H5Aclose};
+  check(attr.id, "creating attribute '" + key + "' on '" + object + "'", path_);
+  std::vector<double> v = value.empty() ? std::vector<double>{0.0} : value;
+  check(H5Awrite(attr.id, H5T_NATIVE_DOUBLE, v.data()), "writing attribute '" + key + "'", path_);
+}
+
+std::string Hdf5File::stringAttribute(const std::string& object, const std::string& key) const {
+  GPHR_REQUIRE(H5Aexists_by_name(file_, object.c_str(), key.c_str(), H5P_DEFAULT) > 0, InputError,
+               "HDF5 file '", path_, "': '", object, "' has no attribute '", key, "'");
+  Id attr{H5Aopen_by_name(file_, object.c_str(), key.c_str(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose};
+  Id type{H5Aget_type(attr.id), H5Tclose};
+  std::string s(H5Tget_size(type.id), '\0');
+  check(H5Aread(attr.id, type.id, s.data()), "reading attribute '" + key + "'", path_);
+  return s.substr(0, s.find('\0'));
+}
+
+std::vector<double> Hdf5File::doubleAttribute(const std::string& object, const std::string& key) const {
+  GPHR_REQUIRE(H5Aexists_by_name(file_, object.c_str(), key.c_str(), H5P_DEFAULT) > 0, InputError,
+               "HDF5 file '", path_, "': '", object, "' has no attribute '", key, "'");
+  Id attr{H5Aopen_by_name(file_, object.c_str(), key.c_str(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose};
+  Id space{H5Aget_space(attr.id), H5Sclose};
+  std::vector<double> v(H5Sget_simple_extent_npoints(space.id));
+  check(H5Aread(attr.id, H5T_NATIVE_DOUBLE, v.data()), "reading attribute '" + key + "'", path_);
+  return v;
+}
+
+RenameOnCommit::RenameOnCommit(std::string finalPath, RCP<const Comm> comm)
+    : final_(std::move(finalPath)), temp_(final_ + ".partial"), comm_(comm) {}
+
+RenameOnCommit::~RenameOnCommit() {
+  if (!done_ && comm_->getRank() == 0) std::remove(temp_.c_str());
+}
+
+void RenameOnCommit::commit() {
+  comm_->barrier();
+  if (comm_->getRank() == 0)
+    GPHR_REQUIRE(std::rename(temp_.c_str(), final_.c_str()) == 0, InputError, "cannot rename '", temp_,
+                 "' to '", final_, "'");
+  comm_->barrier();
+  done_ = true;
+}
+
+}  // namespace gphr
