@@ -64,27 +64,30 @@ void HamiltonianSystem::jacobianG(const Vector& y, CrsMatrix& out) const {
   assembly_.fillJacobian(out);
 }
 
-RCP<const CrsGraph> HamiltonianSystem::hessianGraph(bool withCanonical) const {
-  auto& cached = hessGraph_[withCanonical ? 1 : 0];
+RCP<const CrsGraph> HamiltonianSystem::hessianGraph(bool leftJ) const {
+  auto& cached = hessGraph_[leftJ ? 1 : 0];
   if (!cached.is_null()) return cached;
   const auto& map = space_->map();
-  // Static profile: capacity = entries of L + diagonal + partner + the stencil bound.
-  std::vector<size_t> bounds = assembly_.hessianRowBounds();
-  for (LO i = 0; i < static_cast<LO>(bounds.size()); ++i) bounds[i] += L_->getNumEntriesInLocalRow(i) + 2;
+  const PhaseSpace* J = leftJ ? space_.get() : nullptr;
+  // Static profile: capacity = stencil bound + entries of L + diagonal, taken from the source row
+  // (row r of H lands in row jRow(r) of J H, on the same rank: q_i and p_i are co-located).
+  const std::vector<size_t> hb = assembly_.hessianRowBounds();
+  std::vector<size_t> bounds(hb.size());
+  for (LO i = 0; i < static_cast<LO>(hb.size()); ++i) {
+    const LO target = leftJ ? map->getLocalElement(J->jRow(map->getGlobalElement(i)).first) : i;
+    bounds[target] = hb[i] + L_->getNumEntriesInLocalRow(i) + 1;
+  }
   auto graph = rcp(new CrsGraph(map, Teuchos::ArrayView<const size_t>(bounds.data(), bounds.size())));
   Teuchos::Array<GO> cols(L_->getNodeMaxNumRowEntries());
   for (LO i = 0; i < static_cast<LO>(map->getNodeNumElements()); ++i) {
     const GO gi = map->getGlobalElement(i);
+    const GO row = leftJ ? J->jRow(gi).first : gi;
     size_t nnz = 0;
     L_->getGraph()->getGlobalRowCopy(gi, cols(), nnz);
-    if (nnz > 0) graph->insertGlobalIndices(gi, cols(0, nnz));
-    graph->insertGlobalIndices(gi, Teuchos::tuple<GO>(gi));  // diagonal, for preconditioners
-    if (withCanonical) {
-      const GO partner = gi < space_->n() ? gi + space_->n() : gi - space_->n();
-      graph->insertGlobalIndices(gi, Teuchos::tuple<GO>(partner));
-    }
+    if (nnz > 0) graph->insertGlobalIndices(row, cols(0, nnz));
+    graph->insertGlobalIndices(gi, Teuchos::tuple<GO>(gi));  // diagonal: identity / preconditioners
   }
-  assembly_.insertHessianPattern(*graph);
+  assembly_.insertHessianPattern(*graph, J);
   graph->fillComplete(map, map);
   cached = graph;
   return cached;
@@ -102,7 +105,7 @@ void HamiltonianSystem::hessianN(const Vector& y, CrsMatrix& out) const {
   out.fillComplete(space_->map(), space_->map());
 }
 
-void HamiltonianSystem::addLinearPart(Scalar scale, CrsMatrix& target) const {
+void HamiltonianSystem::addLinearPart(Scalar scale, CrsMatrix& target, bool leftJ) const {
   const auto& map = space_->map();
   const size_t maxNnz = L_->getNodeMaxNumRowEntries();
   Teuchos::Array<GO> cols(maxNnz);
@@ -111,15 +114,16 @@ void HamiltonianSystem::addLinearPart(Scalar scale, CrsMatrix& target) const {
     const GO gi = map->getGlobalElement(i);
     size_t nnz = 0;
     L_->getGlobalRowCopy(gi, cols(), vals(), nnz);
-    for (size_t j = 0; j < nnz; ++j) vals[j] *= scale;
-    if (nnz > 0) target.sumIntoGlobalValues(gi, cols(0, nnz), vals(0, nnz));
+    const auto [row, sign] = leftJ ? space_->jRow(gi) : std::pair<GO, Scalar>(gi, 1.0);
+    for (size_t j = 0; j < nnz; ++j) vals[j] *= sign * scale;
+    if (nnz > 0) target.sumIntoGlobalValues(row, cols(0, nnz), vals(0, nnz));
   }
 }
 
-void HamiltonianSystem::addHessian(const Vector& y, Scalar scale, CrsMatrix& target) const {
+void HamiltonianSystem::addHessian(const Vector& y, Scalar scale, CrsMatrix& target, bool leftJ) const {
   assembly_.evaluate(y, false, true);
-  addLinearPart(scale, target);
-  assembly_.addHessian(target, scale);
+  addLinearPart(scale, target, leftJ);
+  assembly_.addHessian(target, scale, leftJ ? space_.get() : nullptr);
 }
 
 }  // namespace gphr

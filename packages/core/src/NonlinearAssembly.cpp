@@ -94,7 +94,7 @@ void NonlinearAssembly::fillJacobian(CrsMatrix& out) const {
   out.fillComplete(term_->stateMap(), term_->rowMap());
 }
 
-void NonlinearAssembly::addHessian(CrsMatrix& target, Scalar scale) const {
+void NonlinearAssembly::addHessian(CrsMatrix& target, Scalar scale, const PhaseSpace* leftJ) const {
   const Stencil& st = term_->stencil();
   auto v = term_->weights()->getLocalViewHost(Tpetra::Access::ReadOnly);
   for (LO r = 0; r < st.numRows(); ++r) {
@@ -102,19 +102,21 @@ void NonlinearAssembly::addHessian(CrsMatrix& target, Scalar scale) const {
     const GO* gids = &st.gids[st.offsets[r]];
     const Scalar* h = &batch_.hess(batch_.hessOffsets(r));
     for (LO a = 0; a < s; ++a) {
-      for (LO c = 0; c < s; ++c) valBuf_[c] = scale * v(r, 0) * h[a * s + c];
-      target.sumIntoGlobalValues(gids[a], Teuchos::ArrayView<const GO>(gids, s),
+      const auto [row, sign] = leftJ ? leftJ->jRow(gids[a]) : std::pair<GO, Scalar>(gids[a], 1.0);
+      for (LO c = 0; c < s; ++c) valBuf_[c] = sign * scale * v(r, 0) * h[a * s + c];
+      target.sumIntoGlobalValues(row, Teuchos::ArrayView<const GO>(gids, s),
                                  Teuchos::ArrayView<const Scalar>(valBuf_.data(), s));
     }
   }
 }
 
-void NonlinearAssembly::insertHessianPattern(CrsGraph& graph) const {
+void NonlinearAssembly::insertHessianPattern(CrsGraph& graph, const PhaseSpace* leftJ) const {
   const Stencil& st = term_->stencil();
   for (LO r = 0; r < st.numRows(); ++r) {
     const LO s = st.size(r);
     const GO* gids = &st.gids[st.offsets[r]];
-    for (LO a = 0; a < s; ++a) graph.insertGlobalIndices(gids[a], Teuchos::ArrayView<const GO>(gids, s));
+    for (LO a = 0; a < s; ++a)
+      graph.insertGlobalIndices(leftJ ? leftJ->jRow(gids[a]).first : gids[a], Teuchos::ArrayView<const GO>(gids, s));
   }
 }
 

@@ -34,8 +34,9 @@ Teuchos::ParameterList FullModelBackend::validParameters() {
                      "relative residual tolerance of each linear solve");
   setIntParameter(pl, "maxIterations", 500, 1, 100000, "iteration limit of each linear solve");
   setChoiceParameter(pl, "preconditioner", "RILUK",
-                     Teuchos::tuple<std::string>("RILUK", "ILUT", "RELAXATION", "none"),
-                     "Ifpack2 preconditioner (per-rank, additive Schwarz without overlap)");
+                     Teuchos::tuple<std::string>("RILUK", "ILUT", "RELAXATION", "AMESOS2", "none"),
+                     "Ifpack2 preconditioner, per rank (block Jacobi); AMESOS2 = exact KLU2 solve of each "
+                     "rank's block (a direct solve on one rank)");
   setIntParameter(pl, "iluFill", 1, 0, 10, "level of fill of RILUK");
   return pl;
 }
@@ -56,13 +57,14 @@ FullModelBackend::FullModelBackend(RCP<const HamiltonianSystem> system, Teuchos:
   solver_->problem = rcp(new BelosProblem());
   const std::string pt = ls.get<std::string>("preconditioner");
   if (pt != "none") {
-    // Ifpack2 needs a fill-complete matrix to set up; assemble J^T once for the structure.
+    // Ifpack2 needs a fill-complete matrix to set up; assemble I once for the structure.
     beginNewtonMatrix();
     newtonMatrix_->fillComplete(system_->map(), system_->map());
     solver_->prec = Ifpack2::Factory::create<Tpetra::RowMatrix<Scalar, LO, GO, Node>>(pt, newtonMatrix_);
     Teuchos::ParameterList pp;
     if (pt == "RILUK") pp.set("fact: iluk level-of-fill", ls.get<int>("iluFill"));
     if (pt == "RELAXATION") pp.set("relaxation: type", "Symmetric Gauss-Seidel");
+    if (pt == "AMESOS2") pp.set("Amesos2 solver name", "KLU2");
     solver_->prec->setParameters(pp);
     solver_->prec->initialize();
   }
@@ -74,14 +76,11 @@ void FullModelBackend::beginNewtonMatrix() {
   auto& M = *newtonMatrix_;
   if (M.isFillComplete()) M.resumeFill();
   M.setAllToScalar(0.0);
-  // M = J^T: (J^T)_{i, n+i} = -1 (q rows), (J^T)_{n+i, i} = +1 (p rows).
+  // M = I.
   const auto& map = system_->map();
-  const GO n = system_->space().n();
-  for (LO i = 0; i < static_cast<LO>(map->getNodeNumElements()); ++i) {
-    const GO gi = map->getGlobalElement(i);
-    const bool isQ = gi < n;
-    M.sumIntoGlobalValues(gi, Teuchos::tuple<GO>(isQ ? gi + n : gi - n), Teuchos::tuple<Scalar>(isQ ? -1.0 : 1.0));
-  }
+  for (LO i = 0; i < static_cast<LO>(map->getNodeNumElements()); ++i)
+    M.sumIntoLocalValues(i, Teuchos::tuple<LO>(M.getColMap()->getLocalElement(map->getGlobalElement(i))),
+                         Teuchos::tuple<Scalar>(1.0));
 }
 
 void FullModelBackend::endNewtonMatrix() {

@@ -42,14 +42,14 @@ class HamiltonianSystem {
   // Hessian of N as a CrsMatrix on hessianGraph(false).
   RCP<CrsMatrix> createHessianN() const;
   void hessianN(const Vector& y, CrsMatrix& out) const;
-  // target += scale * Hess H(y) = scale * (L + Hess N(y)); target fill-active, graph from
-  // hessianGraph(). Off-rank contributions are summed in at target.fillComplete().
-  void addHessian(const Vector& y, Scalar scale, CrsMatrix& target) const;
-  // Sparsity of Hess H = pattern(L) + pattern(Hess N), plus the (i, partner(i)) entries of J
-  // when withCanonical is set (the Newton matrices of the time integrators need them).
-  RCP<const CrsGraph> hessianGraph(bool withCanonical) const;
-  // Apply the linear part: out += scale * L y.
-  void addLinearPart(Scalar scale, CrsMatrix& target) const;
+  // target += scale * Hess H(y) = scale * (L + Hess N(y)), or scale * J Hess H(y) when leftJ;
+  // target fill-active on hessianGraph(leftJ). Off-rank rows are summed in at fillComplete().
+  void addHessian(const Vector& y, Scalar scale, CrsMatrix& target, bool leftJ = false) const;
+  // Sparsity of Hess H = pattern(L) + pattern(Hess N) plus the diagonal, or of J Hess H plus the
+  // diagonal when leftJ (the Newton matrices I - dt J Hbar of the time integrators).
+  RCP<const CrsGraph> hessianGraph(bool leftJ) const;
+  // target += scale * L (or scale * J L).
+  void addLinearPart(Scalar scale, CrsMatrix& target, bool leftJ = false) const;
 
  private:
   RCP<const PhaseSpace> space_;

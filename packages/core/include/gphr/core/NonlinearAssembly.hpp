@@ -6,6 +6,7 @@
 // The evaluation point is y + yRef (yRef = 0 unless the system is shifted, paper eq:shiftH),
 // and N subtracts v^T G(yRef). Buffers are allocated once here, never in a time loop.
 #include "gphr/core/NonlinearTerm.hpp"
+#include "gphr/core/PhaseSpace.hpp"
 
 namespace gphr {
 
@@ -28,11 +29,12 @@ class NonlinearAssembly {
   void addGradient(Vector& out, Scalar scale, Scalar beta) const;
   // After evaluate(..., true, ...): out = J_G, filled on jacobianGraph().
   void fillJacobian(CrsMatrix& out) const;
-  // After evaluate(..., ..., true): target += scale * Hess N. target must be fill-active and its
-  // graph contain hessianGraph()'s entries; off-rank rows are summed in at fillComplete.
-  void addHessian(CrsMatrix& target, Scalar scale) const;
-  // Sparsity of the Hessian of N on the state map: all pairs of one stencil.
-  void insertHessianPattern(CrsGraph& graph) const;
+  // After evaluate(..., ..., true): target += scale * Hess N, or scale * J Hess N when leftJ is
+  // given (row r of Hess N goes to row partner(r) with the sign of J). target must be fill-active
+  // and its graph hold those entries; off-rank rows are summed in at fillComplete.
+  void addHessian(CrsMatrix& target, Scalar scale, const PhaseSpace* leftJ = nullptr) const;
+  // Sparsity of Hess N (or J Hess N) on the state map: all pairs of one stencil.
+  void insertHessianPattern(CrsGraph& graph, const PhaseSpace* leftJ = nullptr) const;
   // Upper bound of the Hessian entries of each owned state row (graphs are static-profile):
   // sum of the sizes of the stencils that contain the row, summed over ranks.
   std::vector<size_t> hessianRowBounds() const;

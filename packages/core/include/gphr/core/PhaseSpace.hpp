@@ -5,6 +5,8 @@
 // Layout: global ids 0..n-1 are q, n..2n-1 are p. Each rank owns a block [a, b) of the n
 // degrees of freedom *for both components*, stored locally as q_a..q_{b-1}, p_a..p_{b-1}; so q_i
 // and its partner p_i always live on the same rank and J is a local permutation with signs.
+#include <utility>
+
 #include "gphr/core/Types.hpp"
 
 namespace gphr {
@@ -26,6 +28,9 @@ class PhaseSpace {
   // out = J x, out = J^T x. x and out are vectors on map(); out must not alias x.
   void applyJ(const MultiVector& x, MultiVector& out) const;
   void applyJT(const MultiVector& x, MultiVector& out) const;
+  // Row r of a matrix H appears in J H as row jRow(r).first times jRow(r).second:
+  // (J H)_{i,:} = H_{n+i,:} for q rows i < n and (J H)_{n+i,:} = -H_{i,:}.
+  std::pair<GO, Scalar> jRow(GO r) const { return r < n_ ? std::pair<GO, Scalar>(r + n_, -1.0) : std::pair<GO, Scalar>(r - n_, 1.0); }
 
  private:
   GO n_;

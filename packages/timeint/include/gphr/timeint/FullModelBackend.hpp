@@ -1,6 +1,6 @@
 #pragma once
 // Backend of AveragedGradientScheme for the full model on Tpetra: the Newton matrix
-// M = J^T - dt Hbar is assembled as a CrsMatrix on the Hessian graph (plus canonical pairs) and
+// K = I - dt J Hbar is assembled as a CrsMatrix on the Hessian graph (plus canonical pairs) and
 // solved with Belos (through Belos::SolverFactory) and an optional Ifpack2 preconditioner.
 // Configured by a ParameterList (validParameters() documents it).
 #include <Teuchos_ParameterList.hpp>
@@ -22,9 +22,8 @@ class FullModelBackend {
   Vector create() const { return Vector(system_->map()); }
   void gradient(const Vector& y, Vector& g) { system_->gradient(y, g); }
   void applyJ(const Vector& x, Vector& out) { system_->space().applyJ(x, out); }
-  void applyJT(const Vector& x, Vector& out) { system_->space().applyJT(x, out); }
   void beginNewtonMatrix();
-  void addHessian(const Vector& y, double scale) { system_->addHessian(y, scale, *newtonMatrix_); }
+  void addHessian(const Vector& y, double scale) { system_->addHessian(y, scale, *newtonMatrix_, true); }
   void endNewtonMatrix();
   int solveNewton(const Vector& rhs, Vector& dx);
 

@@ -1,0 +1,22 @@
+#pragma once
+// The `gphr` configuration: a ParameterList read from YAML or XML with one top-level key
+// `gphr`, validated key by key (unknown keys, types and ranges) and completed with defaults.
+#include <Teuchos_ParameterList.hpp>
+#include <string>
+
+namespace gphr {
+
+// The valid list for a given scene (the scene decides its size key and parameters).
+Teuchos::ParameterList configValidParameters(const std::string& sceneName);
+// Read (by extension: .yaml/.yml or .xml) and validate. InputError on any problem, one line.
+Teuchos::ParameterList loadConfig(const std::string& path);
+// Validate a list already in memory (e.g. the built-in default) and return it completed.
+Teuchos::ParameterList validateConfig(Teuchos::ParameterList cfg);
+// The small default scene `gphr` runs without arguments (NLS, n = 256, T = 5).
+Teuchos::ParameterList defaultConfig();
+// Number of time steps T / dt; InputError unless T >= dt and T is a whole number of steps.
+long numSteps(const Teuchos::ParameterList& cfg);
+// `gphr --help` text: usage and every key with default, allowed values and description.
+std::string helpText();
+
+}  // namespace gphr

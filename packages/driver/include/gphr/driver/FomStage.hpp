@@ -1,0 +1,23 @@
+#pragma once
+// The full-order-model stage of `gphr run`: integrate the scene's full model at the test
+// parameter, keep every saveEvery-th (physical) state and the Hamiltonian at every step.
+#include <Teuchos_ParameterList.hpp>
+#include <string>
+#include <vector>
+
+#include "gphr/driver/Json.hpp"
+#include "gphr/models/Scene.hpp"
+
+namespace gphr {
+
+struct FomResult {
+  RCP<MultiVector> trajectory;  // physical states y = y_s + y0, every saveEvery-th step and the last
+  std::vector<double> savedTimes;
+  std::vector<double> hamiltonian;  // H(y^j), j = 0..steps
+  JsonObject run;                   // the "runs" entry of summary.json
+};
+
+FomResult runFullModel(const Teuchos::ParameterList& cfg, const Scene& scene, const std::vector<double>& mu,
+                       const RCP<const Comm>& comm);
+
+}  // namespace gphr

@@ -1,0 +1,25 @@
+#pragma once
+// Outputs of `gphr run`: DIR/artifacts.h5, DIR/summary.json, DIR/fom_history.csv and, with
+// gnuplot, DIR/hamiltonian.png. Each is written to a temporary name and renamed only when every
+// output is complete, so an interrupted or failed run leaves no half-written file.
+#include <Teuchos_ParameterList.hpp>
+#include <string>
+
+#include "gphr/driver/FomStage.hpp"
+
+namespace gphr {
+
+struct RunContext {
+  std::string outputDir;
+  Teuchos::ParameterList config;  // validated
+  std::shared_ptr<Scene> scene;
+  std::vector<double> mu;
+  RCP<const Comm> comm;
+};
+
+// Write all outputs of the run; returns the summary JSON text.
+std::string writeReport(const RunContext& ctx, const FomResult& fom);
+// Machine description for benchmarks and summaries (host, cores, ranks, Trilinos, compiler).
+JsonObject machineInfo(const RCP<const Comm>& comm);
+
+}  // namespace gphr

@@ -1,0 +1,93 @@
+#include "gphr/driver/FomStage.hpp"
+
+#include <Teuchos_Time.hpp>
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+
+#include "gphr/driver/Config.hpp"
+#include "gphr/timeint/FullModelIntegrator.hpp"
+
+namespace gphr {
+
+namespace {
+// Progress on stderr (rank 0) at most every `every` seconds: step, time, elapsed, estimate left.
+class Progress {
+ public:
+  Progress(std::string label, long total, double every, bool root)
+      : label_(std::move(label)), total_(total), every_(every), root_(root), clock_("progress") {
+    clock_.start();
+  }
+  void update(long step, double t) {
+    const double el = clock_.totalElapsedTime(true);
+    if (!root_ || every_ <= 0 || el - last_ < every_ || step == 0) return;
+    last_ = el;
+    std::fprintf(stderr, "[gphr] %s: step %ld/%ld (t = %.4g), %.1f s elapsed, ~%.1f s left\n", label_.c_str(),
+                 step, total_, t, el, el / step * (total_ - step));
+  }
+
+ private:
+  std::string label_;
+  long total_;
+  double every_, last_ = 0.0;
+  bool root_;
+  Teuchos::Time clock_;
+};
+}  // namespace
+
+FomResult runFullModel(const Teuchos::ParameterList& cfg, const Scene& scene, const std::vector<double>& mu,
+                       const RCP<const Comm>& comm) {
+  const auto& out = cfg.sublist("output");
+  const long steps = numSteps(cfg), saveEvery = out.get<int>("saveEvery");
+  const double dt = cfg.sublist("time").get<double>("dt");
+  auto inst = scene.instantiate(comm, mu, cfg.sublist("scene").get<bool>("shift"));
+  FullModelIntegrator integ(inst.system, cfg.sublist("integrator"));
+
+  FomResult res;
+  const long numSaved = steps / saveEvery + 1 + (steps % saveEvery != 0);
+  res.trajectory = rcp(new MultiVector(inst.system->map(), numSaved));
+  res.hamiltonian.reserve(steps + 1);
+  Vector y(*inst.y0, Teuchos::Copy);
+  const auto ref = inst.system->reference();
+  Progress progress("fom", steps, out.get<double>("progressSeconds"), comm->getRank() == 0);
+  long saved = 0;
+  double observerSeconds = 0.0;
+  Teuchos::Time wall("fom"), obs("observer");
+  wall.start();
+  const RunStats stats = integ.run(y, dt, steps, [&](long j, double t, const Vector& yj, const StepReport&) {
+    obs.start(true);
+    res.hamiltonian.push_back(inst.system->hamiltonian(yj));
+    if (j % saveEvery == 0 || j == steps) {
+      auto col = res.trajectory->getVectorNonConst(saved++);
+      if (ref.is_null()) Tpetra::deep_copy(*col, yj);
+      else col->update(1.0, yj, 1.0, *ref, 0.0);
+      res.savedTimes.push_back(t);
+    }
+    progress.update(j, t);
+    observerSeconds += obs.stop();
+  });
+  const double total = wall.stop();
+
+  const double H0 = res.hamiltonian.front();
+  double herr = 0.0;
+  for (double H : res.hamiltonian) herr = std::max(herr, std::abs(H - H0));
+  res.run.set("method", "fom")
+      .set("n", static_cast<long>(inst.system->space().n()))
+      .set("fullDim", static_cast<long>(inst.system->space().fullDim()))
+      .set("numTerms", static_cast<long>(inst.system->nonlinearTerm().numTerms()))
+      .set("steps", steps)
+      .set("dt", dt)
+      .set("ranks", comm->getSize())
+      .set("t_online_s", total - observerSeconds)
+      .set("newton_iters_avg", double(stats.newtonIterations) / steps)
+      .set("linear_iters_avg", double(stats.linearIterations) / steps)
+      .set("linear_iters_per_newton", stats.newtonIterations ? double(stats.linearIterations) / stats.newtonIterations : 0.0)
+      .set("newton_residual_max", stats.maxResidual)
+      .set("H0", H0)
+      .set("H_err_max", herr)
+      .set("H_err_max_rel", H0 != 0.0 ? herr / std::abs(H0) : herr)
+      .set("status", "ok");
+  return res;
+}
+
+}  // namespace gphr

@@ -1,0 +1,87 @@
+// The `gphr` command. Exit codes: 0 success, 2 bad input (one line on stderr naming the problem),
+// 3 solver failure, 1 anything else.
+#include <Teuchos_TimeMonitor.hpp>
+#include <Tpetra_Core.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "gphr/core/Error.hpp"
+#include "gphr/driver/Config.hpp"
+#include "gphr/driver/Report.hpp"
+#include "gphr/models/SceneFactory.hpp"
+
+namespace {
+
+struct Args {
+  enum Command { Run, Help } command = Run;
+  std::string config, output = "gphr-output";
+};
+
+Args parseArgs(int argc, char** argv) {
+  Args a;
+  std::vector<std::string> v(argv + 1, argv + argc);
+  if (v.empty()) return a;  // default scene
+  if (v[0] == "--help" || v[0] == "-h" || v[0] == "help") {
+    a.command = Args::Help;
+    return a;
+  }
+  GPHR_REQUIRE(v[0] == "run", gphr::InputError, "unknown command '", v[0], "'; allowed: run, --help (see gphr --help)");
+  GPHR_REQUIRE(v.size() >= 2, gphr::InputError, "'gphr run' needs a CONFIG file (see gphr --help)");
+  a.config = v[1];
+  for (size_t i = 2; i < v.size(); ++i) {
+    if (v[i] == "--output" && i + 1 < v.size()) a.output = v[++i];
+    else throw gphr::InputError("unknown argument '" + v[i] + "'; allowed: --output DIR");
+  }
+  return a;
+}
+
+int runMain(const Args& args, const gphr::RCP<const gphr::Comm>& comm) {
+  using namespace gphr;
+  const bool root = comm->getRank() == 0;
+  RunContext ctx;
+  ctx.config = args.config.empty() ? defaultConfig() : loadConfig(args.config);
+  ctx.scene = makeScene(ctx.config.sublist("scene"));
+  ctx.mu = sceneParameters(*ctx.scene, ctx.config.sublist("parameters"));
+  ctx.comm = comm;
+  ctx.outputDir = args.output;
+  if (root) {
+    std::error_code ec;
+    std::filesystem::create_directories(ctx.outputDir, ec);
+    GPHR_REQUIRE(!ec, InputError, "cannot create output directory '", ctx.outputDir, "': ", ec.message());
+    std::fprintf(stderr, "[gphr] scene %s, %d rank(s), output in %s\n", ctx.scene->name().c_str(),
+                 comm->getSize(), ctx.outputDir.c_str());
+  }
+  comm->barrier();
+  const FomResult fom = runFullModel(ctx.config, *ctx.scene, ctx.mu, comm);
+  const std::string summary = writeReport(ctx, fom);
+  if (root) std::cout << summary << "\n";
+  Teuchos::TimeMonitor::summarize(comm.ptr(), std::cout);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Tpetra::ScopeGuard scope(&argc, &argv);
+  auto comm = Tpetra::getDefaultComm();
+  const bool root = comm->getRank() == 0;
+  try {
+    const Args args = parseArgs(argc, argv);
+    if (args.command == Args::Help) {
+      if (root) std::cout << gphr::helpText();
+      return 0;
+    }
+    return runMain(args, comm);
+  } catch (const gphr::InputError& e) {
+    if (root) std::fprintf(stderr, "gphr: error: %s\n", e.what());
+    return 2;
+  } catch (const gphr::SolverError& e) {
+    if (root) std::fprintf(stderr, "gphr: solver failure: %s\n", e.what());
+    return 3;
+  } catch (const std::exception& e) {
+    if (root) std::fprintf(stderr, "gphr: internal error: %s\n", e.what());
+    return 1;
+  }
+}

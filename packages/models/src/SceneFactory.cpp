@@ -1,0 +1,67 @@
+#include "gphr/models/SceneFactory.hpp"
+
+#include "gphr/core/Error.hpp"
+#include "gphr/core/ParameterValidation.hpp"
+
+namespace gphr {
+
+const Teuchos::Array<std::string>& sceneNames() {
+  static const Teuchos::Array<std::string> names = Teuchos::tuple<std::string>("nls1d", "swe2d");
+  return names;
+}
+
+namespace {
+void requireKnown(const std::string& name) {
+  GPHR_REQUIRE(name == "nls1d" || name == "swe2d", InputError, "key 'scene.name' has value ", name,
+               "; allowed: one of 'nls1d' 'swe2d'");
+}
+}  // namespace
+
+Teuchos::ParameterList sceneValidParameters(const std::string& name) {
+  requireKnown(name);
+  Teuchos::ParameterList pl("scene");
+  setChoiceParameter(pl, "name", name, sceneNames(), "the scene (paper Sec. 5)");
+  if (name == "nls1d")
+    setIntParameter(pl, "n", 2048, 3, 100000000, "grid points on [-pi/0.11, pi/0.11) (paper: 2048)");
+  else
+    setIntParameter(pl, "nx", 50, 3, 100000, "grid points per direction on [-2, 2)^2 (paper: 50)");
+  pl.set("shift", true, "shift the state by y0 and G by G(y0) (paper Sec. 3.3, eq:shiftH)");
+  return pl;
+}
+
+Teuchos::ParameterList sceneParameterValidParameters(const std::string& name) {
+  requireKnown(name);
+  Teuchos::ParameterList pl("parameters");
+  if (name == "nls1d") {
+    setDoubleParameter(pl, "eps", 1.0932, 0.9, 1.1, "nonlinearity strength epsilon (paper test value 1.0932)");
+  } else {
+    setDoubleParameter(pl, "beta", 1.6435, 1.1, 1.7, "width of the initial Gaussian (paper test value 1.6435)");
+    setDoubleParameter(pl, "gamma", 0.7762, 0.7, 1.3, "gravity-like coefficient gamma (paper test value 0.7762)");
+  }
+  return pl;
+}
+
+Teuchos::ParameterList sceneTimeValidParameters(const std::string& name) {
+  requireKnown(name);
+  Teuchos::ParameterList pl("time");
+  const bool nls = name == "nls1d";
+  setDoubleParameter(pl, "T", nls ? 30.0 : 10.0, 1e-12, 1e9, "final time (paper: 30 for NLS, 10 for SWE)");
+  setDoubleParameter(pl, "dt", nls ? 0.01 : 0.005, 1e-12, 1e9, "time step (paper: 0.01 NLS, 0.005 SWE); T/dt steps");
+  return pl;
+}
+
+std::shared_ptr<Scene> makeScene(const Teuchos::ParameterList& s) {
+  const std::string name = s.get<std::string>("name");
+  requireKnown(name);
+  if (name == "nls1d") return std::make_shared<Nls1d>(s.get<int>("n"));
+  return std::make_shared<Swe2d>(s.get<int>("nx"));
+}
+
+std::vector<double> sceneParameters(const Scene& scene, const Teuchos::ParameterList& parameters) {
+  std::vector<double> mu;
+  for (const auto& nm : scene.parameterBox().names) mu.push_back(parameters.get<double>(nm));
+  scene.parameterBox().check(mu);
+  return mu;
+}
+
+}  // namespace gphr
