@@ -23,7 +23,7 @@ std::string keyList(const ParameterList& valid) {
 std::string allowedText(const Teuchos::ParameterEntry& e) {
   auto v = e.validator();
   std::ostringstream os;
-  os.precision(17);
+  os.precision(12);
   if (auto iv = Teuchos::rcp_dynamic_cast<const IntValidator>(v); !iv.is_null()) {
     os << "an integer in [" << iv->getMin() << ", " << iv->getMax() << "]";
   } else if (auto dv = Teuchos::rcp_dynamic_cast<const DoubleValidator>(v); !dv.is_null()) {
@@ -55,7 +55,8 @@ void coerceNumber(ParameterList& user, const std::string& key, const Teuchos::Pa
 
 std::string valueText(const Teuchos::ParameterEntry& e) {
   std::ostringstream os;
-  os.precision(17);
+  os.precision(12);
+  os << std::boolalpha;
   e.getAny(false).print(os);
   return os.str();
 }

@@ -64,6 +64,11 @@ int runMain(const Args& args, const gphr::RCP<const gphr::Comm>& comm) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Kokkos::initialize answers --help itself: print ours first (it needs neither MPI nor Kokkos).
+  if (argc >= 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h" || std::string(argv[1]) == "help")) {
+    std::cout << gphr::helpText();
+    return 0;
+  }
   Tpetra::ScopeGuard scope(&argc, &argv);
   auto comm = Tpetra::getDefaultComm();
   const bool root = comm->getRank() == 0;

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Bad input to `gphr run`: non-zero exit, exactly one line on stderr that contains the expected
+# words, and nothing left in the output directory.
+# usage: bad_input.sh GPHR CASE
+set -u
+gphr=$1; case=$2
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+cfg=$work/config.yaml
+base='gphr:
+  scene:
+    name: nls1d
+    n: 64
+  time:
+    T: 0.1
+    dt: 0.01'
+case $case in
+  negative_n)      printf '%s\n' "$base" | sed 's/n: 64/n: -8/' > "$cfg"; expect="scene.n' has value -8" ;;
+  zero_dt)         printf '%s\n' "$base" | sed 's/dt: 0.01/dt: 0/' > "$cfg"; expect="time.dt' has value 0" ;;
+  T_less_than_dt)  printf '%s\n' "$base" | sed 's/T: 0.1/T: 0.001/' > "$cfg"; expect="smaller than time.dt" ;;
+  outside_box)     printf '%s\n  parameters:\n    eps: 1.5\n' "$base" > "$cfg"; expect="parameters.eps' has value 1.5; allowed: a number in [0.9, 1.1]" ;;
+  unknown_key)     printf '%s\n    foo: 3\n' "$base" > "$cfg"; expect="unknown key 'time.foo'; valid keys in 'time': T, dt" ;;
+  malformed_yaml)  printf 'gphr:\n  scene: [\n    name: : nls1d\n' > "$cfg"; expect="malformed YAML" ;;
+  wrong_type)      printf '%s\n  integrator:\n    scheme: rk4\n' "$base" > "$cfg"; expect="integrator.scheme' has value rk4; allowed: one of 'imr' 'avf'" ;;
+  missing_file)    cfg=$work/nope.yaml; expect="cannot read config file" ;;
+  *) echo "unknown case $case"; exit 1 ;;
+esac
+"$gphr" run "$cfg" --output "$work/out" > "$work/stdout" 2> "$work/stderr"
+rc=$?
+fail() { echo "FAIL ($case): $*"; echo "--- stderr:"; cat "$work/stderr"; exit 1; }
+[ $rc -ne 0 ] || fail "exit code 0"
+[ "$(wc -l < "$work/stderr")" -eq 1 ] || fail "stderr has $(wc -l < "$work/stderr") lines, expected 1"
+grep -qF -- "$expect" "$work/stderr" || fail "stderr lacks: $expect"
+if [ -d "$work/out" ] && [ -n "$(ls -A "$work/out")" ]; then fail "output left behind: $(ls "$work/out")"; fi
+echo "ok ($case): $(cat "$work/stderr")"
