@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Installs GPHR's Debian 12 dependencies (only what is missing), configures and builds GPHR in
+# ./build (Release, Ninja, ccache). Idempotent and quick when nothing changed. Run as root.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(build-essential cmake ninja-build ccache gnuplot-nox hdf5-tools python3
+  libopenmpi-dev openmpi-bin libhdf5-openmpi-dev libgtest-dev libopenblas-dev
+  libtrilinos-teuchos-dev libtrilinos-kokkos-dev libtrilinos-kokkos-kernels-dev
+  libtrilinos-tpetra-dev libtrilinos-belos-dev libtrilinos-anasazi-dev libtrilinos-nox-dev
+  libtrilinos-epetra-dev libtrilinos-epetraext-dev libtrilinos-triutils-dev libtrilinos-aztecoo-dev
+  libtrilinos-xpetra-dev libtrilinos-thyra-dev libtrilinos-rtop-dev libtrilinos-stratimikos-dev
+  libtrilinos-ifpack2-dev libtrilinos-amesos2-dev libtrilinos-shylu-dev libtrilinos-zoltan-dev
+  libtrilinos-zoltan2-dev libtrilinos-teko-dev libtrilinos-ml-dev libtrilinos-ifpack-dev
+  libtrilinos-amesos-dev libtrilinos-galeri-dev libtrilinos-isorropia-dev libtrilinos-trilinosss-dev
+  libscotch-dev libptscotch-dev)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "[setup] installing ${#missing[@]} Debian package(s): ${missing[*]}" >&2
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}" > /dev/null
+fi
+
+# mpirun as root (CI, containers) needs these; harmless otherwise (PLATFORM.md).
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+[ -f build/build.ninja ] || cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release > /dev/null
+cmake --build build -j "$(nproc)"
