@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Benchmark of the full model at the paper's configurations (issue: foundation), side by side in
+# one run: NLS/AVF, SWE/IMR, SWE/AVF on 1 and 2 MPI ranks, next to the paper's MATLAB times, plus
+# a short preconditioner comparison (T shortened) that justifies the default.
+# usage: bash bench/fom_paper.sh [BUILD_DIR]   (prints a table; raw summaries in bench-out/)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${1:-build}
+gphr=$build/packages/driver/gphr
+out=bench-out; mkdir -p "$out"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=1
+echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores, $(free -g | awk '/Mem/{print $2}') GiB; $(date -u +%F)"
+
+run() {  # run NAME CONFIG RANKS [INTEGRATOR_LINE] [TIME_LINE]: replace those lines of CONFIG
+  local name=$1 cfg=$2 np=$3 integ=${4:-} time=${5:-}
+  local c=$out/$name.yaml
+  cp "$cfg" "$c"
+  [ -n "$integ" ] && sed -i "s|^  integrator:.*|  integrator: $integ|" "$c"
+  [ -n "$time" ] && sed -i "s|^  time:.*|  time: $time|" "$c"
+  if [ "$np" -eq 1 ]; then "$gphr" run "$c" --output "$out/$name" > "$out/$name.log" 2>&1
+  else mpirun --oversubscribe -np "$np" "$gphr" run "$c" --output "$out/$name" > "$out/$name.log" 2>&1; fi
+}
+row() {  # row NAME PAPER_SECONDS
+  python3 - "$out/$1/summary.json" "$1" "$2" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1])); r = s["runs"][0]; paper = sys.argv[3]
+ratio = f"{float(paper) / r['t_online_s']:.1f}x" if paper != "-" else "-"
+print(f"{sys.argv[2]:<28} {r['ranks']:>5} {r['steps']:>6} {r['t_online_s']:>9.1f} {r['newton_iters_avg']:>9.2f} "
+      f"{r['linear_iters_per_newton']:>10.2f} {r['H_err_max_rel']:>10.1e} {paper:>9} {ratio:>9}")
+PY
+}
+printf '%-28s %5s %6s %9s %9s %10s %10s %9s %9s\n' run ranks steps wall_s newton/st lin/newton H_err_rel paper_s speedup
+for np in 1 2; do
+  run nls_avf_np$np bench/configs/nls_paper.yaml $np; row nls_avf_np$np 220
+  run swe_imr_np$np bench/configs/swe_paper.yaml $np '{scheme: imr}'; row swe_imr_np$np 297.29
+  run swe_avf_np$np bench/configs/swe_paper.yaml $np; row swe_avf_np$np 414.10
+done
+echo
+echo "preconditioner comparison (1 rank, T shortened to 2):"
+for pc in RILUK AMESOS2 RELAXATION none; do
+  run nls_pc_$pc bench/configs/nls_paper.yaml 1 "{scheme: avf, linearSolver: {preconditioner: $pc, maxIterations: 2000}}" "{T: 2.0, dt: 0.01}"
+  row nls_pc_$pc -
+  run swe_pc_$pc bench/configs/swe_paper.yaml 1 "{scheme: avf, linearSolver: {preconditioner: $pc, maxIterations: 2000}}" "{T: 2.0, dt: 0.005}"
+  row swe_pc_$pc -
+done
