@@ -2,10 +2,10 @@
 # Benchmark of the full model at the paper's configurations (issue: foundation), side by side in
 # one run: NLS/AVF, SWE/IMR, SWE/AVF on 1 and 2 MPI ranks, next to the paper's MATLAB times, plus
 # a short preconditioner comparison (T shortened) that justifies the default.
-# usage: bash bench/fom_paper.sh [BUILD_DIR]   (prints a table; raw summaries in bench-out/)
+# usage: bash bench/fom_paper.sh [BUILD_DIR] [all|paper|pc]   (prints a table; raw summaries in bench-out/)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-build=${1:-build}
+build=${1:-build}; part=${2:-all}
 gphr=$build/packages/driver/gphr
 out=bench-out; mkdir -p "$out"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=1
@@ -31,10 +31,12 @@ PY
 }
 printf '%-28s %5s %6s %9s %9s %10s %10s %9s %9s\n' run ranks steps wall_s newton/st lin/newton H_err_rel paper_s speedup
 for np in 1 2; do
+  [ "$part" = pc ] && break
   run nls_avf_np$np bench/configs/nls_paper.yaml $np; row nls_avf_np$np 220
   run swe_imr_np$np bench/configs/swe_paper.yaml $np '{scheme: imr}'; row swe_imr_np$np 297.29
   run swe_avf_np$np bench/configs/swe_paper.yaml $np; row swe_avf_np$np 414.10
 done
+[ "$part" = paper ] && exit 0
 echo
 echo "preconditioner comparison (1 rank, T shortened to 2):"
 for pc in RILUK AMESOS2 RELAXATION none; do

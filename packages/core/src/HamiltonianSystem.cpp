@@ -14,6 +14,8 @@ HamiltonianSystem::HamiltonianSystem(RCP<const PhaseSpace> space, RCP<const CrsM
   GPHR_REQUIRE(term_->stateMap()->isSameAs(*space_->map()), InputError,
                "Hamiltonian: the nonlinear term's stencils must refer to the state map");
   work_ = rcp(new Vector(space_->map()));
+  rowCols_.resize(L_->getNodeMaxNumRowEntries());  // row buffers of addLinearPart (Newton loop)
+  rowVals_.resize(L_->getNodeMaxNumRowEntries());
 }
 
 RCP<HamiltonianSystem> HamiltonianSystem::shifted(const Vector& y0) const {
@@ -107,9 +109,8 @@ void HamiltonianSystem::hessianN(const Vector& y, CrsMatrix& out) const {
 
 void HamiltonianSystem::addLinearPart(Scalar scale, CrsMatrix& target, bool leftJ) const {
   const auto& map = space_->map();
-  const size_t maxNnz = L_->getNodeMaxNumRowEntries();
-  Teuchos::Array<GO> cols(maxNnz);
-  Teuchos::Array<Scalar> vals(maxNnz);
+  auto& cols = rowCols_;
+  auto& vals = rowVals_;
   for (LO i = 0; i < static_cast<LO>(map->getNodeNumElements()); ++i) {
     const GO gi = map->getGlobalElement(i);
     size_t nnz = 0;

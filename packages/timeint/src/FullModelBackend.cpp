@@ -64,7 +64,10 @@ FullModelBackend::FullModelBackend(RCP<const HamiltonianSystem> system, Teuchos:
     Teuchos::ParameterList pp;
     if (pt == "RILUK") pp.set("fact: iluk level-of-fill", ls.get<int>("iluFill"));
     if (pt == "RELAXATION") pp.set("relaxation: type", "Symmetric Gauss-Seidel");
-    if (pt == "AMESOS2") pp.set("Amesos2 solver name", "KLU2");
+    if (pt == "AMESOS2") {
+      pp.set("Amesos2 solver name", "KLU2");
+      pp.sublist("Amesos2");  // Amesos2 insists on a sublist of this name
+    }
     solver_->prec->setParameters(pp);
     solver_->prec->initialize();
   }

@@ -59,6 +59,8 @@ class HamiltonianSystem {
   RCP<const NonlinearTerm> term_;
   mutable NonlinearAssembly assembly_;
   mutable RCP<Vector> work_;
+  mutable Teuchos::Array<GO> rowCols_;
+  mutable Teuchos::Array<Scalar> rowVals_;
   mutable RCP<const CrsGraph> hessGraph_[2];
 };
 
