@@ -92,7 +92,8 @@ std::string helpText() {
   std::ostringstream os;
   os << "gphr - gradient-preserving hyper-reduction of Hamiltonian systems (Trilinos)\n\n"
         "usage:\n"
-        "  gphr                          run the small default scene (NLS, n = 256, T = 5) into ./gphr-output\n"
+        "  gphr [--output DIR]           run the small default scene (NLS, n = 256, T = 5) into DIR\n"
+        "                                (default ./gphr-output)\n"
         "  gphr run CONFIG [--output DIR]  run the stages of CONFIG (.yaml/.yml/.xml), outputs in DIR\n"
         "                                (default ./gphr-output): artifacts.h5, summary.json, *.csv, *.png\n"
         "  gphr --help                   this text\n\n"

@@ -23,6 +23,11 @@ Args parseArgs(int argc, char** argv) {
   Args a;
   std::vector<std::string> v(argv + 1, argv + argc);
   if (v.empty()) return a;  // default scene
+  if (v[0] == "--output") {  // default scene into DIR
+    GPHR_REQUIRE(v.size() == 2, gphr::InputError, "usage: gphr [--output DIR] (see gphr --help)");
+    a.output = v[1];
+    return a;
+  }
   if (v[0] == "--help" || v[0] == "-h" || v[0] == "help") {
     a.command = Args::Help;
     return a;
