@@ -1,0 +1,42 @@
+#pragma once
+// Orthonormal symplectic reduced bases A (2n x 2k, A^T A = I, A^T J_{2n} A = J_{2k}) from
+// distributed snapshots (paper Sec. 2; constructions of Peng & Mohseni 2016):
+//   psd (complex SVD, the paper's choice): U = Phi + i Psi, the leading k left singular vectors
+//       of C = Q + i P;  A = [[Phi, -Psi], [Psi, Phi]].
+//   cotangent lift: Phi, the leading k left singular vectors of [Q, P];  A = [[Phi, 0], [0, Phi]].
+// Both are one computation in the real representation (a + i b <-> [a; b], i <-> J^T): the data
+// columns are [q; p] (psd) or [q; 0], [p; 0] (cotangent). Nothing n x N_snap is gathered and
+// nothing n x n is formed: over blocks of snapshot columns, Y = [sigma_j e_j, new columns] and
+// X = [Y, J^T Y] go through a TSQR (Tpetra::TsqrAdaptor), a real SVD of its R (Teuchos::LAPACK),
+// and a complex Gram-Schmidt in the small coordinates that keeps one vector of each J-pair
+// (incremental SVD truncated to maxRank, as in libROM). With all snapshots in one block it is
+// the exact thin SVD. TSQR needs (carried + new columns) <= dofs on the smallest rank.
+#include <string>
+#include <vector>
+
+#include "gphr/core/PhaseSpace.hpp"
+
+namespace gphr {
+
+struct BasisOptions {
+  std::string method = "psd";      // psd | cotangent
+  int k = 0;                       // basis half-size; 0: from energyTolerance
+  double energyTolerance = 1e-6;   // discarded fraction of the snapshot energy (when k = 0)
+  int blockColumns = 128;          // snapshot columns per incremental step
+  int maxRank = 0;                 // singular vectors kept between steps; 0: half the dofs of the smallest rank
+};
+
+struct ReducedBasis {
+  RCP<MultiVector> A;                  // 2n x 2k on the state map
+  std::vector<double> singularValues;  // of the (complex) data matrix, all that were kept
+  double energyCaptured = 0.0;         // sum_{j<=k} sigma_j^2 / ||C||_F^2
+  int k = 0;
+  std::string method;
+};
+
+// Snapshots: columns of each MultiVector are states y on space.map() (shifted states when the
+// model is shifted). Collective.
+ReducedBasis computeSymplecticBasis(const std::vector<RCP<const MultiVector>>& snapshots,
+                                    const PhaseSpace& space, const BasisOptions& options);
+
+}  // namespace gphr

@@ -1,0 +1,54 @@
+#pragma once
+// Backend of AveragedGradientScheme for small, replicated (dense) Hamiltonian systems
+// z' = J_{2k} grad H(z): the Galerkin reduced model and the hyper-reduced models. The Newton
+// matrix K = I - dt J Hbar is formed densely (2k x 2k) and LU-factored with Teuchos::LAPACK.
+#include <Teuchos_LAPACK.hpp>
+#include <Teuchos_SerialDenseMatrix.hpp>
+#include <Teuchos_SerialDenseVector.hpp>
+#include <vector>
+
+namespace gphr {
+
+using DenseVector = Teuchos::SerialDenseVector<int, double>;
+using DenseMatrix = Teuchos::SerialDenseMatrix<int, double>;
+
+// A small Hamiltonian system on R^{2k} with z = (z_q, z_p), replicated on every rank.
+class DenseHamiltonian {
+ public:
+  virtual ~DenseHamiltonian() = default;
+  virtual int dim() const = 0;  // 2k
+  virtual double hamiltonian(const DenseVector& z) = 0;
+  virtual void gradient(const DenseVector& z, DenseVector& g) = 0;
+  // H += scale * Hess H(z).
+  virtual void addHessian(const DenseVector& z, double scale, DenseMatrix& H) = 0;
+};
+
+// out = J_{2k} x: out_q = x_p, out_p = -x_q.
+void applyCanonicalJ(const DenseVector& x, DenseVector& out);
+
+class DenseBackend {
+ public:
+  using Vector = DenseVector;
+  explicit DenseBackend(DenseHamiltonian& model);
+
+  Vector create() const { return Vector(model_.dim()); }
+  void gradient(const Vector& z, Vector& g) { model_.gradient(z, g); }
+  void applyJ(const Vector& x, Vector& out) { applyCanonicalJ(x, out); }
+  void beginNewtonMatrix() { hbar_.putScalar(0.0); }
+  void addHessian(const Vector& z, double scale) { model_.addHessian(z, scale, hbar_); }
+  void endNewtonMatrix();  // K = I + J hbar (hbar holds -dt Hbar), then LU
+  int solveNewton(const Vector& rhs, Vector& dx);
+
+  static void update(Vector& y, double a, const Vector& x, double b);
+  static void update(Vector& y, double a, const Vector& x, double b, const Vector& z, double c);
+  static double norm(const Vector& x) { return x.normFrobenius(); }
+  static void assign(Vector& y, const Vector& x) { y.assign(x); }
+
+ private:
+  DenseHamiltonian& model_;
+  DenseMatrix hbar_, K_;
+  std::vector<int> pivots_;
+  Teuchos::LAPACK<int, double> lapack_;
+};
+
+}  // namespace gphr

@@ -1,0 +1,25 @@
+#include "gphr/timeint/DenseModelIntegrator.hpp"
+
+#include <Teuchos_TimeMonitor.hpp>
+
+#include "gphr/core/ParameterValidation.hpp"
+
+namespace gphr {
+
+Teuchos::ParameterList DenseModelIntegrator::validated(Teuchos::ParameterList pl) {
+  validateParameters(pl, integratorValidParameters(), "integrator");
+  return pl;
+}
+
+DenseModelIntegrator::DenseModelIntegrator(DenseHamiltonian& model, Teuchos::ParameterList pl, int degree)
+    : params_(validated(std::move(pl))),
+      backend_(model),
+      scheme_(backend_, quadratureFor(params_.get<std::string>("scheme"), params_.get<int>("quadraturePoints"), degree),
+              newtonOptionsFrom(params_)) {}
+
+RunStats DenseModelIntegrator::run(DenseVector& z, double dt, long steps, const StepObserver<DenseVector>& observer) {
+  Teuchos::TimeMonitor tm(*Teuchos::TimeMonitor::getNewCounter("gphr: dense model time stepping"));
+  return integrate(scheme_, backend_, z, dt, steps, observer);
+}
+
+}  // namespace gphr
