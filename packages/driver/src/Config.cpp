@@ -19,6 +19,21 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
   pl.sublist("parameters") = sceneParameterValidParameters(scene);
   pl.sublist("time") = sceneTimeValidParameters(scene);
   pl.sublist("integrator") = integratorValidParameters();
+  auto& tr = pl.sublist("training");
+  const bool nls = scene == "nls1d";
+  tr.set("points", Teuchos::Array<int>(nls ? 1 : 2, 3),
+         "training grid: equispaced points per parameter of the box (paper: [11] NLS, [5, 5] SWE)");
+  tr.set("values", Teuchos::Array<double>(),
+         "explicit training parameters, flattened (one value per box parameter each); overrides points");
+  setIntParameter(tr, "snapshotEvery", 1, 1, 1000000, "keep every N-th state of each training run");
+  auto& red = pl.sublist("reduction");
+  setChoiceParameter(red, "method", "psd", Teuchos::tuple<std::string>("psd", "cotangent"),
+                     "symplectic basis: psd (complex SVD, the paper's) or cotangent lift");
+  setIntParameter(red, "k", 10, 0, 100000, "reduced size 2k; 0: smallest k meeting energyTolerance");
+  setDoubleParameter(red, "energyTolerance", 1e-6, 0.0, 1.0, "discarded snapshot energy fraction when k = 0");
+  setIntParameter(red, "blockColumns", 128, 1, 100000, "snapshot columns per incremental SVD step");
+  auto& pipe = pl.sublist("pipeline");
+  pipe.set("rom", false, "train, build the basis and evaluate the Galerkin reduced model beside the full model");
   auto& out = pl.sublist("output");
   setIntParameter(out, "saveEvery", 10, 1, 1000000000, "keep every N-th state of the trajectory in artifacts.h5");
   setDoubleParameter(out, "progressSeconds", 2.0, 0.0, 1e9, "seconds between progress lines on stderr (0: none)");
@@ -46,6 +61,7 @@ Teuchos::ParameterList validateConfig(Teuchos::ParameterList cfg) {
     scene = cfg.sublist("scene").get<std::string>("name");
   validateParameters(cfg, configValidParameters(scene));
   numSteps(cfg);
+  trainingParameters(cfg);  // checks the training set against the box
   return cfg;
 }
 
@@ -74,6 +90,8 @@ Teuchos::ParameterList defaultConfig() {
   Teuchos::ParameterList pl("gphr");
   pl.sublist("scene").set("name", "nls1d").set("n", 256);
   pl.sublist("time").set("T", 5.0).set("dt", 0.01);
+  pl.sublist("pipeline").set("rom", true);
+  pl.sublist("training").set("points", Teuchos::Array<int>(1, 3));
   return validateConfig(pl);
 }
 
@@ -86,6 +104,46 @@ long numSteps(const Teuchos::ParameterList& cfg) {
   GPHR_REQUIRE(std::abs(steps * dt - T) <= 1e-9 * T, InputError, "key 'time.T' has value ", T,
                ", not a whole number of steps of time.dt = ", dt, "; allowed: T = k dt");
   return steps;
+}
+
+std::vector<std::vector<double>> trainingParameters(const Teuchos::ParameterList& cfg) {
+  const auto scene = makeScene(cfg.sublist("scene"));
+  const auto& box = scene->parameterBox();
+  const size_t p = box.names.size();
+  const auto& tr = cfg.sublist("training");
+  const auto& values = tr.get<Teuchos::Array<double>>("values");
+  std::vector<std::vector<double>> out;
+  if (!values.empty()) {
+    GPHR_REQUIRE(values.size() % p == 0, InputError, "key 'training.values' has ", values.size(),
+                 " numbers; allowed: a multiple of ", p, " (one value per parameter of the box, in order)");
+    for (size_t i = 0; i < values.size(); i += p) out.emplace_back(values.begin() + i, values.begin() + i + p);
+  } else {
+    const auto& pts = tr.get<Teuchos::Array<int>>("points");
+    GPHR_REQUIRE(pts.size() == p, InputError, "key 'training.points' has ", pts.size(), " entries; allowed: ", p,
+                 " (one per parameter of the box)");
+    std::vector<size_t> idx(p, 0);
+    for (int c : pts) GPHR_REQUIRE(c >= 1 && c <= 10000, InputError, "key 'training.points' has entry ", c,
+                                   "; allowed: integers in [1, 10000]");
+    for (;;) {  // tensor grid, first parameter fastest
+      std::vector<double> mu(p);
+      for (size_t d = 0; d < p; ++d) {
+        const auto [lo, hi] = box.bounds[d];
+        mu[d] = pts[d] == 1 ? 0.5 * (lo + hi) : lo + (hi - lo) * idx[d] / (pts[d] - 1);
+      }
+      out.push_back(mu);
+      size_t d = 0;
+      while (d < p && ++idx[d] == static_cast<size_t>(pts[d])) idx[d++] = 0;
+      if (d == p) break;
+    }
+  }
+  for (const auto& mu : out) {
+    try {
+      box.check(mu);
+    } catch (const InputError& e) {
+      throw InputError(detail::concat("training set: ", e.what()));
+    }
+  }
+  return out;
 }
 
 std::string helpText() {

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <thread>
@@ -40,32 +41,46 @@ JsonObject parametersJson(const Scene& scene, const std::vector<double>& mu) {
   return p;
 }
 
-void writeArtifacts(const RunContext& ctx, const FomResult& fom, const std::string& path) {
-  Hdf5File f(path, ctx.comm, Hdf5File::Mode::Create);
+void writeArtifacts(const RunContext& ctx, const FomResult& fom, const RomStages* rom, Hdf5File& f) {
   PhaseSpace ps(fom.trajectory->getGlobalLength() / 2, ctx.comm);
   f.setAttribute("/", "scene", ctx.scene->name());
   f.setAttribute("/", "integrator", ctx.config.sublist("integrator").get<std::string>("scheme"));
   f.setAttribute("/", "parameters", ctx.mu);
   f.setAttribute("/", "config", yamlOf(ctx.config));
+  for (const char* g : {"/fom", "/rom"}) f.remove(g);
   f.createGroup("/fom");
   f.writeStates("/fom/trajectory", *fom.trajectory, ps);
   f.writeArray("/fom/times", fom.savedTimes, fom.savedTimes.size(), 1);
   f.writeArray("/fom/hamiltonian", fom.hamiltonian, fom.hamiltonian.size(), 1);
   f.setAttribute("/fom/trajectory", "layout", std::string("rows are states y = (q, p) at /fom/times; "
                                                           "physical (unshifted) values"));
+  if (rom) {
+    f.createGroup("/rom");
+    f.writeArray("/rom/hamiltonian", rom->hamiltonian, rom->hamiltonian.size(), 1);
+    f.writeArray("/rom/errors", rom->errors, rom->errors.size(), 1);
+    f.setAttribute("/rom/errors", "layout", std::string("||y - (y0 + A z)|| at /fom/times"));
+  }
 }
 
-void writeHistoryCsv(const FomResult& fom, double dt, const std::string& path) {
+void writeHistoryCsv(const std::vector<double>& H, double H0, const std::vector<double>* errors, long saveEvery,
+                     double dt, const std::string& path) {
   std::ofstream os(path);
   os.precision(17);
-  os << "step,t,H,H_err\n";
-  const double H0 = fom.hamiltonian.front();
-  for (size_t j = 0; j < fom.hamiltonian.size(); ++j)
-    os << j << "," << j * dt << "," << fom.hamiltonian[j] << "," << std::abs(fom.hamiltonian[j] - H0) << "\n";
+  os << "step,t,H,H_err" << (errors ? ",state_err" : "") << "\n";
+  const long steps = static_cast<long>(H.size()) - 1;
+  for (long j = 0; j <= steps; ++j) {
+    os << j << "," << j * dt << "," << H[j] << "," << std::abs(H[j] - H0);
+    if (errors) {
+      const bool saved = j % saveEvery == 0 || j == steps;
+      os << ",";
+      if (saved) os << (*errors)[j / saveEvery + (j == steps && steps % saveEvery != 0)];
+    }
+    os << "\n";
+  }
 }
 
 // Plot |H(y^j) - H(y^0)| with gnuplot; returns false (with the reason) when it cannot.
-bool plotHamiltonian(const std::string& csv, const std::string& png, std::string& why) {
+bool plotHamiltonian(const std::string& csv, const std::string& romCsv, const std::string& png, std::string& why) {
   if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
     why = "gnuplot not found (apt-get install gnuplot-nox)";
     return false;
@@ -76,7 +91,9 @@ bool plotHamiltonian(const std::string& csv, const std::string& png, std::string
     gp << "set terminal pngcairo size 900,500 noenhanced\nset output '" << png << "'\n"
        << "set datafile separator ','\nset key top left\nset logscale y\nset format y '%.0e'\n"
        << "set xlabel 't'\nset ylabel '|H(y^j) - H(y^0)|'\nset title 'Hamiltonian error of the full model'\n"
-       << "plot '" << csv << "' every ::1 using 2:($4 > 0 ? $4 : 1e-17) with lines lw 2 title 'fom'\n";
+       << "plot '" << csv << "' every ::1 using 2:($4 > 0 ? $4 : 1e-17) with lines lw 2 title 'fom'";
+    if (!romCsv.empty()) gp << ", '" << romCsv << "' every ::1 using 2:($4 > 0 ? $4 : 1e-17) with lines lw 2 title 'rom'";
+    gp << "\n";
   }
   const int rc = std::system(("gnuplot '" + script + "' > /dev/null 2>&1").c_str());
   std::remove(script.c_str());
@@ -86,31 +103,46 @@ bool plotHamiltonian(const std::string& csv, const std::string& png, std::string
 
 }  // namespace
 
-std::string writeReport(const RunContext& ctx, const FomResult& fom) {
+std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomStages* rom) {
   const bool root = ctx.comm->getRank() == 0;
   const double dt = ctx.config.sublist("time").get<double>("dt");
-  RenameOnCommit h5(ctx.outputDir + "/artifacts.h5", ctx.comm), json(ctx.outputDir + "/summary.json", ctx.comm),
-      csv(ctx.outputDir + "/fom_history.csv", ctx.comm), png(ctx.outputDir + "/hamiltonian.png", ctx.comm);
-  writeArtifacts(ctx, fom, h5.tempPath());
+  const long saveEvery = ctx.config.sublist("output").get<int>("saveEvery");
+  RenameOnCommit json(ctx.outputDir + "/summary.json", ctx.comm), csv(ctx.outputDir + "/fom_history.csv", ctx.comm),
+      romCsv(ctx.outputDir + "/rom_history.csv", ctx.comm), png(ctx.outputDir + "/hamiltonian.png", ctx.comm);
+  // artifacts.h5: written in place when it already holds the training cache, else written to a
+  // temporary name and renamed.
+  const bool inPlace = std::filesystem::exists(ctx.artifactsPath());
+  ctx.comm->barrier();
+  RenameOnCommit h5(ctx.artifactsPath(), ctx.comm);
+  {
+    Hdf5File f(inPlace ? ctx.artifactsPath() : h5.tempPath(), ctx.comm,
+               inPlace ? Hdf5File::Mode::ReadWrite : Hdf5File::Mode::Create);
+    writeArtifacts(ctx, fom, rom, f);
+  }
+  std::vector<JsonObject> runs{fom.run};
+  if (rom) runs.push_back(rom->run);
   JsonObject summary;
   summary.set("scene", ctx.scene->name())
       .set("integrator", ctx.config.sublist("integrator").get<std::string>("scheme"))
       .set("parameters", parametersJson(*ctx.scene, ctx.mu))
       .set("machine", machineInfo(ctx.comm))
-      .set("runs", std::vector<JsonObject>{fom.run});
+      .set("runs", runs);
   bool plotted = false;
   std::string why;
   if (root) {
-    writeHistoryCsv(fom, dt, csv.tempPath());
+    const double H0 = fom.hamiltonian.front();
+    writeHistoryCsv(fom.hamiltonian, H0, nullptr, saveEvery, dt, csv.tempPath());
+    if (rom) writeHistoryCsv(rom->hamiltonian, H0, &rom->errors, saveEvery, dt, romCsv.tempPath());
     if (ctx.config.sublist("output").get<bool>("plots"))
-      plotted = plotHamiltonian(csv.tempPath(), png.tempPath(), why);
+      plotted = plotHamiltonian(csv.tempPath(), rom ? romCsv.tempPath() : "", png.tempPath(), why);
     if (!plotted && !why.empty()) std::fprintf(stderr, "[gphr] no plots: %s\n", why.c_str());
     std::ofstream(json.tempPath()) << summary.str() << "\n";
   }
   int plottedAll = plotted;
   Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(plottedAll));
-  h5.commit();
+  if (!inPlace) h5.commit();
   csv.commit();
+  if (rom) romCsv.commit();
   if (plottedAll) png.commit();
   json.commit();  // last: summary.json present means the run is complete
   return summary.str();

@@ -6,6 +6,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
+
+#include <Teuchos_Time.hpp>
 
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/Config.hpp"
@@ -59,8 +62,21 @@ int runMain(const Args& args, const gphr::RCP<const gphr::Comm>& comm) {
                  comm->getSize(), ctx.outputDir.c_str());
   }
   comm->barrier();
+  std::unique_ptr<RomStages> rom;
+  if (ctx.config.sublist("pipeline").get<bool>("rom")) {
+    rom = std::make_unique<RomStages>();
+    rom->training = runTraining(ctx);
+    Teuchos::Time t("basis");
+    t.start();
+    rom->basis = runReduction(ctx, rom->training, rom->basisCached);
+    rom->basisSeconds = t.stop();
+    if (root)
+      std::fprintf(stderr, "[gphr] reduce: %s basis, 2k = %d, energy captured %.10f%s\n", rom->basis.method.c_str(),
+                   2 * rom->basis.k, rom->basis.energyCaptured, rom->basisCached ? " (cached)" : "");
+  }
   const FomResult fom = runFullModel(ctx.config, *ctx.scene, ctx.mu, comm);
-  const std::string summary = writeReport(ctx, fom);
+  if (rom) runRom(ctx, fom, *rom);
+  const std::string summary = writeReport(ctx, fom, rom.get());
   if (root) std::cout << summary << "\n";
   Teuchos::TimeMonitor::summarize(comm.ptr(), std::cout);
   return 0;

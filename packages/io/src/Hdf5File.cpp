@@ -57,6 +57,7 @@ void Hdf5File::close() {
 }
 
 bool Hdf5File::exists(const std::string& name) const {
+  if (name == "/") return true;
   // Check each path component so that a missing parent is "false", not an error.
   size_t pos = 0;
   while ((pos = name.find('/', pos + 1)) != std::string::npos)
@@ -68,6 +69,16 @@ void Hdf5File::createGroup(const std::string& name) {
   Id g{H5Gcreate2(file_, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose};
   check(g.id, "creating group '" + name + "'", path_);
 }
+
+void Hdf5File::remove(const std::string& name) {
+  if (exists(name)) check(H5Ldelete(file_, name.c_str(), H5P_DEFAULT), "removing '" + name + "'", path_);
+}
+
+bool Hdf5File::hasAttribute(const std::string& object, const std::string& key) const {
+  return exists(object) && H5Aexists_by_name(file_, object.c_str(), key.c_str(), H5P_DEFAULT) > 0;
+}
+
+void Hdf5File::flush() { check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing", path_); }
 
 hid_t Hdf5File::openDataset(const std::string& name) const {
   GPHR_REQUIRE(exists(name), InputError, "HDF5 file '", path_, "' has no dataset '", name, "'");

@@ -43,20 +43,17 @@ void svdStep(const PhaseSpace& ps, MultiVector& E, std::vector<double>& sigma, c
   Tpetra::TsqrAdaptor<MultiVector> tsqr;
   tsqr.factorExplicit(X, Qx, R);
   ps.applyJ(Qx, JQ);
-  // M = Qx^T J Qx (replicated): local products, one reduction.
+  // M = Qx^T J Qx (replicated, one GEMM + reduction in Tpetra).
   const int mm = 2 * m;
-  std::vector<double> Mloc(mm * mm, 0.0), Mv(mm * mm, 0.0);
+  auto local = rcp(new Map(mm, 0, ps.comm(), Tpetra::LocallyReplicated));
+  MultiVector Mmv(local, mm);
+  Mmv.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, Qx, JQ, 0.0);
+  std::vector<double> Mv(mm * mm);
   {
-    auto q = Qx.getLocalViewHost(Tpetra::Access::ReadOnly);
-    auto jq = JQ.getLocalViewHost(Tpetra::Access::ReadOnly);
+    auto mv = Mmv.getLocalViewHost(Tpetra::Access::ReadOnly);
     for (int a = 0; a < mm; ++a)
-      for (int b = 0; b < mm; ++b) {
-        double sum = 0.0;
-        for (size_t i = 0; i < q.extent(0); ++i) sum += q(i, a) * jq(i, b);
-        Mloc[a + mm * b] = sum;
-      }
+      for (int b = 0; b < mm; ++b) Mv[a + mm * b] = mv(a, b);
   }
-  Teuchos::reduceAll(*ps.comm(), Teuchos::REDUCE_SUM, mm * mm, Mloc.data(), Mv.data());
   // Real SVD of R: R = W S Z^T.
   std::vector<double> S(mm), W(mm * mm), work(1), Z(1);
   int info = 0;
@@ -67,20 +64,26 @@ void svdStep(const PhaseSpace& ps, MultiVector& E, std::vector<double>& sigma, c
   lapack.GESVD('A', 'N', mm, mm, R.values(), R.stride(), S.data(), W.data(), mm, Z.data(), 1, work.data(),
                static_cast<int>(work.size()), nullptr, &info);
   GPHR_REQUIRE(info == 0, SolverError, "symplectic basis: LAPACK GESVD failed (info = ", info, ")");
-  // Complex Gram-Schmidt in coordinates: <x, y> = x^T y + i x^T M y; i x <-> M^T x.
-  std::vector<std::vector<double>> acc;
+  // Complex Gram-Schmidt in coordinates: <x, y> = x^T y + i x^T M y; i x <-> M^T x. M^T e of
+  // each accepted e is computed once.
+  std::vector<std::vector<double>> acc, accI;
   std::vector<double> accSigma;
   auto Mt = [&](const std::vector<double>& x) {
     std::vector<double> out(mm, 0.0);
-    for (int a = 0; a < mm; ++a)
-      for (int b = 0; b < mm; ++b) out[a] += Mv[b + mm * a] * x[b];
+    for (int a = 0; a < mm; ++a) {
+      const double* col = &Mv[mm * a];  // column a of M = row a of M^T
+      double sum = 0.0;
+      for (int b = 0; b < mm; ++b) sum += col[b] * x[b];
+      out[a] = sum;
+    }
     return out;
   };
   for (int j = 0; j < mm && static_cast<int>(acc.size()) < keep && S[j] > 0.0; ++j) {
     std::vector<double> xi(W.begin() + mm * j, W.begin() + mm * (j + 1));
     for (int pass = 0; pass < 2; ++pass)  // twice is enough (Kahan-Parlett)
-      for (const auto& e : acc) {
-        const auto ie = Mt(e);
+      for (size_t l = 0; l < acc.size(); ++l) {
+        const auto& e = acc[l];
+        const auto& ie = accI[l];
         double re = 0.0, im = 0.0;
         for (int a = 0; a < mm; ++a) re += e[a] * xi[a], im += ie[a] * xi[a];
         for (int a = 0; a < mm; ++a) xi[a] -= re * e[a] + im * ie[a];
@@ -90,20 +93,21 @@ void svdStep(const PhaseSpace& ps, MultiVector& E, std::vector<double>& sigma, c
     nrm = std::sqrt(nrm);
     if (nrm < 0.5) continue;  // in the complex span of accepted vectors: a partner
     for (double& v : xi) v /= nrm;
-    acc.push_back(xi);
+    accI.push_back(Mt(xi));
+    acc.push_back(std::move(xi));
     accSigma.push_back(S[j]);
   }
   const int kept = static_cast<int>(acc.size());
-  E = MultiVector(map, std::max(kept, 1));
   sigma = accSigma;
-  auto q = Qx.getLocalViewHost(Tpetra::Access::ReadOnly);
-  auto e = E.getLocalViewHost(Tpetra::Access::OverwriteAll);
-  for (int j = 0; j < kept; ++j)
-    for (size_t i = 0; i < q.extent(0); ++i) {
-      double sum = 0.0;
-      for (int a = 0; a < mm; ++a) sum += q(i, a) * acc[j][a];
-      e(i, j) = sum;
-    }
+  // E = Qx Xi (one GEMM).
+  MultiVector Xi(local, std::max(kept, 1));
+  {
+    auto xv = Xi.getLocalViewHost(Tpetra::Access::OverwriteAll);
+    for (int j = 0; j < kept; ++j)
+      for (int a = 0; a < mm; ++a) xv(a, j) = acc[j][a];
+  }
+  E = MultiVector(map, std::max(kept, 1));
+  E.multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, Qx, Xi, 0.0);
 }
 
 // Fix the free phase of each complex singular vector (a sign for the cotangent lift): rotate

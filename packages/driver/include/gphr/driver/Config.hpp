@@ -3,6 +3,7 @@
 // `gphr`, validated key by key (unknown keys, types and ranges) and completed with defaults.
 #include <Teuchos_ParameterList.hpp>
 #include <string>
+#include <vector>
 
 namespace gphr {
 
@@ -16,6 +17,8 @@ Teuchos::ParameterList validateConfig(Teuchos::ParameterList cfg);
 Teuchos::ParameterList defaultConfig();
 // Number of time steps T / dt; InputError unless T >= dt and T is a whole number of steps.
 long numSteps(const Teuchos::ParameterList& cfg);
+// The training parameters: training.values (flattened) or the tensor grid training.points.
+std::vector<std::vector<double>> trainingParameters(const Teuchos::ParameterList& cfg);
 // `gphr --help` text: usage and every key with default, allowed values and description.
 std::string helpText();
 

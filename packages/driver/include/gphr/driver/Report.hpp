@@ -6,19 +6,13 @@
 #include <string>
 
 #include "gphr/driver/FomStage.hpp"
+#include "gphr/driver/Pipeline.hpp"
+#include "gphr/driver/RunContext.hpp"
 
 namespace gphr {
 
-struct RunContext {
-  std::string outputDir;
-  Teuchos::ParameterList config;  // validated
-  std::shared_ptr<Scene> scene;
-  std::vector<double> mu;
-  RCP<const Comm> comm;
-};
-
 // Write all outputs of the run; returns the summary JSON text.
-std::string writeReport(const RunContext& ctx, const FomResult& fom);
+std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomStages* rom);
 // Machine description for benchmarks and summaries (host, cores, ranks, Trilinos, compiler).
 JsonObject machineInfo(const RCP<const Comm>& comm);
 

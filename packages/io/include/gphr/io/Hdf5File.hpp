@@ -24,6 +24,10 @@ class Hdf5File {
   const std::string& path() const { return path_; }
   bool exists(const std::string& name) const;  // a dataset or group at this path
   void createGroup(const std::string& name);
+  // Unlink a dataset or group (no-op if absent); the space is not reclaimed (HDF5 1.10).
+  void remove(const std::string& name);
+  bool hasAttribute(const std::string& object, const std::string& key) const;
+  void flush();
 
   // States: columns of `states` (vectors on space.map()) as rows of dataset `name`.
   void writeStates(const std::string& name, const MultiVector& states, const PhaseSpace& space);

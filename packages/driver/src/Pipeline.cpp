@@ -1,0 +1,238 @@
+#include "gphr/driver/Pipeline.hpp"
+
+#include <Teuchos_Time.hpp>
+#include <Teuchos_YamlParameterListCoreHelpers.hpp>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "gphr/core/Error.hpp"
+#include "gphr/driver/Config.hpp"
+#include "gphr/io/Hdf5File.hpp"
+#include "gphr/reduction/GalerkinRom.hpp"
+#include "gphr/timeint/DenseModelIntegrator.hpp"
+#include "gphr/timeint/FullModelIntegrator.hpp"
+
+namespace gphr {
+
+namespace {
+
+std::string yamlOf(const Teuchos::ParameterList& pl) {
+  std::ostringstream os;
+  Teuchos::writeParameterListToYamlOStream(pl, os);
+  return os.str();
+}
+
+// The config that determines the training snapshots: scene, time, integrator, training.
+std::string trainingKey(const Teuchos::ParameterList& cfg) {
+  Teuchos::ParameterList k("training-stage");
+  for (const char* s : {"scene", "time", "integrator", "training"}) k.sublist(s) = cfg.sublist(s);
+  return yamlOf(k);
+}
+
+std::string datasetName(size_t j) { return "/training/p" + std::to_string(j); }
+
+// Open the artifacts file for the training stage, or create it. Scene or size mismatch is an error.
+std::unique_ptr<Hdf5File> openArtifacts(const RunContext& ctx, long fullDim, bool& fresh) {
+  const std::string path = ctx.artifactsPath();
+  fresh = !std::filesystem::exists(path);
+  ctx.comm->barrier();
+  if (fresh) {
+    auto f = std::make_unique<Hdf5File>(path, ctx.comm, Hdf5File::Mode::Create);
+    f->setAttribute("/", "scene", ctx.scene->name());
+    f->setAttribute("/", "fullDim", std::vector<double>{double(fullDim)});
+    return f;
+  }
+  auto f = std::make_unique<Hdf5File>(path, ctx.comm, Hdf5File::Mode::ReadWrite);
+  const std::string scene = f->hasAttribute("/", "scene") ? f->stringAttribute("/", "scene") : "";
+  GPHR_REQUIRE(scene == ctx.scene->name(), InputError, "artifacts file '", path, "' belongs to scene '", scene,
+               "' but the config runs '", ctx.scene->name(), "' (use another --output directory)");
+  if (f->hasAttribute("/", "fullDim")) {
+    const double nd = f->doubleAttribute("/", "fullDim")[0];
+    GPHR_REQUIRE(nd == fullDim, InputError, "artifacts file '", path, "' holds states of size ", nd,
+                 " but the config gives size ", fullDim, " (use another --output directory)");
+  } else {
+    f->setAttribute("/", "fullDim", std::vector<double>{double(fullDim)});
+  }
+  return f;
+}
+
+class Progress {
+ public:
+  explicit Progress(bool root) : root_(root), clock_("train") { clock_.start(); }
+  void done(size_t j, size_t total, size_t computed, const std::vector<double>& mu, bool reused) {
+    if (!root_) return;
+    const double el = clock_.totalElapsedTime(true);
+    std::ostringstream m;
+    for (double x : mu) m << (m.tellp() ? ", " : "") << x;
+    std::fprintf(stderr, "[gphr] train: parameter %zu/%zu (%s) %s, %.1f s elapsed, ~%.1f s left\n", j + 1, total,
+                 m.str().c_str(), reused ? "reused from file" : "done",
+                 el, computed ? el / computed * (total - j - 1) : 0.0);
+  }
+
+ private:
+  bool root_;
+  Teuchos::Time clock_;
+};
+
+}  // namespace
+
+TrainingResult runTraining(const RunContext& ctx) {
+  Teuchos::Time clock("train");
+  clock.start();
+  TrainingResult res;
+  res.parameters = trainingParameters(ctx.config);
+  const long steps = numSteps(ctx.config), every = ctx.config.sublist("training").get<int>("snapshotEvery");
+  const double dt = ctx.config.sublist("time").get<double>("dt");
+  const std::string key = trainingKey(ctx.config);
+  auto probe = ctx.scene->instantiate(ctx.comm, res.parameters[0], true);
+  const PhaseSpace& ps = probe.system->space();
+  bool fresh = false;
+  {
+    auto f = openArtifacts(ctx, ps.fullDim(), fresh);
+    if (!f->exists("/training")) f->createGroup("/training");
+    if (!f->hasAttribute("/training", "config") || f->stringAttribute("/training", "config") != key) {
+      if (!fresh && f->hasAttribute("/training", "config") && ctx.comm->getRank() == 0)
+        std::fprintf(stderr, "[gphr] train: the training config changed; training again\n");
+      for (size_t j = 0; f->exists(datasetName(j)); ++j) f->remove(datasetName(j));
+      f->remove("/basis");
+      f->setAttribute("/training", "config", key);
+    }
+  }
+  Progress progress(ctx.comm->getRank() == 0);
+  size_t computed = 0;
+  for (size_t j = 0; j < res.parameters.size(); ++j) {
+    const auto& mu = res.parameters[j];
+    {
+      Hdf5File f(ctx.artifactsPath(), ctx.comm, Hdf5File::Mode::ReadWrite);
+      if (f.hasAttribute(datasetName(j), "complete")) {
+        res.snapshots.push_back(f.readStates(datasetName(j), ps));
+        res.reused++;
+        progress.done(j, res.parameters.size(), computed, mu, true);
+        continue;
+      }
+      f.remove(datasetName(j));  // half-written by a killed run: redo
+    }
+    auto inst = ctx.scene->instantiate(ctx.comm, mu, true);
+    FullModelIntegrator integ(inst.system, ctx.config.sublist("integrator"));
+    auto snaps = rcp(new MultiVector(inst.system->map(), steps / every + 1));
+    Vector y(*inst.y0, Teuchos::Copy);
+    integ.run(y, dt, steps, [&](long s, double, const Vector& ys, const StepReport&) {
+      if (s % every == 0) Tpetra::deep_copy(*snaps->getVectorNonConst(s / every), ys);
+    });
+    {
+      // Written when the parameter has finished, file closed between parameters: a kill during
+      // the next run leaves this one intact; the `complete` mark is the last thing written.
+      Hdf5File f(ctx.artifactsPath(), ctx.comm, Hdf5File::Mode::ReadWrite);
+      f.writeStates(datasetName(j), *snaps, ps);
+      f.setAttribute(datasetName(j), "parameters", mu);
+      f.flush();
+      f.setAttribute(datasetName(j), "complete", std::string("yes"));
+    }
+    res.snapshots.push_back(snaps);
+    ++computed;
+    progress.done(j, res.parameters.size(), computed, mu, false);
+  }
+  res.seconds = clock.stop();
+  return res;
+}
+
+ReducedBasis runReduction(const RunContext& ctx, const TrainingResult& training, bool& cached) {
+  const auto& red = ctx.config.sublist("reduction");
+  const std::string key = trainingKey(ctx.config) + yamlOf(red);
+  auto probe = ctx.scene->instantiate(ctx.comm, training.parameters[0], true);
+  const PhaseSpace& ps = probe.system->space();
+  Hdf5File f(ctx.artifactsPath(), ctx.comm, Hdf5File::Mode::ReadWrite);
+  cached = f.hasAttribute("/basis", "config") && f.stringAttribute("/basis", "config") == key;
+  ReducedBasis b;
+  if (cached) {
+    b.A = f.readStates("/basis", ps);
+    // stored as rows: (2k, 2n) -> a MultiVector with 2k columns
+    b.k = static_cast<int>(b.A->getNumVectors()) / 2;
+    b.method = f.stringAttribute("/basis", "method");
+    b.singularValues = f.doubleAttribute("/basis", "singularValues");
+    b.energyCaptured = f.doubleAttribute("/basis", "energyCaptured")[0];
+    const int wantK = red.get<int>("k");
+    GPHR_REQUIRE(wantK == 0 || wantK == b.k, InputError, "basis in '", ctx.artifactsPath(), "' has k = ", b.k,
+                 " but the config asks for k = ", wantK);
+    return b;
+  }
+  BasisOptions opt;
+  opt.method = red.get<std::string>("method");
+  opt.k = red.get<int>("k");
+  opt.energyTolerance = red.get<double>("energyTolerance");
+  opt.blockColumns = red.get<int>("blockColumns");
+  b = computeSymplecticBasis(training.snapshots, ps, opt);
+  f.remove("/basis");
+  f.writeStates("/basis", *b.A, ps);
+  f.setAttribute("/basis", "method", b.method);
+  f.setAttribute("/basis", "singularValues", b.singularValues);
+  f.setAttribute("/basis", "energyCaptured", std::vector<double>{b.energyCaptured});
+  f.setAttribute("/basis", "scene", ctx.scene->name());
+  f.setAttribute("/basis", "trainingSet", [&] {
+    std::vector<double> flat;
+    for (const auto& mu : training.parameters) flat.insert(flat.end(), mu.begin(), mu.end());
+    return flat;
+  }());
+  f.setAttribute("/basis", "layout", std::string("rows are the 2k columns of A (2n entries each, global-id order)"));
+  f.setAttribute("/basis", "config", key);
+  return b;
+}
+
+void runRom(const RunContext& ctx, const FomResult& fom, RomStages& st) {
+  const long steps = numSteps(ctx.config), saveEvery = ctx.config.sublist("output").get<int>("saveEvery");
+  const double dt = ctx.config.sublist("time").get<double>("dt");
+  auto inst = ctx.scene->instantiate(ctx.comm, ctx.mu, true);
+  GalerkinRom rom(inst.system, st.basis.A);
+  DenseModelIntegrator integ(rom, ctx.config.sublist("integrator"), inst.system->nonlinearTerm().polynomialDegree());
+  DenseVector z = rom.project(*inst.y0);  // = 0: the shifted initial state
+  Vector y(inst.system->map());
+  const auto ref = inst.system->reference();
+  double num = 0.0, den = 0.0, fin = 0.0;
+  long saved = 0;
+  Teuchos::Time wall("rom"), obs("obs");
+  double obsSeconds = 0.0;
+  wall.start();
+  const RunStats stats = integ.run(z, dt, steps, [&](long j, double, const DenseVector& zj, const StepReport&) {
+    obs.start(true);
+    st.hamiltonian.push_back(rom.hamiltonian(zj));  // H_s(A z) = H(y0 + A z)
+    if (j % saveEvery == 0 || j == steps) {
+      rom.lift(zj, y);
+      y.update(1.0, *ref, 1.0);  // physical state y0 + A z
+      const auto yf = fom.trajectory->getVector(saved++);
+      y.update(-1.0, *yf, 1.0);
+      const double e = y.norm2(), nf = yf->norm2();
+      num += e * e;
+      den += nf * nf;
+      fin = e / nf;
+      st.errors.push_back(e);
+    }
+    obsSeconds += obs.stop();
+  });
+  const double total = wall.stop();
+  const double H0 = fom.hamiltonian.front();
+  double herr = 0.0;
+  for (double H : st.hamiltonian) herr = std::max(herr, std::abs(H - H0));
+  st.run.set("method", "rom")
+      .set("basis", st.basis.method)
+      .set("k", static_cast<long>(st.basis.k))
+      .set("reducedDim", static_cast<long>(2 * st.basis.k))
+      .set("energy_captured", st.basis.energyCaptured)
+      .set("training_parameters", static_cast<long>(st.training.parameters.size()))
+      .set("training_reused", st.training.reused)
+      .set("basis_cached", st.basisCached)
+      .set("steps", steps)
+      .set("E_L2", std::sqrt(num / den))
+      .set("E_fin", fin)
+      .set("H_err_max", herr)
+      .set("H_err_max_rel", H0 != 0.0 ? herr / std::abs(H0) : herr)
+      .set("t_online_s", total - obsSeconds)
+      .set("t_offline_s", st.training.seconds + st.basisSeconds)
+      .set("t_training_s", st.training.seconds)
+      .set("t_basis_s", st.basisSeconds)
+      .set("newton_iters_avg", double(stats.newtonIterations) / steps)
+      .set("errors_at", "saved steps (every output.saveEvery-th and the last)")
+      .set("status", "ok");
+}
+
+}  // namespace gphr
