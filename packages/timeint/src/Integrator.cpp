@@ -14,6 +14,8 @@ Teuchos::ParameterList integratorValidParameters() {
   setDoubleParameter(pl, "newtonTolerance", 1e-10, 1e-15, 1e-2,
                      "Newton stops when ||R||_2 <= this (the paper uses 1e-10)");
   setIntParameter(pl, "maxNewtonIterations", 25, 1, 1000, "Newton iteration limit per step");
+  pl.set("jacobianReuse", false,
+         "chord Newton: the Newton matrix is assembled once per step (cheaper reduced models, linear convergence)");
   pl.sublist("linearSolver") = FullModelBackend::validParameters();
   return pl;
 }
@@ -29,6 +31,7 @@ NewtonOptions newtonOptionsFrom(const Teuchos::ParameterList& pl) {
   NewtonOptions o;
   o.tolerance = pl.get<double>("newtonTolerance");
   o.maxIterations = pl.get<int>("maxNewtonIterations");
+  o.reuseJacobian = pl.get<bool>("jacobianReuse");
   return o;
 }
 
