@@ -32,6 +32,8 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
   setIntParameter(red, "k", 10, 0, 100000, "reduced size 2k; 0: smallest k meeting energyTolerance");
   setDoubleParameter(red, "energyTolerance", 1e-6, 0.0, 1.0, "discarded snapshot energy fraction when k = 0");
   setIntParameter(red, "blockColumns", 128, 1, 100000, "snapshot columns per incremental SVD step");
+  setIntParameter(red, "maxRank", 0, 0, 1000000,
+                  "singular triplets kept between incremental steps; 0: 2k + 32, or half the dofs per rank if k = 0");
   auto& pipe = pl.sublist("pipeline");
   pipe.set("rom", false, "train, build the basis and evaluate the Galerkin reduced model beside the full model");
   auto& out = pl.sublist("output");

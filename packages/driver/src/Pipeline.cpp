@@ -162,6 +162,7 @@ ReducedBasis runReduction(const RunContext& ctx, const TrainingResult& training,
   opt.k = red.get<int>("k");
   opt.energyTolerance = red.get<double>("energyTolerance");
   opt.blockColumns = red.get<int>("blockColumns");
+  opt.maxRank = red.get<int>("maxRank");
   b = computeSymplecticBasis(training.snapshots, ps, opt);
   f.remove("/basis");
   f.writeStates("/basis", *b.A, ps);

@@ -101,6 +101,23 @@ bool plotHamiltonian(const std::string& csv, const std::string& romCsv, const st
   return rc == 0;
 }
 
+void writeSingularValues(const std::vector<double>& s, const std::string& csv, const std::string& png, bool plot) {
+  {
+    std::ofstream os(csv);
+    os.precision(17);
+    os << "index,sigma,sigma_rel\n";
+    for (size_t j = 0; j < s.size(); ++j) os << j + 1 << "," << s[j] << "," << s[j] / s[0] << "\n";
+  }
+  if (!plot || std::system("command -v gnuplot > /dev/null 2>&1") != 0) return;
+  const std::string script = png + ".gp";
+  std::ofstream(script) << "set terminal pngcairo size 900,500 noenhanced\nset output '" << png << "'\n"
+                        << "set datafile separator ','\nset logscale y\nset format y '%.0e'\nset xlabel 'index j'\n"
+                        << "set ylabel 'sigma_j / sigma_1'\nset title 'Singular values of the snapshots'\n"
+                        << "plot '" << csv << "' every ::1 using 1:3 with lines lw 2 title 'basis SVD'\n";
+  (void)std::system(("gnuplot '" + script + "' > /dev/null 2>&1").c_str());
+  std::remove(script.c_str());
+}
+
 }  // namespace
 
 std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomStages* rom) {
@@ -108,7 +125,8 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
   const double dt = ctx.config.sublist("time").get<double>("dt");
   const long saveEvery = ctx.config.sublist("output").get<int>("saveEvery");
   RenameOnCommit json(ctx.outputDir + "/summary.json", ctx.comm), csv(ctx.outputDir + "/fom_history.csv", ctx.comm),
-      romCsv(ctx.outputDir + "/rom_history.csv", ctx.comm), png(ctx.outputDir + "/hamiltonian.png", ctx.comm);
+      romCsv(ctx.outputDir + "/rom_history.csv", ctx.comm), png(ctx.outputDir + "/hamiltonian.png", ctx.comm),
+      svCsv(ctx.outputDir + "/singular_values.csv", ctx.comm), svPng(ctx.outputDir + "/singular_values.png", ctx.comm);
   // artifacts.h5: written in place when it already holds the training cache, else written to a
   // temporary name and renamed.
   const bool inPlace = std::filesystem::exists(ctx.artifactsPath());
@@ -133,6 +151,8 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
     const double H0 = fom.hamiltonian.front();
     writeHistoryCsv(fom.hamiltonian, H0, nullptr, saveEvery, dt, csv.tempPath());
     if (rom) writeHistoryCsv(rom->hamiltonian, H0, &rom->errors, saveEvery, dt, romCsv.tempPath());
+    if (rom) writeSingularValues(rom->basis.singularValues, svCsv.tempPath(), svPng.tempPath(),
+                                 ctx.config.sublist("output").get<bool>("plots"));
     if (ctx.config.sublist("output").get<bool>("plots"))
       plotted = plotHamiltonian(csv.tempPath(), rom ? romCsv.tempPath() : "", png.tempPath(), why);
     if (!plotted && !why.empty()) std::fprintf(stderr, "[gphr] no plots: %s\n", why.c_str());
@@ -143,6 +163,10 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
   if (!inPlace) h5.commit();
   csv.commit();
   if (rom) romCsv.commit();
+  if (rom) svCsv.commit();
+  int svPlotted = root && std::filesystem::exists(svPng.tempPath());
+  Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(svPlotted));
+  if (svPlotted) svPng.commit();
   if (plottedAll) png.commit();
   json.commit();  // last: summary.json present means the run is complete
   return summary.str();

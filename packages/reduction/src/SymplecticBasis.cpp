@@ -149,7 +149,10 @@ ReducedBasis computeSymplecticBasis(const std::vector<RCP<const MultiVector>>& s
   Teuchos::reduceAll(*space.comm(), Teuchos::REDUCE_MIN, nl, Teuchos::outArg(minLocal));
   const int perSnap = cot ? 2 : 1;
   const int cap = static_cast<int>(minLocal);
-  const int maxRank = std::min(opt.maxRank > 0 ? opt.maxRank : std::max(1, cap / 2), cap);
+  // Kept between steps: given, or 2k + 32 when k is given (margin for the leading k), at most
+  // half the smallest rank's dofs (room for new columns).
+  const int autoRank = opt.k > 0 ? std::min(std::max(1, cap / 2), 2 * opt.k + 32) : std::max(1, cap / 2);
+  const int maxRank = std::min(opt.maxRank > 0 ? opt.maxRank : std::max(autoRank, opt.k), cap);
   GPHR_REQUIRE(cap >= perSnap, InputError, "symplectic basis: ", cap,
                " degrees of freedom on the smallest rank are too few (use fewer ranks)");
 

@@ -23,7 +23,7 @@ struct BasisOptions {
   int k = 0;                       // basis half-size; 0: from energyTolerance
   double energyTolerance = 1e-6;   // discarded fraction of the snapshot energy (when k = 0)
   int blockColumns = 128;          // snapshot columns per incremental step
-  int maxRank = 0;                 // singular vectors kept between steps; 0: half the dofs of the smallest rank
+  int maxRank = 0;                 // kept between steps; 0: 2k + 32 (k given) or half the smallest rank's dofs
 };
 
 struct ReducedBasis {
