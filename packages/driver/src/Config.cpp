@@ -148,6 +148,12 @@ std::vector<std::vector<double>> trainingParameters(const Teuchos::ParameterList
   return out;
 }
 
+std::string toYaml(const Teuchos::ParameterList& pl) {
+  std::ostringstream os;
+  Teuchos::writeParameterListToYamlOStream(pl, os);
+  return os.str();
+}
+
 std::string helpText() {
   std::ostringstream os;
   os << "gphr - gradient-preserving hyper-reduction of Hamiltonian systems (Trilinos)\n\n"

@@ -17,17 +17,12 @@ namespace gphr {
 
 namespace {
 
-std::string yamlOf(const Teuchos::ParameterList& pl) {
-  std::ostringstream os;
-  Teuchos::writeParameterListToYamlOStream(pl, os);
-  return os.str();
-}
 
 // The config that determines the training snapshots: scene, time, integrator, training.
 std::string trainingKey(const Teuchos::ParameterList& cfg) {
   Teuchos::ParameterList k("training-stage");
   for (const char* s : {"scene", "time", "integrator", "training"}) k.sublist(s) = cfg.sublist(s);
-  return yamlOf(k);
+  return toYaml(k);
 }
 
 std::string datasetName(size_t j) { return "/training/p" + std::to_string(j); }
@@ -126,6 +121,7 @@ TrainingResult runTraining(const RunContext& ctx) {
       Hdf5File f(ctx.artifactsPath(), ctx.comm, Hdf5File::Mode::ReadWrite);
       f.writeStates(datasetName(j), *snaps, ps);
       f.setAttribute(datasetName(j), "parameters", mu);
+      f.setAttribute(datasetName(j), "config", key);
       f.flush();
       f.setAttribute(datasetName(j), "complete", std::string("yes"));
     }
@@ -139,7 +135,7 @@ TrainingResult runTraining(const RunContext& ctx) {
 
 ReducedBasis runReduction(const RunContext& ctx, const TrainingResult& training, bool& cached) {
   const auto& red = ctx.config.sublist("reduction");
-  const std::string key = trainingKey(ctx.config) + yamlOf(red);
+  const std::string key = trainingKey(ctx.config) + toYaml(red);
   auto probe = ctx.scene->instantiate(ctx.comm, training.parameters[0], true);
   const PhaseSpace& ps = probe.system->space();
   Hdf5File f(ctx.artifactsPath(), ctx.comm, Hdf5File::Mode::ReadWrite);
@@ -167,6 +163,7 @@ ReducedBasis runReduction(const RunContext& ctx, const TrainingResult& training,
   f.remove("/basis");
   f.writeStates("/basis", *b.A, ps);
   f.setAttribute("/basis", "method", b.method);
+  f.setAttribute("/basis", "k", std::vector<double>{double(b.k)});
   f.setAttribute("/basis", "singularValues", b.singularValues);
   f.setAttribute("/basis", "energyCaptured", std::vector<double>{b.energyCaptured});
   f.setAttribute("/basis", "scene", ctx.scene->name());

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <thread>
 
+#include "gphr/driver/Config.hpp"
 #include "gphr/io/Hdf5File.hpp"
 
 namespace gphr {
@@ -29,11 +30,6 @@ JsonObject machineInfo(const RCP<const Comm>& comm) {
 
 namespace {
 
-std::string yamlOf(const Teuchos::ParameterList& pl) {
-  std::ostringstream os;
-  Teuchos::writeParameterListToYamlOStream(pl, os);
-  return os.str();
-}
 
 JsonObject parametersJson(const Scene& scene, const std::vector<double>& mu) {
   JsonObject p;
@@ -46,7 +42,7 @@ void writeArtifacts(const RunContext& ctx, const FomResult& fom, const RomStages
   f.setAttribute("/", "scene", ctx.scene->name());
   f.setAttribute("/", "integrator", ctx.config.sublist("integrator").get<std::string>("scheme"));
   f.setAttribute("/", "parameters", ctx.mu);
-  f.setAttribute("/", "config", yamlOf(ctx.config));
+  f.setAttribute("/", "config", toYaml(ctx.config));
   for (const char* g : {"/fom", "/rom"}) f.remove(g);
   f.createGroup("/fom");
   f.writeStates("/fom/trajectory", *fom.trajectory, ps);

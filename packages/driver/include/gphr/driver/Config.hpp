@@ -19,6 +19,8 @@ Teuchos::ParameterList defaultConfig();
 long numSteps(const Teuchos::ParameterList& cfg);
 // The training parameters: training.values (flattened) or the tensor grid training.points.
 std::vector<std::vector<double>> trainingParameters(const Teuchos::ParameterList& cfg);
+// A ParameterList as YAML text (stored as provenance in artifacts.h5, compared for caching).
+std::string toYaml(const Teuchos::ParameterList& pl);
 // `gphr --help` text: usage and every key with default, allowed values and description.
 std::string helpText();
 
