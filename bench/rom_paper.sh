@@ -8,7 +8,7 @@
 # Each row: training / basis / ROM online / FOM online seconds, E_L2 and E_fin (eq:errNR), and the
 # ROM's speed-up over the full model measured in the same run. Training is done once per case and
 # reused (artifacts.h5) for the other sizes; the basis is recomputed for each k.
-# usage: bash bench/rom_paper.sh CASE [RANKS] [BUILD_DIR] [SNAPSHOT_EVERY]
+# usage: bash bench/rom_paper.sh CASE [RANKS] [BUILD_DIR] [SNAPSHOT_EVERY]   (KS="50" to choose the k values)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 case=$1; np=${2:-1}; build=${3:-build}; every=${4:-10}
@@ -23,6 +23,7 @@ case $case in
   nls-sv)  base=bench/configs/nls_paper.yaml; integ='{scheme: avf}'; train="{values: [1.0932], snapshotEvery: 1}"; ks="200" ;;
   *) echo "unknown case $case"; exit 2 ;;
 esac
+ks=${KS:-$ks}
 printf '%-4s %5s %10s %8s %9s %9s %8s %10s %10s %10s\n' 2k ranks train_s basis_s rom_s fom_s speedup E_L2 E_fin energy
 for k in $ks; do
   c=$out/k$k.yaml

@@ -150,6 +150,7 @@ std::vector<std::vector<double>> trainingParameters(const Teuchos::ParameterList
 
 std::string toYaml(const Teuchos::ParameterList& pl) {
   std::ostringstream os;
+  os << std::showpoint;  // else Teuchos warns that 1.0 would be written as the integer 1
   Teuchos::writeParameterListToYamlOStream(pl, os);
   return os.str();
 }

@@ -35,6 +35,12 @@ class Progress {
 };
 }  // namespace
 
+double maxDeviation(const std::vector<double>& H, double H0) {
+  double d = 0.0;
+  for (double h : H) d = std::max(d, std::abs(h - H0));
+  return d;
+}
+
 FomResult runFullModel(const Teuchos::ParameterList& cfg, const Scene& scene, const std::vector<double>& mu,
                        const RCP<const Comm>& comm) {
   const auto& out = cfg.sublist("output");
@@ -57,7 +63,7 @@ FomResult runFullModel(const Teuchos::ParameterList& cfg, const Scene& scene, co
   const RunStats stats = integ.run(y, dt, steps, [&](long j, double t, const Vector& yj, const StepReport&) {
     obs.start(true);
     res.hamiltonian.push_back(inst.system->hamiltonian(yj));
-    if (j % saveEvery == 0 || j == steps) {
+    if (isSavedStep(j, steps, saveEvery)) {
       auto col = res.trajectory->getVectorNonConst(saved++);
       if (ref.is_null()) Tpetra::deep_copy(*col, yj);
       else col->update(1.0, yj, 1.0, *ref, 0.0);
@@ -68,9 +74,7 @@ FomResult runFullModel(const Teuchos::ParameterList& cfg, const Scene& scene, co
   });
   const double total = wall.stop();
 
-  const double H0 = res.hamiltonian.front();
-  double herr = 0.0;
-  for (double H : res.hamiltonian) herr = std::max(herr, std::abs(H - H0));
+  const double H0 = res.hamiltonian.front(), herr = maxDeviation(res.hamiltonian, H0);
   res.run.set("method", "fom")
       .set("n", static_cast<long>(inst.system->space().n()))
       .set("fullDim", static_cast<long>(inst.system->space().fullDim()))

@@ -194,7 +194,7 @@ void runRom(const RunContext& ctx, const FomResult& fom, RomStages& st) {
   const RunStats stats = integ.run(z, dt, steps, [&](long j, double, const DenseVector& zj, const StepReport&) {
     obs.start(true);
     st.hamiltonian.push_back(rom.hamiltonian(zj));  // H_s(A z) = H(y0 + A z)
-    if (j % saveEvery == 0 || j == steps) {
+    if (isSavedStep(j, steps, saveEvery)) {
       rom.lift(zj, y);
       y.update(1.0, *ref, 1.0);  // physical state y0 + A z
       const auto yf = fom.trajectory->getVector(saved++);
@@ -208,9 +208,7 @@ void runRom(const RunContext& ctx, const FomResult& fom, RomStages& st) {
     obsSeconds += obs.stop();
   });
   const double total = wall.stop();
-  const double H0 = fom.hamiltonian.front();
-  double herr = 0.0;
-  for (double H : st.hamiltonian) herr = std::max(herr, std::abs(H - H0));
+  const double H0 = fom.hamiltonian.front(), herr = maxDeviation(st.hamiltonian, H0);
   st.run.set("method", "rom")
       .set("basis", st.basis.method)
       .set("k", static_cast<long>(st.basis.k))

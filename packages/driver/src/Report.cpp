@@ -67,7 +67,7 @@ void writeHistoryCsv(const std::vector<double>& H, double H0, const std::vector<
   for (long j = 0; j <= steps; ++j) {
     os << j << "," << j * dt << "," << H[j] << "," << std::abs(H[j] - H0);
     if (errors) {
-      const bool saved = j % saveEvery == 0 || j == steps;
+      const bool saved = isSavedStep(j, steps, saveEvery);
       os << ",";
       if (saved) os << (*errors)[j / saveEvery + (j == steps && steps % saveEvery != 0)];
     }

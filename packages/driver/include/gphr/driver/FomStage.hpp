@@ -17,6 +17,11 @@ struct FomResult {
   JsonObject run;                   // the "runs" entry of summary.json
 };
 
+// The steps whose states are kept (every saveEvery-th and the last), and the largest
+// |H_j - H0| of a Hamiltonian history: shared by the full and reduced model stages.
+inline bool isSavedStep(long j, long steps, long saveEvery) { return j % saveEvery == 0 || j == steps; }
+double maxDeviation(const std::vector<double>& H, double H0);
+
 FomResult runFullModel(const Teuchos::ParameterList& cfg, const Scene& scene, const std::vector<double>& mu,
                        const RCP<const Comm>& comm);
 
