@@ -4,7 +4,8 @@
 #   nls      11 training parameters in [0.9, 1.1], AVF, 2k in {100, 200, 400}, test eps = 1.0932
 #   swe-avf  5 x 5 training parameters, AVF, 2k in {80, 160}, test (1.6435, 0.7762)
 #   swe-imr  the same with IMR
-#   nls-sv   singular values of the NLS snapshots at eps = 1.0932 (the paper's fig:singvalues, left)
+# The singular values of the NLS snapshots at eps = 1.0932 (the paper's fig:singvalues, left) are
+# a separate run: gphr run bench/configs/nls_singular_values.yaml --output bench-out/nls_sv
 # Each row: training / basis / ROM online / FOM online seconds, E_L2 and E_fin (eq:errNR), and the
 # ROM's speed-up over the full model measured in the same run. Training is done once per case and
 # reused (artifacts.h5) for the other sizes; the basis is recomputed for each k.
@@ -20,7 +21,6 @@ case $case in
   nls)     base=bench/configs/nls_paper.yaml; integ='{scheme: avf}'; train="{points: [11], snapshotEvery: $every}"; ks="50 100 200" ;;
   swe-avf) base=bench/configs/swe_paper.yaml; integ='{scheme: avf}'; train="{points: [5, 5], snapshotEvery: $every}"; ks="40 80" ;;
   swe-imr) base=bench/configs/swe_paper.yaml; integ='{scheme: imr}'; train="{points: [5, 5], snapshotEvery: $every}"; ks="40 80" ;;
-  nls-sv)  base=bench/configs/nls_paper.yaml; integ='{scheme: avf}'; train="{values: [1.0932], snapshotEvery: 1}"; ks="200" ;;
   *) echo "unknown case $case"; exit 2 ;;
 esac
 ks=${KS:-$ks}
@@ -39,7 +39,3 @@ print(f"{r['reducedDim']:<4} {sys.argv[2]:>5} {r['t_training_s']:>10.1f} {r['t_b
       f"{f['t_online_s']:>9.2f} {f['t_online_s'] / r['t_online_s']:>7.1f}x {r['E_L2']:>10.2e} {r['E_fin']:>10.2e} {r['energy_captured']:>10.8f}")
 PY
 done
-if [ "$case" = nls-sv ]; then
-  echo "singular values sigma_j / sigma_1 (full list: $out/singular_values.csv, plot singular_values.png):"
-  awk -F, 'NR>1 && ($1==1 || $1==10 || $1==50 || $1==100 || $1==200 || $1==300 || $1==400) {printf "  j=%d: %.3e\n", $1, $3}' "$out/singular_values.csv"
-fi
