@@ -14,8 +14,6 @@ HamiltonianSystem::HamiltonianSystem(RCP<const PhaseSpace> space, RCP<const CrsM
   GPHR_REQUIRE(term_->stateMap()->isSameAs(*space_->map()), InputError,
                "Hamiltonian: the nonlinear term's stencils must refer to the state map");
   work_ = rcp(new Vector(space_->map()));
-  rowCols_.resize(L_->getNodeMaxNumRowEntries());  // row buffers of addLinearPart (Newton loop)
-  rowVals_.resize(L_->getNodeMaxNumRowEntries());
 }
 
 RCP<HamiltonianSystem> HamiltonianSystem::shifted(const Vector& y0) const {
@@ -96,7 +94,9 @@ RCP<const CrsGraph> HamiltonianSystem::hessianGraph(bool leftJ) const {
 }
 
 RCP<CrsMatrix> HamiltonianSystem::createHessianN() const {
-  return rcp(new CrsMatrix(hessianGraph(false)));
+  auto H = rcp(new CrsMatrix(hessianGraph(false)));
+  H->fillComplete(space_->map(), space_->map());  // packed storage from the start (LocalScatter)
+  return H;
 }
 
 void HamiltonianSystem::hessianN(const Vector& y, CrsMatrix& out) const {
@@ -108,17 +108,30 @@ void HamiltonianSystem::hessianN(const Vector& y, CrsMatrix& out) const {
 }
 
 void HamiltonianSystem::addLinearPart(Scalar scale, CrsMatrix& target, bool leftJ) const {
-  const auto& map = space_->map();
-  auto& cols = rowCols_;
-  auto& vals = rowVals_;
-  for (LO i = 0; i < static_cast<LO>(map->getNodeNumElements()); ++i) {
-    const GO gi = map->getGlobalElement(i);
-    size_t nnz = 0;
-    L_->getGlobalRowCopy(gi, cols(), vals(), nnz);
-    const auto [row, sign] = leftJ ? space_->jRow(gi) : std::pair<GO, Scalar>(gi, 1.0);
-    for (size_t j = 0; j < nnz; ++j) vals[j] *= sign * scale;
-    if (nnz > 0) target.sumIntoGlobalValues(row, cols(0, nnz), vals(0, nnz));
+  LocalScatter& scatter = linScatter_[leftJ ? 1 : 0];
+  const CrsGraph& graph = *target.getCrsGraph();
+  if (!scatter.builtFor(&graph)) {  // once per target graph
+    std::vector<GO> rows, cols;
+    linValues_.clear();
+    const auto& map = *space_->map();
+    Teuchos::Array<GO> c(L_->getNodeMaxNumRowEntries());
+    Teuchos::Array<Scalar> v(L_->getNodeMaxNumRowEntries());
+    for (LO i = 0; i < static_cast<LO>(map.getNodeNumElements()); ++i) {
+      const GO gi = map.getGlobalElement(i);
+      const auto [row, sign] = leftJ ? space_->jRow(gi) : std::pair<GO, Scalar>(gi, 1.0);
+      size_t nnz = 0;
+      L_->getGlobalRowCopy(gi, c(), v(), nnz);
+      for (size_t j = 0; j < nnz; ++j) {
+        rows.push_back(row);
+        cols.push_back(c[j]);
+        linValues_.push_back(sign * v[j]);
+      }
+    }
+    scatter = LocalScatter(graph, rows, cols);
+    linBuf_.resize(linValues_.size());
   }
+  for (size_t e = 0; e < linValues_.size(); ++e) linBuf_[e] = scale * linValues_[e];
+  scatter.add(target, linBuf_.data());
 }
 
 void HamiltonianSystem::addHessian(const Vector& y, Scalar scale, CrsMatrix& target, bool leftJ) const {

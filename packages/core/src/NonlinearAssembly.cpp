@@ -21,9 +21,7 @@ NonlinearAssembly::NonlinearAssembly(RCP<const NonlinearTerm> term) : term_(term
   for (LO r = 0; r < st.numRows(); ++r) rowIds[r] = term_->rowMap()->getGlobalElement(r);
   batch_.allocate(rowIds, st.offsets, true, true);
   gRef_.assign(st.numRows(), 0.0);
-  const size_t ms = static_cast<size_t>(term_->maxStencilSize());
-  colBuf_.resize(ms);
-  valBuf_.resize(ms);
+  hessVals_.resize(batch_.hessOffsets(batch_.size()));
 }
 
 void NonlinearAssembly::setReference(const RCP<const Vector>& yRef) {
@@ -96,18 +94,33 @@ void NonlinearAssembly::fillJacobian(CrsMatrix& out) const {
 
 void NonlinearAssembly::addHessian(CrsMatrix& target, Scalar scale, const PhaseSpace* leftJ) const {
   const Stencil& st = term_->stencil();
+  LocalScatter& scatter = hessScatter_[leftJ ? 1 : 0];
+  const CrsGraph& graph = *target.getCrsGraph();
+  if (!scatter.builtFor(&graph)) {  // once per target graph: entries in stencil-block order
+    std::vector<GO> rows, cols;
+    for (LO r = 0; r < st.numRows(); ++r) {
+      const LO s = st.size(r);
+      const GO* gids = &st.gids[st.offsets[r]];
+      for (LO a = 0; a < s; ++a)
+        for (LO c = 0; c < s; ++c) {
+          rows.push_back(leftJ ? leftJ->jRow(gids[a]).first : gids[a]);
+          cols.push_back(gids[c]);
+        }
+    }
+    scatter = LocalScatter(graph, rows, cols);
+  }
   auto v = term_->weights()->getLocalViewHost(Tpetra::Access::ReadOnly);
+  size_t e = 0;
   for (LO r = 0; r < st.numRows(); ++r) {
     const LO s = st.size(r);
     const GO* gids = &st.gids[st.offsets[r]];
     const Scalar* h = &batch_.hess(batch_.hessOffsets(r));
     for (LO a = 0; a < s; ++a) {
-      const auto [row, sign] = leftJ ? leftJ->jRow(gids[a]) : std::pair<GO, Scalar>(gids[a], 1.0);
-      for (LO c = 0; c < s; ++c) valBuf_[c] = sign * scale * v(r, 0) * h[a * s + c];
-      target.sumIntoGlobalValues(row, Teuchos::ArrayView<const GO>(gids, s),
-                                 Teuchos::ArrayView<const Scalar>(valBuf_.data(), s));
+      const Scalar sign = leftJ ? leftJ->jRow(gids[a]).second : 1.0;
+      for (LO c = 0; c < s; ++c) hessVals_[e++] = sign * scale * v(r, 0) * h[a * s + c];
     }
   }
+  scatter.add(target, hessVals_.data());
 }
 
 void NonlinearAssembly::insertHessianPattern(CrsGraph& graph, const PhaseSpace* leftJ) const {

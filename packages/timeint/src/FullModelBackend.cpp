@@ -24,6 +24,8 @@ struct FullModelBackend::Solver {
   RCP<BelosProblem> problem;
   RCP<Preconditioner> prec;
   double tolerance = 1e-12;
+  int recomputeEvery = 1;
+  long assemblies = 0;
 };
 
 Teuchos::ParameterList FullModelBackend::validParameters() {
@@ -38,6 +40,9 @@ Teuchos::ParameterList FullModelBackend::validParameters() {
                      "Ifpack2 preconditioner, per rank (block Jacobi); AMESOS2 = exact KLU2 solve of each "
                      "rank's block (a direct solve on one rank)");
   setIntParameter(pl, "iluFill", 1, 0, 10, "level of fill of RILUK");
+  setIntParameter(pl, "preconditionerRecomputeEvery", 20, 1, 1000000,
+                  "refactor the preconditioner every N Newton-matrix assemblies (GMRES always solves with "
+                  "the current matrix; a stale factor only costs iterations)");
   return pl;
 }
 
@@ -45,7 +50,16 @@ FullModelBackend::FullModelBackend(RCP<const HamiltonianSystem> system, Teuchos:
     : system_(system), solver_(new Solver) {
   validateParameters(ls, validParameters(), "linearSolver");
   newtonMatrix_ = rcp(new CrsMatrix(system_->hessianGraph(true)));
+  newtonMatrix_->fillComplete(system_->map(), system_->map());  // packed storage (LocalScatter)
+  {
+    const auto& map = *system_->map();
+    std::vector<GO> diag(map.getNodeNumElements());
+    for (size_t i = 0; i < diag.size(); ++i) diag[i] = map.getGlobalElement(static_cast<LO>(i));
+    identity_ = LocalScatter(*newtonMatrix_->getCrsGraph(), diag, diag);
+    ones_.assign(diag.size(), 1.0);
+  }
   solver_->tolerance = ls.get<double>("tolerance");
+  solver_->recomputeEvery = ls.get<int>("preconditionerRecomputeEvery");
   auto belosParams = Teuchos::parameterList();
   belosParams->set("Convergence Tolerance", solver_->tolerance);
   belosParams->set("Maximum Iterations", ls.get<int>("maxIterations"));
@@ -79,16 +93,12 @@ void FullModelBackend::beginNewtonMatrix() {
   auto& M = *newtonMatrix_;
   if (M.isFillComplete()) M.resumeFill();
   M.setAllToScalar(0.0);
-  // M = I.
-  const auto& map = system_->map();
-  for (LO i = 0; i < static_cast<LO>(map->getNodeNumElements()); ++i)
-    M.sumIntoLocalValues(i, Teuchos::tuple<LO>(M.getColMap()->getLocalElement(map->getGlobalElement(i))),
-                         Teuchos::tuple<Scalar>(1.0));
+  identity_.add(M, ones_.data());  // M = I
 }
 
 void FullModelBackend::endNewtonMatrix() {
   newtonMatrix_->fillComplete(system_->map(), system_->map());
-  if (!solver_->prec.is_null()) solver_->prec->compute();
+  if (!solver_->prec.is_null() && solver_->assemblies++ % solver_->recomputeEvery == 0) solver_->prec->compute();
 }
 
 int FullModelBackend::solveNewton(const Vector& rhs, Vector& dx) {

@@ -48,7 +48,7 @@ class HamiltonianSystem {
   // Sparsity of Hess H = pattern(L) + pattern(Hess N) plus the diagonal, or of J Hess H plus the
   // diagonal when leftJ (the Newton matrices I - dt J Hbar of the time integrators).
   RCP<const CrsGraph> hessianGraph(bool leftJ) const;
-  // target += scale * L (or scale * J L).
+  // target += scale * L (or scale * J L); target fill-active on a fill-complete graph.
   void addLinearPart(Scalar scale, CrsMatrix& target, bool leftJ = false) const;
 
  private:
@@ -59,8 +59,8 @@ class HamiltonianSystem {
   RCP<const NonlinearTerm> term_;
   mutable NonlinearAssembly assembly_;
   mutable RCP<Vector> work_;
-  mutable Teuchos::Array<GO> rowCols_;
-  mutable Teuchos::Array<Scalar> rowVals_;
+  mutable LocalScatter linScatter_[2];  // entries of L (rows mapped by J when leftJ)
+  mutable std::vector<Scalar> linValues_, linBuf_;
   mutable RCP<const CrsGraph> hessGraph_[2];
 };
 

@@ -5,6 +5,7 @@
 //
 // The evaluation point is y + yRef (yRef = 0 unless the system is shifted, paper eq:shiftH),
 // and N subtracts v^T G(yRef). Buffers are allocated once here, never in a time loop.
+#include "gphr/core/LocalScatter.hpp"
 #include "gphr/core/NonlinearTerm.hpp"
 #include "gphr/core/PhaseSpace.hpp"
 
@@ -51,8 +52,8 @@ class NonlinearAssembly {
   std::vector<LO> stencilLids_;  // stencil entries as local ids of overlapMap_
   RowBatch batch_;
   std::vector<Scalar> gRef_;  // G_i(yRef)
-  mutable std::vector<GO> colBuf_;
-  mutable std::vector<Scalar> valBuf_;
+  mutable LocalScatter hessScatter_[2];  // per target graph, without / with J applied
+  mutable std::vector<Scalar> hessVals_;
 };
 
 }  // namespace gphr

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "gphr/core/HamiltonianSystem.hpp"
+#include "gphr/core/LocalScatter.hpp"
 
 namespace gphr {
 
@@ -40,6 +41,8 @@ class FullModelBackend {
   struct Solver;  // Belos + Ifpack2 objects, kept out of this header (compile cost)
   RCP<const HamiltonianSystem> system_;
   RCP<CrsMatrix> newtonMatrix_;
+  LocalScatter identity_;
+  std::vector<Scalar> ones_;
   std::unique_ptr<Solver> solver_;
 };
 
