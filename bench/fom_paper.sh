@@ -2,7 +2,8 @@
 # Benchmark of the full model at the paper's configurations (issue: foundation), side by side in
 # one run: NLS/AVF, SWE/IMR, SWE/AVF on 1 and 2 MPI ranks, next to the paper's MATLAB times, plus
 # a short preconditioner comparison (T shortened) that justifies the default.
-# usage: bash bench/fom_paper.sh [BUILD_DIR] [all|paper|pc]   (prints a table; raw summaries in bench-out/)
+# usage: bash bench/fom_paper.sh [BUILD_DIR] [all|paper|pc|reuse]   (prints tables; raw summaries in bench-out/)
+#   reuse: linearSolver.preconditionerRecomputeEvery in {1, 5, 20, 100}, SWE IMR T = 0.5 and NLS AVF T = 2
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}; part=${2:-all}
@@ -30,6 +31,15 @@ print(f"{sys.argv[2]:<28} {r['ranks']:>5} {r['steps']:>6} {r['t_online_s']:>9.1f
 PY
 }
 printf '%-28s %5s %6s %9s %9s %10s %10s %9s %9s\n' run ranks steps wall_s newton/st lin/newton H_err_rel paper_s speedup
+if [ "$part" = reuse ]; then
+  for r in 1 5 20 100; do
+    run swe_reuse_$r bench/configs/swe_paper.yaml 1 "{scheme: imr, linearSolver: {preconditionerRecomputeEvery: $r}}" "{T: 0.5, dt: 0.005}"
+    row swe_reuse_$r -
+    run nls_reuse_$r bench/configs/nls_paper.yaml 1 "{scheme: avf, linearSolver: {preconditionerRecomputeEvery: $r}}" "{T: 2.0, dt: 0.01}"
+    row nls_reuse_$r -
+  done
+  exit 0
+fi
 for np in 1 2; do
   [ "$part" = pc ] && break
   run nls_avf_np$np bench/configs/nls_paper.yaml $np; row nls_avf_np$np 220
