@@ -14,6 +14,9 @@ GalerkinRom::GalerkinRom(RCP<const HamiltonianSystem> system, RCP<const MultiVec
   g_ = rcp(new Vector(sys_->map()));
   hessN_ = sys_->createHessianN();
   HA_ = rcp(new MultiVector(sys_->map(), A_->getNumVectors()));
+  zLocal_ = rcp(new MultiVector(localMap_, 1));
+  AtyLocal_ = rcp(new MultiVector(localMap_, 1));
+  AtHALocal_ = rcp(new MultiVector(localMap_, A_->getNumVectors()));
   MultiVector LA(sys_->map(), A_->getNumVectors());
   sys_->linearPart().apply(*A_, LA);
   Lr_ = transposeTimes(LA);
@@ -30,12 +33,11 @@ DenseMatrix GalerkinRom::transposeTimes(const MultiVector& X) const {
 }
 
 void GalerkinRom::lift(const DenseVector& z, Vector& y) const {
-  MultiVector zl(localMap_, 1);
   {
-    auto v = zl.getLocalViewHost(Tpetra::Access::OverwriteAll);
+    auto v = zLocal_->getLocalViewHost(Tpetra::Access::OverwriteAll);
     for (int i = 0; i < dim(); ++i) v(i, 0) = z(i);
   }
-  y.multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, *A_, zl, 0.0);
+  y.multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, *A_, *zLocal_, 0.0);
 }
 
 DenseVector GalerkinRom::project(const Vector& y) const {
@@ -53,14 +55,17 @@ double GalerkinRom::hamiltonian(const DenseVector& z) {
 void GalerkinRom::gradient(const DenseVector& z, DenseVector& g) {
   lift(z, *y_);
   sys_->gradient(*y_, *g_);
-  g.assign(project(*g_));
+  AtyLocal_->multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, *A_, *g_, 0.0);  // A^T grad H(Az)
+  auto v = AtyLocal_->getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (int i = 0; i < dim(); ++i) g(i) = v(i, 0);
 }
 
 void GalerkinRom::addHessian(const DenseVector& z, double scale, DenseMatrix& H) {
   lift(z, *y_);
   sys_->hessianN(*y_, *hessN_);
   hessN_->apply(*A_, *HA_);
-  const DenseMatrix AtHA = transposeTimes(*HA_);
+  AtHALocal_->multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, *A_, *HA_, 0.0);
+  auto AtHA = AtHALocal_->getLocalViewHost(Tpetra::Access::ReadOnly);
   for (int j = 0; j < dim(); ++j)
     for (int i = 0; i < dim(); ++i) H(i, j) += scale * (Lr_(i, j) + AtHA(i, j));
 }

@@ -25,7 +25,7 @@ class GalerkinRom final : public DenseHamiltonian {
   const MultiVector& basis() const { return *A_; }
 
  private:
-  // out = A^T X (replicated, dim x X.cols).
+  // out = A^T X (replicated, dim x X.cols); allocates, so only for set-up.
   DenseMatrix transposeTimes(const MultiVector& X) const;
   RCP<const HamiltonianSystem> sys_;
   RCP<const MultiVector> A_;
@@ -34,6 +34,8 @@ class GalerkinRom final : public DenseHamiltonian {
   RCP<CrsMatrix> hessN_;
   RCP<MultiVector> HA_;
   RCP<const Map> localMap_;
+  // Replicated buffers of the time loop (allocated once): z, A^T y, A^T Hess N A.
+  RCP<MultiVector> zLocal_, AtyLocal_, AtHALocal_;
 };
 
 }  // namespace gphr
