@@ -28,17 +28,19 @@ if(NOT HDF5_FOUND OR NOT HDF5_IS_PARALLEL)
   message(FATAL_ERROR "GPHR: parallel HDF5 not found. Install the Debian package libhdf5-openmpi-dev (${GPHR_DEBIAN_HINT}).")
 endif()
 
-find_package(LAPACK)
-if(NOT LAPACK_FOUND)
-  message(FATAL_ERROR "GPHR: LAPACK not found. Install the Debian package libopenblas-dev (${GPHR_DEBIAN_HINT}).")
-endif()
-
 if(GPHR_ENABLE_TESTS)
   find_package(GTest QUIET)
   if(NOT GTest_FOUND)
     message(FATAL_ERROR "GPHR: GoogleTest not found. Install the Debian package libgtest-dev (${GPHR_DEBIAN_HINT}).")
   endif()
 endif()
+
+# HDF5 as a plain interface target with the resolved paths: an installed GPHR then needs no
+# FindHDF5 (which try-compiles C) in a consumer's project, which may enable CXX only.
+add_library(gphr_hdf5 INTERFACE)
+target_include_directories(gphr_hdf5 SYSTEM INTERFACE ${HDF5_C_INCLUDE_DIRS})
+target_link_libraries(gphr_hdf5 INTERFACE ${HDF5_C_LIBRARIES})
+target_compile_definitions(gphr_hdf5 INTERFACE ${HDF5_C_DEFINITIONS} ${HDF5_DEFINITIONS})
 
 # Trilinos' imported targets carry no include dirs and no MPI flags (PLATFORM.md).
 add_library(gphr_trilinos INTERFACE)

@@ -9,7 +9,8 @@ foreach(_t IN LISTS _gphr_pkgs)
   install(DIRECTORY ${_src}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endforeach()
 set_target_properties(gphr_trilinos PROPERTIES EXPORT_NAME trilinos_deps)
-install(TARGETS gphr gphr_trilinos ${_gphr_pkgs} EXPORT GPHRTargets
+set_target_properties(gphr_hdf5 PROPERTIES EXPORT_NAME hdf5_deps)
+install(TARGETS gphr gphr_trilinos gphr_hdf5 ${_gphr_pkgs} EXPORT GPHRTargets
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
