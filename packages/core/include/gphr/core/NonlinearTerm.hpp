@@ -6,12 +6,15 @@
 // from that one kernel.
 //
 // Row-kernel contract (a copyable functor, see RowKernelTerm below):
-//   int stencilSize(GO row) const;          // s = number of stencil entries of this row
 //   KOKKOS_INLINE_FUNCTION
 //   void operator()(GO row, const Scalar* vals, Scalar& g, Scalar* grad, Scalar* hess) const;
 //     vals: y at the row's stencil (stencil order), g: G_row(y);
 //     grad (may be nullptr): dG_row/dvals (s entries);
 //     hess (may be nullptr): d^2 G_row/dvals^2, s x s row-major.
+// The stencils themselves (which entries, hence s) are data, given once as a Stencil of the
+// owned rows; gatherStencils (ReplicatedGather.hpp) collects those of any set of global rows.
+// The kernel may be called on any row id with any values: the full model calls it on owned
+// rows, the reduced and hyper-reduced models on rows they hold replicated.
 #include <string>
 #include <vector>
 

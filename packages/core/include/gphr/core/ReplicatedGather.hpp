@@ -1,0 +1,23 @@
+#pragma once
+// Collective gathers of a few distributed rows onto every rank, for the objects the online phase
+// holds replicated (the sample mesh): given global ids listed identically on every rank, each
+// rank fills the entries it owns and one sum-reduction completes them everywhere. Exactly one
+// rank owns each id, so the sum is exact and the result is the same on any rank count.
+#include <vector>
+
+#include "gphr/core/NonlinearTerm.hpp"
+
+namespace gphr {
+
+// Rows `gids` of X (on X's map), row-major: out[i * X.cols + j] = X(gids[i], j). Collective;
+// throws InputError naming an id that no rank owns.
+std::vector<Scalar> gatherRows(const MultiVector& X, const std::vector<GO>& gids);
+
+// Stencils of the global rows `rows` of G (any rank may own them), in the order given: the
+// documented stencil layout of NonlinearTerm, replicated. Collective.
+Stencil gatherStencils(const NonlinearTerm& term, const std::vector<GO>& rows);
+
+// Entries rows of the weights v of G. Collective.
+std::vector<Scalar> gatherWeights(const NonlinearTerm& term, const std::vector<GO>& rows);
+
+}  // namespace gphr

@@ -1,0 +1,70 @@
+#include "gphr/core/ReplicatedGather.hpp"
+
+#include <Teuchos_CommHelpers.hpp>
+
+#include "gphr/core/Error.hpp"
+
+namespace gphr {
+
+namespace {
+// Sum-reduce `local` over the ranks of `comm` (exact here: one contributor per entry).
+template <class T>
+std::vector<T> sumAll(const Comm& comm, const std::vector<T>& local) {
+  std::vector<T> out(local.size(), T(0));
+  if (!local.empty())
+    Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, static_cast<int>(local.size()), local.data(), out.data());
+  return out;
+}
+
+// Ownership check shared by the gathers: every id must be owned by exactly one rank.
+void requireOwned(const Map& map, const std::vector<GO>& gids, const char* what) {
+  std::vector<int> own(gids.size(), 0);
+  for (size_t i = 0; i < gids.size(); ++i) own[i] = map.isNodeGlobalElement(gids[i]) ? 1 : 0;
+  const auto total = sumAll(*map.getComm(), own);
+  for (size_t i = 0; i < gids.size(); ++i)
+    GPHR_REQUIRE(total[i] == 1, InputError, what, ": global id ", gids[i], " is not an entry of the map (allowed: 0 to ",
+                 map.getMaxAllGlobalIndex(), ")");
+}
+}  // namespace
+
+std::vector<Scalar> gatherRows(const MultiVector& X, const std::vector<GO>& gids) {
+  const Map& map = *X.getMap();
+  requireOwned(map, gids, "gatherRows");
+  const size_t nc = X.getNumVectors();
+  std::vector<Scalar> local(gids.size() * nc, 0.0);
+  auto x = X.getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (size_t i = 0; i < gids.size(); ++i) {
+    const LO l = map.getLocalElement(gids[i]);
+    if (l == Teuchos::OrdinalTraits<LO>::invalid()) continue;
+    for (size_t j = 0; j < nc; ++j) local[i * nc + j] = x(l, j);
+  }
+  return sumAll(*map.getComm(), local);
+}
+
+Stencil gatherStencils(const NonlinearTerm& term, const std::vector<GO>& rows) {
+  const Map& rowMap = *term.rowMap();
+  requireOwned(rowMap, rows, "gatherStencils (row of G)");
+  const Stencil& own = term.stencil();
+  std::vector<long long> sizes(rows.size(), 0);
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const LO l = rowMap.getLocalElement(rows[i]);
+    if (l != Teuchos::OrdinalTraits<LO>::invalid()) sizes[i] = own.size(l);
+  }
+  sizes = sumAll(*rowMap.getComm(), sizes);
+  Stencil out;
+  for (long long s : sizes) out.offsets.push_back(out.offsets.back() + static_cast<size_t>(s));
+  std::vector<GO> gids(out.offsets.back(), 0);
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const LO l = rowMap.getLocalElement(rows[i]);
+    if (l == Teuchos::OrdinalTraits<LO>::invalid()) continue;
+    std::copy(own.gids.begin() + own.offsets[l], own.gids.begin() + own.offsets[l + 1], gids.begin() + out.offsets[i]);
+  }
+  out.gids = sumAll(*rowMap.getComm(), gids);
+  return out;
+}
+
+std::vector<Scalar> gatherWeights(const NonlinearTerm& term, const std::vector<GO>& rows) {
+  return gatherRows(*term.weights(), rows);
+}
+
+}  // namespace gphr

@@ -1,0 +1,46 @@
+#pragma once
+// A Hamiltonian in reduced coordinates z in R^{2k}:
+//   H(z) = 1/2 z^T L_r z + z^T f_r + c + sum_i w_i (G_i(yref + A_Si z) - G_i(yref))
+// The Galerkin ROM (eq:red_model; all rows of G, w = v) and the hyper-reduced models
+// (eq:Hyperred_model; m sampled rows, w = DEIM weights) are this class with different row
+// samples: the time schemes, Newton and the report see one DenseHamiltonian.
+#include "gphr/reduction/ReducedRowKernel.hpp"
+#include "gphr/timeint/DenseBackend.hpp"
+
+namespace gphr {
+
+// L_r = A^T L A, f_r = A^T f and the constant c of a (possibly shifted) system: computed once,
+// shared by the reduced and hyper-reduced models (with the shift, f_r = A^T (f + L y0) != 0).
+struct ReducedLinearPart {
+  DenseMatrix L;
+  DenseVector f;
+  double c = 0.0;
+};
+ReducedLinearPart reduceLinearPart(const HamiltonianSystem& system, const MultiVector& A);
+
+class ReducedHamiltonian : public DenseHamiltonian {
+ public:
+  ReducedHamiltonian(ReducedLinearPart linear, RCP<ReducedRowKernel> rows);
+
+  int dim() const override { return linear_.L.numRows(); }
+  double hamiltonian(const DenseVector& z) override;
+  void gradient(const DenseVector& z, DenseVector& g) override;
+  void addHessian(const DenseVector& z, double scale, DenseMatrix& H) override;
+
+  const ReducedLinearPart& linearPart() const { return linear_; }
+  const ReducedRowKernel& rows() const { return *rows_; }
+  ReducedRowKernel& rows() { return *rows_; }
+  // Kernel evaluations so far (one per distinct point: value, gradient and Hessian at the same z
+  // share one evaluation).
+  long kernelEvaluations() const { return evaluations_; }
+
+ private:
+  void evaluateAt(const DenseVector& z);
+  ReducedLinearPart linear_;
+  RCP<ReducedRowKernel> rows_;
+  DenseVector lastZ_;
+  bool haveLast_ = false;
+  long evaluations_ = 0;
+};
+
+}  // namespace gphr

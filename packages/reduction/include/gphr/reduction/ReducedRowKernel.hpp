@@ -1,0 +1,75 @@
+#pragma once
+// The row kernel of G evaluated in reduced coordinates on a set of rows (paper eq:redgrad,
+// eq:hhr_and_gradhhr, DESIGN.md "The sample mesh"): at y = yref + A z, with A_Si the rows of the
+// basis A under the stencil of row i,
+//   value    sum_i w_i (G_i(y) - G_i(yref))
+//   gradient sum_i w_i A_Si^T grad G_i(y)                     (2k)
+//   Hessian  sum_i w_i A_Si^T Hess G_i(y) A_Si                (2k x 2k)
+//   Jacobian rows  grad G_i(y)^T A_Si = row i of J_G(y) A      (eq:snaps_JG)
+// The Galerkin ROM runs it on each rank's own rows of G with w = v (partial sums reduced over
+// the ranks); the hyper-reduced models on the m sampled rows, replicated, with the DEIM weights.
+// One kernel evaluation gives value, gradient and Hessian together.
+//
+// Kernels: Kokkos parallel_for over stencil entries (values y = yref + A_S z) and over rows
+// (the blocks w_i Hess G_i A_Si), then one BLAS GEMV / GEMM with the stacked basis rows
+// (an M x 2k matrix, M = sum of the stencil sizes). Buffers are allocated once, at construction.
+#include <Teuchos_SerialDenseMatrix.hpp>
+#include <Teuchos_SerialDenseVector.hpp>
+#include <vector>
+
+#include "gphr/core/HamiltonianSystem.hpp"
+
+namespace gphr {
+
+// A set of rows of G in reduced coordinates: everything an evaluation needs, nothing of size n or d.
+struct RowSample {
+  std::vector<GO> rows;            // global ids of the rows of G
+  Stencil stencil;                 // their stencils (gids in the kernel's order)
+  std::vector<Scalar> weights;     // w_i, one per row
+  std::vector<Scalar> basisRows;   // per stencil entry, the 2k entries of that row of A (M x 2k, row-major)
+  std::vector<Scalar> reference;   // per stencil entry, yref (zeros when the system is not shifted)
+  bool shifted = false;            // subtract G_i(yref) in value() (paper eq:shiftH)
+  int reducedDim = 0;              // 2k
+};
+
+class ReducedRowKernel {
+ public:
+  using DenseVector = Teuchos::SerialDenseVector<int, double>;
+  using DenseMatrix = Teuchos::SerialDenseMatrix<int, double>;
+
+  // sumOver: the communicator whose ranks hold disjoint parts of one row set (partial sums are
+  // reduced over it), or null when every rank holds the whole (replicated) sample.
+  ReducedRowKernel(RCP<const NonlinearTerm> term, RowSample sample, RCP<const Comm> sumOver);
+
+  int reducedDim() const { return sample_.reducedDim; }
+  LO numRows() const { return static_cast<LO>(sample_.rows.size()); }
+  size_t numStencilEntries() const { return sample_.stencil.gids.size(); }
+  const RowSample& sample() const { return sample_; }
+  void setWeights(const std::vector<Scalar>& w);
+
+  // Run the kernel once at y = yref + A_S z; derivatives as asked.
+  void evaluate(const DenseVector& z, bool withGradient, bool withHessian);
+  // After evaluate(): the sums above (collective when sumOver is set).
+  double value() const;
+  void addGradient(DenseVector& g, double scale) const;          // g += scale * gradient
+  void addHessian(DenseMatrix& H, double scale) const;           // H += scale * Hessian
+  // After evaluate(z, true, ...): rows of J_G(y) A of this sample, row-major numRows() x 2k.
+  void reducedJacobian(Scalar* out) const;
+
+ private:
+  using Rows2 = Kokkos::View<Scalar**, Kokkos::LayoutRight, Kokkos::HostSpace>;
+  RCP<const NonlinearTerm> term_;
+  RowSample sample_;
+  RCP<const Comm> sumOver_;
+  RowBatch batch_;
+  Rows2 AS_, W_;                       // stacked basis rows; w_i Hess G_i A_Si
+  HostView1 yref_, u_, w_, gRef_;       // per entry: yref, w_i grad; per row: w_i, G_i(yref)
+  IndexView entryRow_;                 // row of each stencil entry
+  mutable std::vector<Scalar> gradBuf_, hessBuf_, sumBuf_;
+};
+
+// This rank's own rows of G with w = v, basis rows imported onto the stencils' overlap:
+// the Galerkin ROM's sample (reduce it over the state map's communicator). Collective.
+RowSample ownedRowSample(const HamiltonianSystem& system, const MultiVector& A);
+
+}  // namespace gphr

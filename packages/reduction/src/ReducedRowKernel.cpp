@@ -1,0 +1,188 @@
+#include "gphr/reduction/ReducedRowKernel.hpp"
+
+#include <Teuchos_BLAS.hpp>
+#include <Teuchos_CommHelpers.hpp>
+
+#include "gphr/core/Error.hpp"
+
+namespace gphr {
+
+ReducedRowKernel::ReducedRowKernel(RCP<const NonlinearTerm> term, RowSample sample, RCP<const Comm> sumOver)
+    : term_(term), sample_(std::move(sample)), sumOver_(sumOver) {
+  const RowSample& s = sample_;
+  const int r = s.reducedDim;
+  const size_t M = s.stencil.gids.size(), nr = s.rows.size();
+  GPHR_REQUIRE(r >= 1, InputError, "reduced row kernel: reduced dimension ", r, " must be >= 1");
+  GPHR_REQUIRE(s.stencil.numRows() == static_cast<LO>(nr) && s.weights.size() == nr, InputError,
+               "reduced row kernel: ", nr, " rows but ", s.stencil.numRows(), " stencils and ", s.weights.size(),
+               " weights");
+  GPHR_REQUIRE(s.basisRows.size() == M * r && s.reference.size() == M, InputError,
+               "reduced row kernel: basis rows / reference do not match the ", M, " stencil entries");
+  batch_.allocate(s.rows, s.stencil.offsets, true, true);
+  AS_ = Rows2("gphr::AS", M, r);
+  W_ = Rows2("gphr::W", M, r);
+  yref_ = HostView1("gphr::yref", M);
+  u_ = HostView1("gphr::u", M);
+  w_ = HostView1("gphr::w", nr);
+  gRef_ = HostView1("gphr::gRef", nr);
+  entryRow_ = IndexView("gphr::entryRow", M);
+  for (size_t j = 0; j < M; ++j) {
+    yref_(j) = s.reference[j];
+    for (int c = 0; c < r; ++c) AS_(j, c) = s.basisRows[j * r + c];
+  }
+  for (size_t i = 0; i < nr; ++i)
+    for (size_t j = s.stencil.offsets[i]; j < s.stencil.offsets[i + 1]; ++j) entryRow_(j) = static_cast<LO>(i);
+  setWeights(s.weights);
+  gradBuf_.resize(r);
+  hessBuf_.resize(static_cast<size_t>(r) * r);
+  sumBuf_.resize(static_cast<size_t>(r) * r);
+  if (s.shifted) {  // G_i(yref): the kernel at z = 0
+    evaluate(DenseVector(r), false, false);
+    for (size_t i = 0; i < nr; ++i) gRef_(i) = batch_.g(i);
+  }
+}
+
+void ReducedRowKernel::setWeights(const std::vector<Scalar>& w) {
+  GPHR_REQUIRE(w.size() == sample_.rows.size(), InputError, "reduced row kernel: ", w.size(),
+               " weights given for ", sample_.rows.size(), " rows");
+  sample_.weights = w;
+  for (size_t i = 0; i < w.size(); ++i) w_(i) = w[i];
+}
+
+void ReducedRowKernel::evaluate(const DenseVector& z, bool withGradient, bool withHessian) {
+  const int r = reducedDim();
+  GPHR_REQUIRE(z.length() == r, InputError, "reduced row kernel: z has length ", z.length(), ", expected ", r);
+  {
+    const auto AS = AS_;
+    const auto yref = yref_;
+    const auto vals = batch_.values;
+    const Kokkos::View<const Scalar*, Kokkos::HostSpace, Kokkos::MemoryUnmanaged> zv(z.values(), r);
+    Kokkos::parallel_for(
+        "gphr::reducedStencilValues", Kokkos::RangePolicy<ExecSpace>(0, AS.extent(0)), KOKKOS_LAMBDA(const size_t j) {
+          Scalar v = yref(j);
+          for (int c = 0; c < r; ++c) v += AS(j, c) * zv(c);
+          vals(j) = v;
+        });
+  }
+  RowBatch b = batch_;
+  if (!withGradient) b.grad = HostView1();
+  if (!withHessian) b.hess = HostView1();
+  term_->evaluate(b);
+}
+
+double ReducedRowKernel::value() const {
+  const auto g = batch_.g;
+  const auto gRef = gRef_;
+  const auto w = w_;
+  double local = 0.0;
+  Kokkos::parallel_reduce(
+      "gphr::reducedValue", Kokkos::RangePolicy<ExecSpace>(0, numRows()),
+      KOKKOS_LAMBDA(const LO i, double& acc) { acc += w(i) * (g(i) - gRef(i)); }, local);
+  if (sumOver_.is_null()) return local;
+  double global = 0.0;
+  Teuchos::reduceAll(*sumOver_, Teuchos::REDUCE_SUM, local, Teuchos::outArg(global));
+  return global;
+}
+
+void ReducedRowKernel::addGradient(DenseVector& g, double scale) const {
+  const int r = reducedDim();
+  const size_t M = numStencilEntries();
+  {
+    const auto u = u_;
+    const auto grad = batch_.grad;
+    const auto w = w_;
+    const auto row = entryRow_;
+    Kokkos::parallel_for(
+        "gphr::weightedGradient", Kokkos::RangePolicy<ExecSpace>(0, M),
+        KOKKOS_LAMBDA(const size_t j) { u(j) = w(row(j)) * grad(j); });
+  }
+  // A_S^T u: AS_ row-major (M x r) is A_S^T column-major (r x M).
+  std::fill(gradBuf_.begin(), gradBuf_.end(), 0.0);
+  Teuchos::BLAS<int, double> blas;
+  if (M > 0) blas.GEMV(Teuchos::NO_TRANS, r, static_cast<int>(M), 1.0, AS_.data(), r, u_.data(), 1, 0.0, gradBuf_.data(), 1);
+  if (!sumOver_.is_null()) {
+    Teuchos::reduceAll(*sumOver_, Teuchos::REDUCE_SUM, r, gradBuf_.data(), sumBuf_.data());
+    std::copy(sumBuf_.begin(), sumBuf_.begin() + r, gradBuf_.begin());
+  }
+  for (int c = 0; c < r; ++c) g(c) += scale * gradBuf_[c];
+}
+
+void ReducedRowKernel::addHessian(DenseMatrix& H, double scale) const {
+  const int r = reducedDim();
+  const size_t M = numStencilEntries();
+  {
+    // W rows of row i: w_i Hess G_i A_Si (s x r), one row of G per Kokkos index.
+    const auto AS = AS_;
+    const auto W = W_;
+    const auto hess = batch_.hess;
+    const auto off = batch_.offsets;
+    const auto hoff = batch_.hessOffsets;
+    const auto w = w_;
+    Kokkos::parallel_for(
+        "gphr::weightedHessianBlocks", Kokkos::RangePolicy<ExecSpace>(0, numRows()), KOKKOS_LAMBDA(const LO i) {
+          const size_t j0 = off(i), s = off(i + 1) - j0;
+          const Scalar* h = &hess(hoff(i));
+          for (size_t a = 0; a < s; ++a)
+            for (int c = 0; c < r; ++c) {
+              Scalar sum = 0.0;
+              for (size_t b = 0; b < s; ++b) sum += h[a * s + b] * AS(j0 + b, c);
+              W(j0 + a, c) = w(i) * sum;
+            }
+        });
+  }
+  // A_S^T W: both row-major M x r, i.e. column-major r x M: (A_S^T)(W^T)^T.
+  Teuchos::BLAS<int, double> blas;
+  std::fill(hessBuf_.begin(), hessBuf_.end(), 0.0);
+  if (M > 0)
+    blas.GEMM(Teuchos::NO_TRANS, Teuchos::TRANS, r, r, static_cast<int>(M), 1.0, AS_.data(), r, W_.data(), r, 0.0,
+              hessBuf_.data(), r);
+  if (!sumOver_.is_null()) {
+    Teuchos::reduceAll(*sumOver_, Teuchos::REDUCE_SUM, r * r, hessBuf_.data(), sumBuf_.data());
+    hessBuf_.swap(sumBuf_);
+  }
+  for (int j = 0; j < r; ++j)
+    for (int i = 0; i < r; ++i) H(i, j) += scale * hessBuf_[i + static_cast<size_t>(r) * j];
+}
+
+void ReducedRowKernel::reducedJacobian(Scalar* out) const {
+  const int r = reducedDim();
+  const auto AS = AS_;
+  const auto grad = batch_.grad;
+  const auto off = batch_.offsets;
+  Kokkos::parallel_for(
+      "gphr::reducedJacobianRows", Kokkos::RangePolicy<ExecSpace>(0, numRows()), KOKKOS_LAMBDA(const LO i) {
+        for (int c = 0; c < r; ++c) {
+          Scalar sum = 0.0;
+          for (size_t j = off(i); j < off(i + 1); ++j) sum += grad(j) * AS(j, c);
+          out[static_cast<size_t>(i) * r + c] = sum;
+        }
+      });
+}
+
+RowSample ownedRowSample(const HamiltonianSystem& system, const MultiVector& A) {
+  const NonlinearTerm& term = system.nonlinearTerm();
+  const RCP<const Map> overlap = term.jacobianGraph()->getColMap();  // owned + ghost state entries
+  const Import importer(system.map(), overlap);
+  MultiVector Aov(overlap, A.getNumVectors());
+  Aov.doImport(A, importer, Tpetra::INSERT);
+  Vector refOv(overlap);
+  if (!system.reference().is_null()) refOv.doImport(*system.reference(), importer, Tpetra::INSERT);
+  RowSample s;
+  s.reducedDim = static_cast<int>(A.getNumVectors());
+  s.shifted = !system.reference().is_null();
+  s.stencil = term.stencil();
+  const LO nr = s.stencil.numRows();
+  for (LO i = 0; i < nr; ++i) s.rows.push_back(term.rowMap()->getGlobalElement(i));
+  auto v = term.weights()->getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (LO i = 0; i < nr; ++i) s.weights.push_back(v(i, 0));
+  auto a = Aov.getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto y = refOv.getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (GO gid : s.stencil.gids) {
+    const LO l = overlap->getLocalElement(gid);
+    for (int c = 0; c < s.reducedDim; ++c) s.basisRows.push_back(a(l, c));
+    s.reference.push_back(y(l, 0));
+  }
+  return s;
+}
+
+}  // namespace gphr
