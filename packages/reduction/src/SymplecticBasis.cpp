@@ -1,17 +1,19 @@
 #include "gphr/reduction/SymplecticBasis.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
-#include <Teuchos_LAPACK.hpp>
-#include <Tpetra_TsqrAdaptor.hpp>
 
 #include <cmath>
 #include <complex>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/reduction/StreamingPod.hpp"
 
 namespace gphr {
 
 namespace {
+
+// Complex triplets kept between steps when k comes from the energy tolerance.
+constexpr int kAutoRank = 512;
 
 using cplx = std::complex<double>;
 using Dense = Teuchos::SerialDenseMatrix<int, double>;
@@ -19,59 +21,33 @@ using Dense = Teuchos::SerialDenseMatrix<int, double>;
 // Real representation: a complex n-vector a + i b is the state-map vector [a; b]; multiplying
 // by i is J^T, and the complex inner product is <x, y> = x^T y + i x^T J y.
 //
-// One incremental step on Y = [sigma_j e_j (carried), new columns] (2n x m):
-//  1. X = [Y, J^T Y] spans a J-invariant space; TSQR: X = Qx Rx (needs 2m <= 2 n_local rows).
-//  2. Real SVD Rx = W S Z^T: the left singular vectors Qx W of X come in pairs {u, J^T u} with
-//     equal singular values (those of the complex data matrix).
-//  3. Complex Gram-Schmidt of W's columns in order, in the 2m-dim coordinates, with
-//     M = Qx^T J Qx: a column that is (the partner of) an accepted one is dropped, the others
-//     are the complex left singular vectors. Keep the leading `keep`.
-void svdStep(const PhaseSpace& ps, MultiVector& E, std::vector<double>& sigma, const MultiVector& Y, int keep) {
-  const int m = static_cast<int>(Y.getNumVectors());
+// The real matrix X = [D, J^T D] of the data columns D spans a J-invariant space and its
+// left singular vectors come in pairs {u, J^T u} with equal singular values, those of the complex
+// data matrix. The streaming POD gives them (U, sigma); a complex Gram-Schmidt of U's columns in
+// order, in U's coordinates with M = U^T J U, drops the partner of each accepted vector and keeps
+// the leading `keep` complex left singular vectors E = U Xi.
+void complexLeftVectors(const PhaseSpace& ps, const MultiVector& U, const std::vector<double>& S, int keep,
+                        MultiVector& E, std::vector<double>& sigma) {
+  const int mm = static_cast<int>(S.size());
   const auto& map = ps.map();
-  MultiVector X(map, 2 * m), Qx(map, 2 * m), JQ(map, 2 * m);
-  {
-    MultiVector JtY(map, m);
-    ps.applyJT(Y, JtY);
-    auto x = X.getLocalViewHost(Tpetra::Access::OverwriteAll);
-    auto y = Y.getLocalViewHost(Tpetra::Access::ReadOnly);
-    auto jy = JtY.getLocalViewHost(Tpetra::Access::ReadOnly);
-    for (size_t i = 0; i < x.extent(0); ++i)
-      for (int j = 0; j < m; ++j) x(i, j) = y(i, j), x(i, m + j) = jy(i, j);
-  }
-  Dense R(2 * m, 2 * m);
-  Tpetra::TsqrAdaptor<MultiVector> tsqr;
-  tsqr.factorExplicit(X, Qx, R);
-  ps.applyJ(Qx, JQ);
-  // M = Qx^T J Qx (replicated, one GEMM + reduction in Tpetra).
-  const int mm = 2 * m;
-  auto local = rcp(new Map(mm, 0, ps.comm(), Tpetra::LocallyReplicated));
-  MultiVector Mmv(local, mm);
-  Mmv.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, Qx, JQ, 0.0);
-  std::vector<double> Mv(mm * mm);
+  MultiVector JU(map, std::max(mm, 1));
+  ps.applyJ(U, JU);
+  auto local = rcp(new Map(std::max(mm, 1), 0, ps.comm(), Tpetra::LocallyReplicated));
+  MultiVector Mmv(local, std::max(mm, 1));
+  Mmv.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, U, JU, 0.0);  // M = U^T J U (one GEMM + reduction)
+  std::vector<double> Mv(static_cast<size_t>(mm) * mm);
   {
     auto mv = Mmv.getLocalViewHost(Tpetra::Access::ReadOnly);
     for (int a = 0; a < mm; ++a)
-      for (int b = 0; b < mm; ++b) Mv[a + mm * b] = mv(a, b);
+      for (int b = 0; b < mm; ++b) Mv[a + static_cast<size_t>(mm) * b] = mv(a, b);
   }
-  // Real SVD of R: R = W S Z^T.
-  std::vector<double> S(mm), W(mm * mm), work(1), Z(1);
-  int info = 0;
-  Teuchos::LAPACK<int, double> lapack;
-  double wq = 0.0;
-  lapack.GESVD('A', 'N', mm, mm, R.values(), R.stride(), S.data(), W.data(), mm, Z.data(), 1, &wq, -1, nullptr, &info);
-  work.resize(std::max(1, static_cast<int>(wq)));
-  lapack.GESVD('A', 'N', mm, mm, R.values(), R.stride(), S.data(), W.data(), mm, Z.data(), 1, work.data(),
-               static_cast<int>(work.size()), nullptr, &info);
-  GPHR_REQUIRE(info == 0, SolverError, "symplectic basis: LAPACK GESVD failed (info = ", info, ")");
-  // Complex Gram-Schmidt in coordinates: <x, y> = x^T y + i x^T M y; i x <-> M^T x. M^T e of
-  // each accepted e is computed once.
+  // <x, y> = x^T y + i x^T M y; i x <-> M^T x, computed once per accepted vector.
   std::vector<std::vector<double>> acc, accI;
   std::vector<double> accSigma;
   auto Mt = [&](const std::vector<double>& x) {
     std::vector<double> out(mm, 0.0);
     for (int a = 0; a < mm; ++a) {
-      const double* col = &Mv[mm * a];  // column a of M = row a of M^T
+      const double* col = &Mv[static_cast<size_t>(mm) * a];  // column a of M = row a of M^T
       double sum = 0.0;
       for (int b = 0; b < mm; ++b) sum += col[b] * x[b];
       out[a] = sum;
@@ -79,7 +55,8 @@ void svdStep(const PhaseSpace& ps, MultiVector& E, std::vector<double>& sigma, c
     return out;
   };
   for (int j = 0; j < mm && static_cast<int>(acc.size()) < keep && S[j] > 0.0; ++j) {
-    std::vector<double> xi(W.begin() + mm * j, W.begin() + mm * (j + 1));
+    std::vector<double> xi(mm, 0.0);
+    xi[j] = 1.0;
     for (int pass = 0; pass < 2; ++pass)  // twice is enough (Kahan-Parlett)
       for (size_t l = 0; l < acc.size(); ++l) {
         const auto& e = acc[l];
@@ -99,7 +76,6 @@ void svdStep(const PhaseSpace& ps, MultiVector& E, std::vector<double>& sigma, c
   }
   const int kept = static_cast<int>(acc.size());
   sigma = accSigma;
-  // E = Qx Xi (one GEMM).
   MultiVector Xi(local, std::max(kept, 1));
   {
     auto xv = Xi.getLocalViewHost(Tpetra::Access::OverwriteAll);
@@ -107,7 +83,7 @@ void svdStep(const PhaseSpace& ps, MultiVector& E, std::vector<double>& sigma, c
       for (int a = 0; a < mm; ++a) xv(a, j) = acc[j][a];
   }
   E = MultiVector(map, std::max(kept, 1));
-  E.multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, Qx, Xi, 0.0);
+  if (kept > 0) E.multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, U, Xi, 0.0);
 }
 
 // Fix the free phase of each complex singular vector (a sign for the cotangent lift): rotate
@@ -142,56 +118,57 @@ ReducedBasis computeSymplecticBasis(const std::vector<RCP<const MultiVector>>& s
   GPHR_REQUIRE(opt.method == "psd" || opt.method == "cotangent", InputError, "basis method '", opt.method,
                "' is not one of 'psd', 'cotangent'");
   GPHR_REQUIRE(!snapshots.empty(), InputError, "symplectic basis: no snapshots");
+  GPHR_REQUIRE(opt.blockColumns >= 1, InputError, "symplectic basis: blockColumns = ", opt.blockColumns,
+               " (allowed: >= 1)");
   const bool cot = opt.method == "cotangent";
   const LO nl = space.numLocalDofs();
-  // TSQR needs 2m <= 2 n_local rows on every rank, m = carried + new columns.
-  LO minLocal = 0;
-  Teuchos::reduceAll(*space.comm(), Teuchos::REDUCE_MIN, nl, Teuchos::outArg(minLocal));
-  const int perSnap = cot ? 2 : 1;
-  const int cap = static_cast<int>(minLocal);
-  // Kept between steps: given, or 2k + 32 when k is given (margin for the leading k), at most
-  // half the smallest rank's dofs (room for new columns).
-  const int autoRank = opt.k > 0 ? std::min(std::max(1, cap / 2), 2 * opt.k + 32) : std::max(1, cap / 2);
-  const int maxRank = std::min(opt.maxRank > 0 ? opt.maxRank : std::max(autoRank, opt.k), cap);
-  GPHR_REQUIRE(cap >= perSnap, InputError, "symplectic basis: ", cap,
-               " degrees of freedom on the smallest rank are too few (use fewer ranks)");
-
-  MultiVector E(space.map(), 1);
-  std::vector<double> sigma;
+  // Triplets kept between steps: given, or 2k + 32 when k is given (margin for the leading k),
+  // or at most kAutoRank when k comes from the energy tolerance; at most n.
+  const GO n = space.n();
+  const int autoRank = opt.k > 0 ? 2 * opt.k + 32 : kAutoRank;
+  const int maxRank = static_cast<int>(std::min<GO>(n, opt.maxRank > 0 ? opt.maxRank : std::max(autoRank, opt.k)));
+  // psd: the real POD of X = [D, J^T D], D = [q; p] per snapshot, carries both vectors of each
+  // J-pair (2 maxRank). cotangent: the plain POD of [Q, P] on the n dofs (real vectors phi, so
+  // A = blockdiag(Phi, Phi) holds exactly, round-off directions included).
+  // Every nonzero sigma is kept (tolerance 0): k is the user's choice, even into round-off.
+  StreamingPod pod(cot ? space.dofMap() : space.map(), static_cast<int>(cot ? maxRank : 2 * maxRank),
+                   2 * opt.blockColumns, 0.0);
   double energy = 0.0;
   for (const auto& Ys : snapshots) {
     std::vector<double> nrm(Ys->getNumVectors());
     Ys->norm2(Teuchos::ArrayView<double>(nrm));
     for (double x : nrm) energy += x * x;
-    for (size_t c0 = 0; c0 < Ys->getNumVectors();) {
-      // Columns this step may take: carried + new <= cap; make room by dropping the smallest
-      // carried singular triplets when needed (the truncation of the incremental SVD).
-      if (static_cast<int>(sigma.size()) + perSnap > cap) sigma.resize(cap - perSnap);
-      const int room = (cap - static_cast<int>(sigma.size())) / perSnap;
-      const size_t c1 = std::min(Ys->getNumVectors(), c0 + std::min(opt.blockColumns, room));
-      const int r = static_cast<int>(sigma.size()), b = static_cast<int>(c1 - c0) * perSnap;
-      MultiVector Y(space.map(), r + b);
-      {
-        auto y = Y.getLocalViewHost(Tpetra::Access::OverwriteAll);
-        auto ev = E.getLocalViewHost(Tpetra::Access::ReadOnly);
-        auto sv = Ys->getLocalViewHost(Tpetra::Access::ReadOnly);
-        for (int j = 0; j < r; ++j)
-          for (LO i = 0; i < 2 * nl; ++i) y(i, j) = sigma[j] * ev(i, j);
-        for (size_t c = c0; c < c1; ++c) {
-          const int j = r + static_cast<int>(c - c0) * perSnap;
-          for (LO i = 0; i < nl; ++i) {
-            if (!cot) {
-              y(i, j) = sv(i, c), y(nl + i, j) = sv(nl + i, c);  // [q; p]  <->  q + i p
-            } else {
-              y(i, j) = sv(i, c), y(i, j + 1) = sv(nl + i, c);  // [q; 0], [p; 0]  <->  [Q, P]
-              y(nl + i, j) = y(nl + i, j + 1) = 0.0;
-            }
+    // One POD step per blockColumns snapshots: only that chunk's data is ever formed.
+    for (size_t c0 = 0; c0 < Ys->getNumVectors(); c0 += opt.blockColumns) {
+      const size_t c1 = std::min(Ys->getNumVectors(), c0 + static_cast<size_t>(opt.blockColumns));
+      const int b = static_cast<int>(c1 - c0);
+      MultiVector X(pod.map(), 2 * b);
+      auto x = X.getLocalViewHost(Tpetra::Access::OverwriteAll);
+      auto sv = Ys->getLocalViewHost(Tpetra::Access::ReadOnly);
+      for (int j = 0; j < b; ++j)
+        for (LO i = 0; i < nl; ++i) {
+          const double q = sv(i, c0 + j), p = sv(nl + i, c0 + j);
+          if (cot) {
+            x(i, 2 * j) = q, x(i, 2 * j + 1) = p;  // [Q, P]
+          } else {  // (d, J^T d) with d = [q; p], J^T d = [-p; q]
+            x(i, 2 * j) = q, x(nl + i, 2 * j) = p;
+            x(i, 2 * j + 1) = -p, x(nl + i, 2 * j + 1) = q;
           }
         }
-      }
-      svdStep(space, E, sigma, Y, maxRank);
-      c0 = c1;
+      pod.add(X);
     }
+  }
+  MultiVector E(space.map(), 1);
+  std::vector<double> sigma;
+  if (cot) {
+    sigma = pod.singularValues();
+    E = MultiVector(space.map(), std::max(pod.rank(), 1));
+    auto e = E.getLocalViewHost(Tpetra::Access::OverwriteAll);
+    auto u = pod.leftVectors().getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (int j = 0; j < pod.rank(); ++j)
+      for (LO i = 0; i < nl; ++i) e(i, j) = u(i, j), e(nl + i, j) = 0.0;  // [phi; 0]
+  } else {
+    complexLeftVectors(space, pod.leftVectors(), pod.singularValues(), maxRank, E, sigma);
   }
   ReducedBasis out;
   out.method = opt.method;

@@ -5,12 +5,11 @@
 //       of C = Q + i P;  A = [[Phi, -Psi], [Psi, Phi]].
 //   cotangent lift: Phi, the leading k left singular vectors of [Q, P];  A = [[Phi, 0], [0, Phi]].
 // Both are one computation in the real representation (a + i b <-> [a; b], i <-> J^T): the data
-// columns are [q; p] (psd) or [q; 0], [p; 0] (cotangent). Nothing n x N_snap is gathered and
-// nothing n x n is formed: over blocks of snapshot columns, Y = [sigma_j e_j, new columns] and
-// X = [Y, J^T Y] go through a TSQR (Tpetra::TsqrAdaptor), a real SVD of its R (Teuchos::LAPACK),
-// and a complex Gram-Schmidt in the small coordinates that keeps one vector of each J-pair
-// (incremental SVD truncated to maxRank, as in libROM). With all snapshots in one block it is
-// the exact thin SVD. TSQR needs (carried + new columns) <= dofs on the smallest rank.
+// columns D are [q; p] (psd) or [q; 0], [p; 0] (cotangent). X = [D, J^T D], block by block,
+// goes through the generic StreamingPod (incremental TSQR + LAPACK SVD, truncated to 2 maxRank
+// real triplets, as in libROM; the same on any rank count); a complex Gram-Schmidt of its left
+// vectors in the small coordinates keeps one vector of each J-pair. Nothing n x N_snap is
+// gathered and nothing n x n is formed; with all snapshots in one block it is the exact thin SVD.
 #include <string>
 #include <vector>
 
@@ -23,7 +22,7 @@ struct BasisOptions {
   int k = 0;                       // basis half-size; 0: from energyTolerance
   double energyTolerance = 1e-6;   // discarded fraction of the snapshot energy (when k = 0)
   int blockColumns = 128;          // snapshot columns per incremental step
-  int maxRank = 0;                 // kept between steps; 0: 2k + 32 (k given) or half the smallest rank's dofs
+  int maxRank = 0;                 // complex triplets kept between steps; 0: 2k + 32 (k given) or 512; at most n
 };
 
 struct ReducedBasis {

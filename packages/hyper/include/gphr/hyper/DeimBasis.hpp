@@ -1,0 +1,34 @@
+#pragma once
+// The DEIM basis of GP-DEIM (paper sec:ConstrDEIM): POD of the reduced-Jacobian snapshots
+//   M_J = [ J_G(y0_j + A A^T y_s) A ]   (eq:snaps_JG, shifted: y_s = y - y0_j),
+// d x 2k per kept training state, streamed into an incremental SVD (StreamingPod) so that M_J
+// (d x 2k x states: 5 GB at the paper's NLS sizes) is never held.
+#include <string>
+#include <vector>
+
+#include "gphr/core/HamiltonianSystem.hpp"
+
+namespace gphr {
+
+struct DeimBasisOptions {
+  int maxRank = 0;        // singular triplets kept between blocks (>= the largest m wanted); 0: min(d, 400)
+  int snapshotEvery = 1;  // use every N-th stored training state (the paper: 20)
+  int blockSnapshots = 1; // reduced-Jacobian snapshots (2k columns each) per incremental POD step
+};
+
+constexpr int kDefaultDeimRank = 400;
+
+struct DeimBasis {
+  RCP<MultiVector> U;                  // d x rank, on the row map of G
+  std::vector<double> singularValues;  // of M_J (the leading ones kept)
+  long snapshots = 0;                  // reduced-Jacobian snapshots (states) used
+  double energy = 0.0;                 // ||M_J||_F^2
+};
+
+// systems[j]: the (shifted) system at training parameter j; states[j]: its stored states in the
+// system's own coordinates. A: the reduced basis (2n x 2k). Collective.
+DeimBasis computeDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& systems,
+                           const std::vector<RCP<const MultiVector>>& states, const MultiVector& A,
+                           const DeimBasisOptions& options);
+
+}  // namespace gphr

@@ -1,0 +1,29 @@
+#pragma once
+// The gradient-preserving hyper-reduced model (paper eq:Hyperred_model):
+//   H_hr(z) = 1/2 z^T L_r z + z^T f_r + c + sum_{i in P} w_i (G_i(y0 + A_Si z) - G_i(y0)),
+//   grad H_hr = L_r z + f_r + A^T J_G(y0 + A z)^T P (U^T P)^{-1} U^T v,
+// a DenseHamiltonian on its sample mesh (replicated on every rank), so IMR/AVF and the dense
+// Newton serve it unchanged and it is Hamiltonian by construction.
+#include "gphr/hyper/SampleMesh.hpp"
+
+namespace gphr {
+
+class GpDeimModel final : public ReducedHamiltonian {
+ public:
+  GpDeimModel(RCP<const NonlinearTerm> term, const SampleMesh& mesh);
+  int deimSize() const { return rows().numRows(); }
+  // Kernel rows evaluated per kernel evaluation (= m) and stencil entries held (= sum of s_i).
+  LO kernelRowsPerEvaluation() const { return rows().numRows(); }
+  size_t stencilEntries() const { return rows().numStencilEntries(); }
+  size_t numbersHeld() const { return numbersHeld_; }
+
+ private:
+  size_t numbersHeld_;
+};
+
+// Smallest eigenvalue of a symmetric Hessian (LAPACK SYEV: a small dense eigenproblem, where an
+// Anasazi solve would cost more than it saves). Used to flag (k, m) whose H_hr is not convex
+// where H_r is (negative DEIM weights can do that).
+double smallestEigenvalue(const DenseMatrix& H);
+
+}  // namespace gphr

@@ -1,0 +1,20 @@
+#pragma once
+// The sample mesh of the hyper-reduced model (DESIGN.md): for the m sampled rows of G their
+// stencils, the rows of A under them, y0 there (the shift), the DEIM weights, and L_r, f_r, c.
+// This is everything the online phase holds: O(m s k + k^2) numbers, nothing of size n or d.
+#include "gphr/reduction/ReducedHamiltonian.hpp"
+
+namespace gphr {
+
+struct SampleMesh {
+  RowSample sample;          // rows, stencils, basis rows (m s x 2k), y0 on the stencils, weights
+  ReducedLinearPart linear;  // L_r, f_r, c
+  // Numbers held: the online object's memory in doubles (independent of n and d).
+  size_t numbersHeld() const;
+};
+
+// Gathers (collectively) what the rows `rows` of the system's G need; weights one per row.
+SampleMesh buildSampleMesh(const HamiltonianSystem& system, const MultiVector& A, const std::vector<GO>& rows,
+                           const std::vector<double>& weights, ReducedLinearPart linear);
+
+}  // namespace gphr

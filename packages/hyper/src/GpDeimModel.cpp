@@ -1,0 +1,27 @@
+#include "gphr/hyper/GpDeimModel.hpp"
+
+#include <Teuchos_LAPACK.hpp>
+
+#include "gphr/core/Error.hpp"
+
+namespace gphr {
+
+GpDeimModel::GpDeimModel(RCP<const NonlinearTerm> term, const SampleMesh& mesh)
+    : ReducedHamiltonian(mesh.linear, rcp(new ReducedRowKernel(term, mesh.sample, Teuchos::null))),
+      numbersHeld_(mesh.numbersHeld()) {}
+
+double smallestEigenvalue(const DenseMatrix& H) {
+  const int n = H.numRows();
+  std::vector<double> a(static_cast<size_t>(n) * n), ev(n), work(1);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) a[i + static_cast<size_t>(n) * j] = 0.5 * (H(i, j) + H(j, i));
+  Teuchos::LAPACK<int, double> lapack;
+  int info = 0;
+  lapack.SYEV('N', 'U', n, a.data(), n, ev.data(), work.data(), -1, &info);
+  work.resize(std::max(1, static_cast<int>(work[0])));
+  lapack.SYEV('N', 'U', n, a.data(), n, ev.data(), work.data(), static_cast<int>(work.size()), &info);
+  GPHR_REQUIRE(info == 0, SolverError, "LAPACK SYEV failed (info = ", info, ")");
+  return ev[0];
+}
+
+}  // namespace gphr

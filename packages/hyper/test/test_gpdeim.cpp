@@ -1,0 +1,172 @@
+// GP-DEIM (paper Sec. 3), tested against mathematics:
+//  - m = d: the DEIM projection is the identity (U square and invertible gives w = v), so the
+//    hyper-reduced trajectory is the reduced one; both step the same equations with the same
+//    Newton tolerance 1e-12, summed in another order: 1e-10 relative;
+//  - grad H_hr against central differences of H_hr, Hess H_hr against central differences of
+//    grad H_hr (so Newton's matrix is right), and the finite-difference Jacobian of grad H_hr is
+//    symmetric: a gradient field;
+//  - AVF conserves H_hr: |H(z1) - H(z0)| = |gbar^T R| <= |gbar| |R| per step;
+//  - the online object does not grow with n (SWE 32^2 .. 128^2 at fixed k, m);
+//  - extremes run or fail with a message naming the cause.
+#include <gtest/gtest.h>
+
+#include "HyperTestUtils.hpp"
+
+using namespace gphr;
+
+namespace {
+
+TEST(GpDeim, FullDeimSizeReproducesReducedModel) {
+  const GO n = 32;
+  auto hc = test::nlsCase(n, 4, test::comm());
+  ASSERT_EQ(hc.deim.U->getNumVectors(), static_cast<size_t>(n)) << "the snapshots must span R^d for this test";
+  auto hr = test::gpDeimModel(hc, static_cast<int>(n));
+  GalerkinRom rom(hc.test.system, hc.basis.A);
+  for (const char* scheme : {"imr", "avf"}) {
+    const auto zr = test::trajectory(rom, scheme, 0.05, 100);
+    const auto zh = test::trajectory(*hr, scheme, 0.05, 100);
+    EXPECT_LE(test::maxRelDiff(zh, zr), 1e-10) << scheme;
+  }
+}
+
+// Central differences with step h: truncation h^2/6 |f'''| plus round-off eps |f| / h. With
+// h = 1e-5 and O(1) derivatives both are <= 1e-9 relative; 1e-6 leaves a wide margin and still
+// catches any wrong term (a sign or factor error is O(1) relative).
+constexpr double kFdStep = 1e-5, kFdTol = 1e-6;
+
+DenseVector probePoint(int dim) {
+  DenseVector z(dim);
+  for (int i = 0; i < dim; ++i) z(i) = 0.3 * std::sin(1.7 * i + 0.4);
+  return z;
+}
+
+DenseMatrix fdJacobianOfGradient(DenseHamiltonian& model, const DenseVector& z) {
+  const int r = model.dim();
+  DenseMatrix J(r, r);
+  DenseVector zp(z), zm(z), gp(r), gm(r);
+  for (int c = 0; c < r; ++c) {
+    zp.assign(z), zm.assign(z);
+    zp(c) += kFdStep, zm(c) -= kFdStep;
+    model.gradient(zp, gp);
+    model.gradient(zm, gm);
+    for (int i = 0; i < r; ++i) J(i, c) = (gp(i) - gm(i)) / (2 * kFdStep);
+  }
+  return J;
+}
+
+TEST(GpDeim, DerivativesMatchFiniteDifferencesAndFormAGradientField) {
+  auto hc = test::nlsCase(48, 4, test::comm());
+  for (int m : {3, 8, 20}) {
+    auto hr = test::gpDeimModel(hc, m);
+    const int r = hr->dim();
+    const DenseVector z = probePoint(r);
+    DenseVector g(r), zp(z), zm(z);
+    hr->gradient(z, g);
+    double err = 0.0;
+    for (int c = 0; c < r; ++c) {
+      zp.assign(z), zm.assign(z);
+      zp(c) += kFdStep, zm(c) -= kFdStep;
+      const double fd = (hr->hamiltonian(zp) - hr->hamiltonian(zm)) / (2 * kFdStep);
+      err = std::max(err, std::abs(fd - g(c)));
+    }
+    EXPECT_LE(err, kFdTol * g.normInf()) << "grad H_hr vs FD, m = " << m;
+    DenseMatrix H(r, r);
+    hr->addHessian(z, 1.0, H);
+    const DenseMatrix Jfd = fdJacobianOfGradient(*hr, z);
+    DenseMatrix diff(Jfd), asym(Jfd, Teuchos::TRANS);
+    diff -= H;
+    asym -= Jfd;
+    EXPECT_LE(diff.normInf(), kFdTol * H.normInf()) << "Hess H_hr vs FD of grad, m = " << m;
+    // A gradient field has a symmetric Jacobian; the FD Jacobian's asymmetry is FD error only.
+    EXPECT_LE(asym.normInf(), 1e-7 * Jfd.normInf()) << "m = " << m;
+  }
+}
+
+TEST(GpDeim, AvfConservesHyperReducedHamiltonian) {
+  auto hc = test::nlsCase(48, 4, test::comm());
+  for (int m : {4, 8, 16, 48}) {  // 48 = d
+    auto hr = test::gpDeimModel(hc, m);
+    DenseModelIntegrator avf(*hr, test::denseIntegrator("avf"), 4);
+    DenseVector z(hr->dim()), g(hr->dim());
+    const double H0 = hr->hamiltonian(z);
+    double bound = 0.0, worst = 0.0;
+    // Per step |dH| = |gbar^T R| <= |gbar| |R| (AveragedGradientScheme), summed over the steps,
+    // plus the round-off of evaluating H twice (1e-13 (1 + |H0|): sums of ~1e2 terms of size |H0|).
+    avf.run(z, 0.05, 1000, [&](long j, double, const DenseVector& zj, const StepReport& rep) {
+      if (j == 0) return;
+      bound += avf.scheme().averageGradient().normFrobenius() * rep.residualNorm;
+      worst = std::max(worst, std::abs(hr->hamiltonian(zj) - H0) - bound - 1e-13 * (1.0 + std::abs(H0)));
+    });
+    EXPECT_LE(worst, 0.0) << "m = " << m << ": |H_hr(z_j) - H_hr(z_0)| exceeds the AVF bound";
+  }
+}
+
+TEST(GpDeim, OnlineObjectDoesNotGrowWithN) {
+  std::vector<size_t> held, entries;
+  std::vector<LO> rows;
+  for (GO nx : {32, 64, 128}) {
+    Swe2d scene(nx);
+    auto hc = test::sceneCase(scene, {{1.2, 0.5}, {1.8, 1.0}}, {1.5, 0.8}, 4, 0.01, 10, test::comm(), 40);
+    auto hr = test::gpDeimModel(hc, 12);
+    held.push_back(hr->numbersHeld());
+    entries.push_back(hr->stencilEntries());
+    rows.push_back(hr->kernelRowsPerEvaluation());
+  }
+  for (size_t i = 1; i < held.size(); ++i) {
+    EXPECT_EQ(held[i], held[0]) << "numbers held online";
+    EXPECT_EQ(entries[i], entries[0]) << "stencil entries";
+    EXPECT_EQ(rows[i], rows[0]) << "kernel rows per evaluation";
+  }
+  EXPECT_EQ(rows[0], 12);
+  EXPECT_EQ(entries[0], 12u * 5u);  // the SWE stencil has 5 entries
+}
+
+TEST(GpDeim, ExtremeSizesRunOrFailClearly) {
+  auto hc = test::nlsCase(32, 1, test::comm());  // 2k = 2
+  for (int m : {1, 2}) {                          // m = 1, m = 2k
+    auto hr = test::gpDeimModel(hc, m);
+    const auto z = test::trajectory(*hr, "avf", 0.05, 50);
+    for (const auto& zj : z)
+      for (int i = 0; i < zj.length(); ++i) ASSERT_TRUE(std::isfinite(zj(i))) << "m = " << m;
+  }
+  // m beyond the DEIM basis: a clear error naming m and what is available.
+  const int tooMany = static_cast<int>(hc.deim.U->getNumVectors()) + 1;
+  try {
+    test::gpDeimModel(hc, tooMany);
+    FAIL() << "m = " << tooMany << " was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("m = " + std::to_string(tooMany)), std::string::npos) << e.what();
+  }
+}
+
+TEST(GpDeim, LinearProblemHasNothingToHyperReduce) {
+  // eps = 0: G = 0, every reduced-Jacobian snapshot is zero.
+  Nls1d scene(32);
+  try {
+    test::sceneCase(scene, {{0.0}}, {0.0}, 2, 0.05, 20, test::comm());
+    FAIL() << "an all-zero snapshot set was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("all zero"), std::string::npos) << e.what();
+  }
+}
+
+TEST(GpDeim, DuplicatedSnapshotsGiveTheSameDeimPair) {
+  Nls1d scene(32);
+  auto tr = scene.instantiate(test::comm(), {1.0}, true);
+  auto snaps = test::fomSnapshots(tr, "avf", 0.05, 40);
+  BasisOptions opt;
+  opt.k = 3;
+  auto basis = computeSymplecticBasis({snaps}, tr.system->space(), opt);
+  DeimBasisOptions dopt;
+  dopt.maxRank = 32;
+  const auto once = computeDeimBasis({tr.system}, {snaps}, *basis.A, dopt);
+  const auto twice = computeDeimBasis({tr.system, tr.system}, {snaps, snaps}, *basis.A, dopt);
+  // Duplicating every snapshot scales M_J M_J^T by 2: sigma by sqrt(2), same subspace.
+  ASSERT_EQ(once.singularValues.size(), twice.singularValues.size());
+  for (size_t j = 0; j < std::min<size_t>(10, once.singularValues.size()); ++j)
+    EXPECT_NEAR(twice.singularValues[j], std::sqrt(2.0) * once.singularValues[j], 1e-10 * once.singularValues[0]);
+  const int m = 8;
+  EXPECT_EQ(selectDeimIndices(*once.U, m), selectDeimIndices(*twice.U, m));
+}
+
+}  // namespace

@@ -1,0 +1,29 @@
+#pragma once
+// Discrete empirical interpolation on a distributed DEIM basis U (d x m, on the row map of G):
+// interpolation indices P and the weights the hyper-reduced model needs (paper eq:DEIMproj,
+// eq:hhr_and_gradhhr):  N_hr = v^T U (P^T U)^{-1} P^T G,  so the m numbers
+//   deimWeights = (U^T P)^{-1} U^T v      (the nonzeros of w = P (U^T P)^{-1} U^T v)
+// are all that is kept of U online.
+#include <string>
+#include <vector>
+
+#include "gphr/core/Types.hpp"
+
+namespace gphr {
+
+// Greedy DEIM (Chaturantabut & Sorensen 2010, Alg. 1): index l is the global argmax of the
+// interpolation residual of column l (ties: the smallest global id, so every rank count agrees).
+// QDEIM (Drmac & Gugercin 2016): the first m pivots of a column-pivoted QR (LAPACK GEQP3) of U^T;
+// U is gathered on every rank for it (d x m numbers; fine at the paper's sizes, greedy DEIM
+// stays distributed). method: "deim" | "qdeim". Collective; InputError if U is rank-deficient
+// at the sampled rows (the greedy residual vanishes) or m exceeds U's columns.
+std::vector<GO> selectDeimIndices(const MultiVector& U, int m, const std::string& method = "deim");
+
+struct DeimWeights {
+  std::vector<double> weights;    // (U^T P)^{-1} U^T v, one per index
+  double conditionNumber = 0.0;   // cond_2(P^T U): the DEIM error amplification
+};
+// U's first indices.size() columns. Collective.
+DeimWeights computeDeimWeights(const MultiVector& U, const std::vector<GO>& indices, const Vector& v);
+
+}  // namespace gphr

@@ -1,0 +1,133 @@
+#include "gphr/reduction/StreamingPod.hpp"
+
+#include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_LAPACK.hpp>
+#include <Teuchos_SerialDenseMatrix.hpp>
+#include <Tpetra_TsqrAdaptor.hpp>
+
+#include <cmath>
+#include <limits>
+
+#include "gphr/core/Error.hpp"
+#include "gphr/core/ReplicatedGather.hpp"
+
+namespace gphr {
+
+StreamingPod::StreamingPod(RCP<const Map> map, int maxRank, int blockColumns, double rankTolerance)
+    : map_(map), maxRank_(maxRank), blockColumns_(blockColumns), rankTolerance_(rankTolerance) {
+  GPHR_REQUIRE(blockColumns_ >= 1, InputError, "streaming POD: blockColumns = ", blockColumns_, " (allowed: >= 1)");
+  const LO nl = static_cast<LO>(map_->getNodeNumElements());
+  LO minLocal = 0;
+  Teuchos::reduceAll(*map_->getComm(), Teuchos::REDUCE_MIN, nl, Teuchos::outArg(minLocal));
+  cap_ = static_cast<int>(minLocal);
+  const GO d = static_cast<GO>(map_->getGlobalNumElements());
+  GPHR_REQUIRE(maxRank_ >= 1 && maxRank_ <= d, InputError, "streaming POD: maxRank = ", maxRank_,
+               " is not allowed (allowed: 1 to the number of rows, ", d, ")");
+  U_ = rcp(new MultiVector(map_, 1));
+}
+
+void StreamingPod::add(const MultiVector& X) {
+  GPHR_REQUIRE(X.getMap()->isSameAs(*map_), InputError, "streaming POD: a block of ", X.getGlobalLength(),
+               " rows does not match the POD's map of ", map_->getGlobalNumElements(), " rows");
+  std::vector<double> nrm(X.getNumVectors());
+  X.norm2(Teuchos::ArrayView<double>(nrm));
+  for (double x : nrm) {
+    GPHR_REQUIRE(std::isfinite(x), InputError, "streaming POD: a snapshot column is not finite (norm ", x, ")");
+    energy_ += x * x;
+  }
+  columns_ += static_cast<long>(X.getNumVectors());
+  // Steps of blockColumns columns whatever the rank count, so that the truncations (and the
+  // result) are the same on any number of ranks; each step takes TSQR when carried + new columns
+  // fit on the smallest rank and the replicated route otherwise (both exact up to round-off).
+  for (size_t c0 = 0; c0 < X.getNumVectors();) {
+    const size_t c1 = std::min(X.getNumVectors(), c0 + static_cast<size_t>(blockColumns_));
+    step(X, c0, c1);
+    c0 = c1;
+  }
+}
+
+namespace {
+// Thin SVD of the m x n column-major matrix a (overwritten): S (min(m, n)) and the leading
+// min(m, n) left singular vectors W (m x min(m, n), column-major). LAPACK GESVD.
+void denseLeftSvd(int m, int n, double* a, int lda, std::vector<double>& S, std::vector<double>& W) {
+  const int mn = std::min(m, n);
+  S.resize(mn);
+  W.resize(static_cast<size_t>(m) * mn);
+  std::vector<double> Z(1), work(1);
+  Teuchos::LAPACK<int, double> lapack;
+  int info = 0;
+  lapack.GESVD('S', 'N', m, n, a, lda, S.data(), W.data(), m, Z.data(), 1, work.data(), -1, nullptr, &info);
+  work.resize(std::max(1, static_cast<int>(work[0])));
+  lapack.GESVD('S', 'N', m, n, a, lda, S.data(), W.data(), m, Z.data(), 1, work.data(),
+               static_cast<int>(work.size()), nullptr, &info);
+  GPHR_REQUIRE(info == 0, SolverError, "streaming POD: LAPACK GESVD failed (info = ", info, ")");
+}
+}  // namespace
+
+// Numerical rank: singular values above tol * sigma_1, by default n_cols * eps (LAPACK's rank
+// convention: the rest is round-off of the data). Keeps at most maxRank.
+int StreamingPod::truncate(const std::vector<double>& S, int nc) {
+  int keep = 0;
+  const double tol = rankTolerance_ >= 0.0 ? rankTolerance_ : nc * std::numeric_limits<double>::epsilon();
+  const double floor = tol * (S.empty() ? 0.0 : S[0]);
+  while (keep < std::min(static_cast<int>(S.size()), maxRank_) && S[keep] > floor && S[keep] > 0.0) ++keep;
+  sigma_.assign(S.begin(), S.begin() + keep);
+  return keep;
+}
+
+// The route where TSQR cannot go (carried + new columns > rows on some rank): Y gathered on every
+// rank (d x nc numbers) and one LAPACK thin SVD there; each rank keeps its own rows of U.
+void StreamingPod::replicatedStep(const MultiVector& Y) {
+  const int nc = static_cast<int>(Y.getNumVectors());
+  const GO d = static_cast<GO>(map_->getGlobalNumElements());
+  std::vector<GO> all(d);
+  for (GO i = 0; i < d; ++i) all[i] = map_->getMinAllGlobalIndex() + i;
+  GPHR_REQUIRE(map_->getMaxAllGlobalIndex() - map_->getMinAllGlobalIndex() + 1 == d, InputError,
+               "streaming POD: the replicated route needs global ids without gaps");
+  const std::vector<double> rows = gatherRows(Y, all);  // d x nc row-major
+  std::vector<double> a(static_cast<size_t>(d) * nc);
+  for (GO i = 0; i < d; ++i)
+    for (int j = 0; j < nc; ++j) a[i + static_cast<size_t>(d) * j] = rows[static_cast<size_t>(i) * nc + j];
+  std::vector<double> S, W;
+  denseLeftSvd(static_cast<int>(d), nc, a.data(), static_cast<int>(d), S, W);
+  const int keep = truncate(S, nc);
+  U_ = rcp(new MultiVector(map_, std::max(keep, 1)));
+  auto u = U_->getLocalViewHost(Tpetra::Access::OverwriteAll);
+  for (LO l = 0; l < static_cast<LO>(map_->getNodeNumElements()); ++l) {
+    const GO i = map_->getGlobalElement(l) - map_->getMinAllGlobalIndex();
+    for (int j = 0; j < keep; ++j) u(l, j) = W[i + static_cast<size_t>(d) * j];
+  }
+}
+
+void StreamingPod::step(const MultiVector& X, size_t c0, size_t c1) {
+  const int r = rank(), b = static_cast<int>(c1 - c0), nc = r + b;
+  MultiVector Y(map_, nc), Q(map_, nc);
+  {
+    auto y = Y.getLocalViewHost(Tpetra::Access::OverwriteAll);
+    auto u = U_->getLocalViewHost(Tpetra::Access::ReadOnly);
+    auto x = X.getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (size_t i = 0; i < y.extent(0); ++i) {
+      for (int j = 0; j < r; ++j) y(i, j) = sigma_[j] * u(i, j);
+      for (int j = 0; j < b; ++j) y(i, r + j) = x(i, c0 + j);
+    }
+  }
+  if (nc > cap_) return replicatedStep(Y);
+  Teuchos::SerialDenseMatrix<int, double> R(nc, nc);
+  Tpetra::TsqrAdaptor<MultiVector> tsqr;
+  tsqr.factorExplicit(Y, Q, R);
+  // R = W S Z^T: only W and S are needed (LAPACK, replicated: R is the same on every rank).
+  std::vector<double> S(nc), W(static_cast<size_t>(nc) * nc);
+  denseLeftSvd(nc, nc, R.values(), R.stride(), S, W);
+  const int keep = truncate(S, nc);
+  auto local = rcp(new Map(nc, 0, map_->getComm(), Tpetra::LocallyReplicated));
+  MultiVector Wk(local, std::max(keep, 1));
+  {
+    auto w = Wk.getLocalViewHost(Tpetra::Access::OverwriteAll);
+    for (int j = 0; j < keep; ++j)
+      for (int a = 0; a < nc; ++a) w(a, j) = W[a + static_cast<size_t>(nc) * j];
+  }
+  U_ = rcp(new MultiVector(map_, std::max(keep, 1)));
+  if (keep > 0) U_->multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, Q, Wk, 0.0);
+}
+
+}  // namespace gphr
