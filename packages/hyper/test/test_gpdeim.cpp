@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "HyperTestUtils.hpp"
+#include "gphr/hyper/GradientDeimModel.hpp"
 
 using namespace gphr;
 
@@ -79,6 +80,40 @@ TEST(GpDeim, DerivativesMatchFiniteDifferencesAndFormAGradientField) {
     EXPECT_LE(diff.normInf(), kFdTol * H.normInf()) << "Hess H_hr vs FD of grad, m = " << m;
     // A gradient field has a symmetric Jacobian; the FD Jacobian's asymmetry is FD error only.
     EXPECT_LE(asym.normInf(), 1e-7 * Jfd.normInf()) << "m = " << m;
+  }
+}
+
+// ||J - J^T|| / ||J|| of the FD Jacobian of a model's vector field at the probe point.
+double fieldAsymmetry(DenseHamiltonian& model) {
+  const DenseMatrix Jfd = fdJacobianOfGradient(model, probePoint(model.dim()));
+  DenseMatrix asym(Jfd, Teuchos::TRANS);
+  asym -= Jfd;
+  return asym.normInf() / Jfd.normInf();
+}
+
+TEST(GpDeim, ClassicDeimAndSdeimFieldsAreNotGradients) {
+  // The same symmetry test that GP-DEIM passes at 1e-7 (FD error ~1e-9) must fail for DEIM of
+  // the gradient: its Jacobian B (d grad N_P / dz) is not symmetric. 1e-3 is far above FD error.
+  auto hc = test::nlsCase(48, 4, test::comm());
+  const auto& sys = *hc.test.system;
+  std::vector<RCP<const HamiltonianSystem>> systems{hc.test.system};
+  auto tr = Nls1d(48, 5.0).instantiate(test::comm(), {1.0}, true);
+  auto states = test::fomSnapshots(tr, "avf", 0.05, 100);
+  const auto Ug = gradientDeimBasis({tr.system}, {states}, *hc.basis.A, 48, 1);
+  GradientDeimModel deim(sys, *hc.basis.A, makeGradientDeimPair(*Ug, 12, *hc.basis.A), reduceLinearPart(sys, *hc.basis.A));
+  GradientDeimModel sdeim(sys, *hc.basis.A, makeGradientDeimPair(*hc.basis.A, 8, *hc.basis.A),
+                          reduceLinearPart(sys, *hc.basis.A));
+  EXPECT_GT(fieldAsymmetry(deim), 1e-3) << "classic DEIM";
+  EXPECT_GT(fieldAsymmetry(sdeim), 1e-3) << "SDEIM";
+  EXPECT_LE(fieldAsymmetry(*test::gpDeimModel(hc, 12)), 1e-7) << "GP-DEIM, same m";
+  // The baselines' Jacobian (Newton's matrix) is still right: FD of their field.
+  for (DenseHamiltonian* model : {static_cast<DenseHamiltonian*>(&deim), static_cast<DenseHamiltonian*>(&sdeim)}) {
+    const DenseVector z = probePoint(model->dim());
+    DenseMatrix H(model->dim(), model->dim());
+    model->addHessian(z, 1.0, H);
+    DenseMatrix diff(fdJacobianOfGradient(*model, z));
+    diff -= H;
+    EXPECT_LE(diff.normInf(), kFdTol * H.normInf());
   }
 }
 

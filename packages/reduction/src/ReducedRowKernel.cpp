@@ -84,18 +84,59 @@ double ReducedRowKernel::value() const {
   return global;
 }
 
+void ReducedRowKernel::weightedGradients() const {
+  const auto u = u_;
+  const auto grad = batch_.grad;
+  const auto w = w_;
+  const auto row = entryRow_;
+  Kokkos::parallel_for(
+      "gphr::weightedGradient", Kokkos::RangePolicy<ExecSpace>(0, numStencilEntries()),
+      KOKKOS_LAMBDA(const size_t j) { u(j) = w(row(j)) * grad(j); });
+}
+
+void ReducedRowKernel::weightedHessianBlocks() const {
+  // W rows of row i: w_i Hess G_i A_Si (s x r), one row of G per Kokkos index.
+  const int r = reducedDim();
+  const auto AS = AS_;
+  const auto W = W_;
+  const auto hess = batch_.hess;
+  const auto off = batch_.offsets;
+  const auto hoff = batch_.hessOffsets;
+  const auto w = w_;
+  Kokkos::parallel_for(
+      "gphr::weightedHessianBlocks", Kokkos::RangePolicy<ExecSpace>(0, numRows()), KOKKOS_LAMBDA(const LO i) {
+        const size_t j0 = off(i), s = off(i + 1) - j0;
+        const Scalar* h = &hess(hoff(i));
+        for (size_t a = 0; a < s; ++a)
+          for (int c = 0; c < r; ++c) {
+            Scalar sum = 0.0;
+            for (size_t b = 0; b < s; ++b) sum += h[a * s + b] * AS(j0 + b, c);
+            W(j0 + a, c) = w(i) * sum;
+          }
+      });
+}
+
+// Serial loops: several stencil entries share a slot, and the slots are few (classic DEIM's m).
+void ReducedRowKernel::entryGradients(const std::vector<int>& entrySlot, int numSlots, Scalar* out) const {
+  weightedGradients();
+  std::fill(out, out + numSlots, 0.0);
+  for (size_t j = 0; j < entrySlot.size(); ++j)
+    if (entrySlot[j] >= 0) out[entrySlot[j]] += u_(j);
+}
+
+void ReducedRowKernel::entryHessianRows(const std::vector<int>& entrySlot, int numSlots, Scalar* out) const {
+  weightedHessianBlocks();
+  const int r = reducedDim();
+  std::fill(out, out + static_cast<size_t>(numSlots) * r, 0.0);
+  for (size_t j = 0; j < entrySlot.size(); ++j)
+    if (entrySlot[j] >= 0)
+      for (int c = 0; c < r; ++c) out[static_cast<size_t>(entrySlot[j]) * r + c] += W_(j, c);
+}
+
 void ReducedRowKernel::addGradient(DenseVector& g, double scale) const {
   const int r = reducedDim();
   const size_t M = numStencilEntries();
-  {
-    const auto u = u_;
-    const auto grad = batch_.grad;
-    const auto w = w_;
-    const auto row = entryRow_;
-    Kokkos::parallel_for(
-        "gphr::weightedGradient", Kokkos::RangePolicy<ExecSpace>(0, M),
-        KOKKOS_LAMBDA(const size_t j) { u(j) = w(row(j)) * grad(j); });
-  }
+  weightedGradients();
   // A_S^T u: AS_ row-major (M x r) is A_S^T column-major (r x M).
   std::fill(gradBuf_.begin(), gradBuf_.end(), 0.0);
   Teuchos::BLAS<int, double> blas;
@@ -110,26 +151,7 @@ void ReducedRowKernel::addGradient(DenseVector& g, double scale) const {
 void ReducedRowKernel::addHessian(DenseMatrix& H, double scale) const {
   const int r = reducedDim();
   const size_t M = numStencilEntries();
-  {
-    // W rows of row i: w_i Hess G_i A_Si (s x r), one row of G per Kokkos index.
-    const auto AS = AS_;
-    const auto W = W_;
-    const auto hess = batch_.hess;
-    const auto off = batch_.offsets;
-    const auto hoff = batch_.hessOffsets;
-    const auto w = w_;
-    Kokkos::parallel_for(
-        "gphr::weightedHessianBlocks", Kokkos::RangePolicy<ExecSpace>(0, numRows()), KOKKOS_LAMBDA(const LO i) {
-          const size_t j0 = off(i), s = off(i + 1) - j0;
-          const Scalar* h = &hess(hoff(i));
-          for (size_t a = 0; a < s; ++a)
-            for (int c = 0; c < r; ++c) {
-              Scalar sum = 0.0;
-              for (size_t b = 0; b < s; ++b) sum += h[a * s + b] * AS(j0 + b, c);
-              W(j0 + a, c) = w(i) * sum;
-            }
-        });
-  }
+  weightedHessianBlocks();
   // A_S^T W: both row-major M x r, i.e. column-major r x M: (A_S^T)(W^T)^T.
   Teuchos::BLAS<int, double> blas;
   std::fill(hessBuf_.begin(), hessBuf_.end(), 0.0);

@@ -55,9 +55,16 @@ class ReducedRowKernel {
   void addHessian(DenseMatrix& H, double scale) const;           // H += scale * Hessian
   // After evaluate(z, true, ...): rows of J_G(y) A of this sample, row-major numRows() x 2k.
   void reducedJacobian(Scalar* out) const;
+  // Entries of grad N = sum_i w_i grad G_i at state entries (classic DEIM of the gradient):
+  // entrySlot[j] = slot of stencil entry j (-1: not sampled). out[slot] = sum of w_i dG_i/dy_e;
+  // entryHessianRows: out (numSlots x 2k, row-major) = the rows d(grad N)_e/dz.
+  void entryGradients(const std::vector<int>& entrySlot, int numSlots, Scalar* out) const;
+  void entryHessianRows(const std::vector<int>& entrySlot, int numSlots, Scalar* out) const;
 
  private:
   using Rows2 = Kokkos::View<Scalar**, Kokkos::LayoutRight, Kokkos::HostSpace>;
+  void weightedGradients() const;      // u = w_i grad G_i per stencil entry
+  void weightedHessianBlocks() const;  // W = w_i Hess G_i A_Si per row
   RCP<const NonlinearTerm> term_;
   RowSample sample_;
   RCP<const Comm> sumOver_;

@@ -1,0 +1,134 @@
+#include "gphr/hyper/GradientDeimModel.hpp"
+
+#include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_LAPACK.hpp>
+
+#include <algorithm>
+#include <limits>
+
+#include "gphr/core/Error.hpp"
+#include "gphr/core/ReplicatedGather.hpp"
+#include "gphr/reduction/Deim.hpp"
+#include "gphr/reduction/StreamingPod.hpp"
+
+namespace gphr {
+
+GradientDeimPair makeGradientDeimPair(const MultiVector& Ug, int m, const MultiVector& A) {
+  GradientDeimPair out;
+  out.entries = selectDeimIndices(Ug, m, "deim");
+  const int r = static_cast<int>(A.getNumVectors()), nc = static_cast<int>(Ug.getNumVectors());
+  auto local = rcp(new Map(r, 0, A.getMap()->getComm(), Tpetra::LocallyReplicated));
+  MultiVector AtU(local, nc);
+  AtU.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, A, Ug, 0.0);
+  const auto rows = gatherRows(Ug, out.entries);  // (P^T U)(i, j) = rows[i * nc + j]
+  // B (P^T U) = A^T U  <=>  (P^T U)^T B^T = (A^T U)^T: LU of (P^T U)^T, r right-hand sides.
+  std::vector<double> PtUt(static_cast<size_t>(m) * m), rhs(static_cast<size_t>(m) * r);
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j) PtUt[j + static_cast<size_t>(m) * i] = rows[static_cast<size_t>(i) * nc + j];
+  auto a = AtU.getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (int c = 0; c < r; ++c)
+    for (int j = 0; j < m; ++j) rhs[j + static_cast<size_t>(m) * c] = a(c, j);
+  Teuchos::LAPACK<int, double> lapack;
+  std::vector<int> piv(m);
+  int info = 0;
+  lapack.GETRF(m, m, PtUt.data(), m, piv.data(), &info);
+  GPHR_REQUIRE(info == 0, InputError, "gradient DEIM: P^T U is singular (GETRF info = ", info, ")");
+  lapack.GETRS('N', m, r, PtUt.data(), m, piv.data(), rhs.data(), m, &info);
+  out.B.shape(r, m);
+  for (int c = 0; c < r; ++c)
+    for (int j = 0; j < m; ++j) out.B(c, j) = rhs[j + static_cast<size_t>(m) * c];
+  DeimWeights w = computeDeimWeights(Ug, out.entries, *Ug.getVector(0));  // for cond(P^T U) only
+  out.conditionNumber = w.conditionNumber;
+  return out;
+}
+
+RCP<MultiVector> gradientDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& systems,
+                                   const std::vector<RCP<const MultiVector>>& states, const MultiVector& A,
+                                   int maxRank, int snapshotEvery, std::vector<double>* singularValues) {
+  const auto& map = systems[0]->map();
+  const int r = static_cast<int>(A.getNumVectors());
+  StreamingPod pod(map, static_cast<int>(std::min<GO>(maxRank, map->getGlobalNumElements())), 64);
+  auto local = rcp(new Map(r, 0, map->getComm(), Tpetra::LocallyReplicated));
+  for (size_t j = 0; j < systems.size(); ++j) {
+    MultiVector Z(local, states[j]->getNumVectors());
+    Z.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, A, *states[j], 0.0);
+    std::vector<size_t> cols;
+    for (size_t c = 0; c < states[j]->getNumVectors(); c += snapshotEvery) cols.push_back(c);
+    MultiVector Y(map, cols.size()), G(map, cols.size());
+    MultiVector Zsel(local, cols.size());
+    {
+      auto zs = Zsel.getLocalViewHost(Tpetra::Access::OverwriteAll);
+      auto z = Z.getLocalViewHost(Tpetra::Access::ReadOnly);
+      for (size_t c = 0; c < cols.size(); ++c)
+        for (int i = 0; i < r; ++i) zs(i, c) = z(i, cols[c]);
+    }
+    Y.multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, A, Zsel, 0.0);  // A A^T y_s
+    for (size_t c = 0; c < cols.size(); ++c) systems[j]->nonlinearGradient(*Y.getVector(c), *G.getVectorNonConst(c));
+    pod.add(G);
+  }
+  GPHR_REQUIRE(pod.rank() > 0, InputError, "gradient DEIM: every grad N snapshot is zero (nothing to hyper-reduce)");
+  if (singularValues) *singularValues = pod.singularValues();
+  return rcp(new MultiVector(pod.leftVectors(), Teuchos::Copy));
+}
+
+namespace {
+// Rows of G whose stencils hold one of `entries`: marked by their owners, summed over the ranks
+// (d integers, once, offline).
+std::vector<GO> rowsTouching(const NonlinearTerm& term, const std::vector<GO>& entries) {
+  std::vector<GO> sorted(entries);
+  std::sort(sorted.begin(), sorted.end());
+  const GO d = term.numTerms(), base = term.rowMap()->getMinAllGlobalIndex();
+  std::vector<int> mark(d, 0), all(d, 0);
+  const Stencil& st = term.stencil();
+  for (LO i = 0; i < st.numRows(); ++i)
+    for (size_t j = st.offsets[i]; j < st.offsets[i + 1]; ++j)
+      if (std::binary_search(sorted.begin(), sorted.end(), st.gids[j]))
+        mark[term.rowMap()->getGlobalElement(i) - base] = 1;
+  Teuchos::reduceAll(*term.rowMap()->getComm(), Teuchos::REDUCE_SUM, static_cast<int>(d), mark.data(), all.data());
+  std::vector<GO> rows;
+  for (GO i = 0; i < d; ++i)
+    if (all[i]) rows.push_back(base + i);
+  return rows;
+}
+}  // namespace
+
+GradientDeimModel::GradientDeimModel(const HamiltonianSystem& system, const MultiVector& A,
+                                     const GradientDeimPair& pair, ReducedLinearPart linear)
+    : linear_(std::move(linear)), B_(pair.B) {
+  const NonlinearTerm& term = system.nonlinearTerm();
+  const auto rows = rowsTouching(term, pair.entries);
+  const auto v = gatherWeights(term, rows);
+  SampleMesh mesh = buildSampleMesh(system, A, rows, v, ReducedLinearPart());
+  for (GO gid : mesh.sample.stencil.gids) {
+    const auto it = std::find(pair.entries.begin(), pair.entries.end(), gid);
+    entrySlot_.push_back(it == pair.entries.end() ? -1 : static_cast<int>(it - pair.entries.begin()));
+  }
+  rows_ = rcp(new ReducedRowKernel(system.nonlinearTermPtr(), mesh.sample, Teuchos::null));
+  gP_.resize(pair.entries.size());
+  hP_.resize(pair.entries.size() * static_cast<size_t>(dim()));
+}
+
+double GradientDeimModel::hamiltonian(const DenseVector&) { return std::numeric_limits<double>::quiet_NaN(); }
+
+void GradientDeimModel::gradient(const DenseVector& z, DenseVector& g) {
+  rows_->evaluate(z, true, false);
+  rows_->entryGradients(entrySlot_, static_cast<int>(gP_.size()), gP_.data());
+  g.multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, linear_.L, z, 0.0);
+  g += linear_.f;
+  for (int i = 0; i < dim(); ++i)
+    for (size_t j = 0; j < gP_.size(); ++j) g(i) += B_(i, static_cast<int>(j)) * gP_[j];
+}
+
+void GradientDeimModel::addHessian(const DenseVector& z, double scale, DenseMatrix& H) {
+  rows_->evaluate(z, false, true);
+  const int r = dim(), m = static_cast<int>(gP_.size());
+  rows_->entryHessianRows(entrySlot_, m, hP_.data());
+  for (int c = 0; c < r; ++c)
+    for (int i = 0; i < r; ++i) {
+      double s = linear_.L(i, c);
+      for (int j = 0; j < m; ++j) s += B_(i, j) * hP_[static_cast<size_t>(j) * r + c];
+      H(i, c) += scale * s;
+    }
+}
+
+}  // namespace gphr
