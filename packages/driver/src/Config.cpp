@@ -2,6 +2,7 @@
 
 #include <Teuchos_XMLParameterListCoreHelpers.hpp>
 #include <Teuchos_YamlParameterListCoreHelpers.hpp>
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -36,6 +37,21 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
                   "singular triplets kept between incremental steps; 0: 2k + 32, or half the dofs per rank if k = 0");
   auto& pipe = pl.sublist("pipeline");
   pipe.set("rom", false, "train, build the basis and evaluate the Galerkin reduced model beside the full model");
+  pipe.set("methods", Teuchos::Array<std::string>(),
+           "models to evaluate beside the full model, any of: rom, gp-deim (gradient-preserving DEIM, the paper's), "
+           "deim (classic DEIM of the gradient), sdeim (DEIM with the symplectic basis, m = 2k); empty: rom if "
+           "pipeline.rom");
+  pipe.set("k", Teuchos::Array<int>(), "reduced half-sizes k to evaluate (2k = reducedDim); empty: reduction.k");
+  pipe.set("m", Teuchos::Array<int>(), "DEIM sizes m to evaluate for gp-deim and deim (each at most d)");
+  auto& hyp = pl.sublist("hyper");
+  setIntParameter(hyp, "snapshotEvery", 1, 1, 1000000,
+                  "reduced-Jacobian snapshot at every N-th stored training state (the paper: 20)");
+  setChoiceParameter(hyp, "indices", "deim", Teuchos::tuple<std::string>("deim", "qdeim"),
+                     "interpolation indices: greedy DEIM (Chaturantabut-Sorensen) or QDEIM (pivoted QR)");
+  setIntParameter(hyp, "maxRank", 0, 0, 1000000,
+                  "singular triplets kept by the streaming POD of the DEIM snapshots; 0: max(m) + 32, at most d");
+  setIntParameter(hyp, "blockSnapshots", 0, 0, 100000,
+                  "reduced-Jacobian snapshots per incremental POD step; 0: about maxRank columns per step");
   auto& out = pl.sublist("output");
   setIntParameter(out, "saveEvery", 10, 1, 1000000000, "keep every N-th state of the trajectory in artifacts.h5");
   setDoubleParameter(out, "progressSeconds", 2.0, 0.0, 1e9, "seconds between progress lines on stderr (0: none)");
@@ -64,6 +80,7 @@ Teuchos::ParameterList validateConfig(Teuchos::ParameterList cfg) {
   validateParameters(cfg, configValidParameters(scene));
   numSteps(cfg);
   trainingParameters(cfg);  // checks the training set against the box
+  pipelineMethods(cfg);     // checks the method, k and m lists
   return cfg;
 }
 
@@ -93,6 +110,9 @@ Teuchos::ParameterList defaultConfig() {
   pl.sublist("scene").set("name", "nls1d").set("n", 256);
   pl.sublist("time").set("T", 5.0).set("dt", 0.01);
   pl.sublist("pipeline").set("rom", true);
+  pl.sublist("pipeline").set("methods", Teuchos::Array<std::string>(Teuchos::tuple<std::string>("rom", "gp-deim")));
+  pl.sublist("pipeline").set("m", Teuchos::Array<int>(Teuchos::tuple<int>(10, 20, 40)));
+  pl.sublist("hyper").set("snapshotEvery", 5);
   pl.sublist("training").set("points", Teuchos::Array<int>(1, 3));
   return validateConfig(pl);
 }
@@ -146,6 +166,33 @@ std::vector<std::vector<double>> trainingParameters(const Teuchos::ParameterList
     }
   }
   return out;
+}
+
+std::vector<std::string> pipelineMethods(const Teuchos::ParameterList& cfg) {
+  const auto& pipe = cfg.sublist("pipeline");
+  std::vector<std::string> out;
+  for (const auto& m : pipe.get<Teuchos::Array<std::string>>("methods")) {
+    GPHR_REQUIRE(m == "rom" || m == "gp-deim" || m == "deim" || m == "sdeim" || m == "fom", InputError,
+                 "key 'pipeline.methods' has entry '", m, "'; allowed: fom, rom, gp-deim, deim, sdeim");
+    if (m != "fom" && std::find(out.begin(), out.end(), m) == out.end()) out.push_back(m);
+  }
+  if (pipe.get<bool>("rom") && std::find(out.begin(), out.end(), "rom") == out.end()) out.insert(out.begin(), "rom");
+  for (int k : pipe.get<Teuchos::Array<int>>("k"))
+    GPHR_REQUIRE(k >= 1, InputError, "key 'pipeline.k' has entry ", k, "; allowed: integers >= 1");
+  const auto& ms = pipe.get<Teuchos::Array<int>>("m");
+  for (int m : ms) GPHR_REQUIRE(m >= 1, InputError, "key 'pipeline.m' has entry ", m, "; allowed: integers >= 1");
+  const bool wantsM = std::find(out.begin(), out.end(), "gp-deim") != out.end() ||
+                      std::find(out.begin(), out.end(), "deim") != out.end();
+  GPHR_REQUIRE(!wantsM || !ms.empty(), InputError,
+               "key 'pipeline.m' is empty but pipeline.methods asks for gp-deim or deim; allowed: a list of DEIM sizes");
+  return out;
+}
+
+std::vector<int> pipelineK(const Teuchos::ParameterList& cfg) {
+  std::vector<int> ks;
+  for (int k : cfg.sublist("pipeline").get<Teuchos::Array<int>>("k")) ks.push_back(k);
+  if (ks.empty()) ks.push_back(cfg.sublist("reduction").get<int>("k"));
+  return ks;
 }
 
 std::string toYaml(const Teuchos::ParameterList& pl) {

@@ -75,6 +75,7 @@ FomResult runFullModel(const Teuchos::ParameterList& cfg, const Scene& scene, co
   const double total = wall.stop();
 
   const double H0 = res.hamiltonian.front(), herr = maxDeviation(res.hamiltonian, H0);
+  res.tOnline = total - observerSeconds;
   res.run.set("method", "fom")
       .set("n", static_cast<long>(inst.system->space().n()))
       .set("fullDim", static_cast<long>(inst.system->space().fullDim()))

@@ -9,14 +9,12 @@
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/Config.hpp"
 #include "gphr/io/Hdf5File.hpp"
+#include "gphr/driver/ModelEvaluation.hpp"
 #include "gphr/reduction/GalerkinRom.hpp"
 #include "gphr/timeint/DenseModelIntegrator.hpp"
 #include "gphr/timeint/FullModelIntegrator.hpp"
 
 namespace gphr {
-
-namespace {
-
 
 // The config that determines the training snapshots: scene, time, integrator, training.
 std::string trainingKey(const Teuchos::ParameterList& cfg) {
@@ -24,6 +22,12 @@ std::string trainingKey(const Teuchos::ParameterList& cfg) {
   for (const char* s : {"scene", "time", "integrator", "training"}) k.sublist(s) = cfg.sublist(s);
   return toYaml(k);
 }
+
+std::string basisKey(const Teuchos::ParameterList& cfg) {
+  return trainingKey(cfg) + toYaml(cfg.sublist("reduction")) + "k = " + std::to_string(basisK(cfg));
+}
+
+namespace {
 
 std::string datasetName(size_t j) { return "/training/p" + std::to_string(j); }
 
@@ -133,9 +137,14 @@ TrainingResult runTraining(const RunContext& ctx) {
   return res;
 }
 
+int basisK(const Teuchos::ParameterList& cfg) {
+  const auto ks = pipelineK(cfg);
+  return std::max(cfg.sublist("reduction").get<int>("k"), *std::max_element(ks.begin(), ks.end()));
+}
+
 ReducedBasis runReduction(const RunContext& ctx, const TrainingResult& training, bool& cached) {
   const auto& red = ctx.config.sublist("reduction");
-  const std::string key = trainingKey(ctx.config) + toYaml(red);
+  const std::string key = basisKey(ctx.config);
   auto probe = ctx.scene->instantiate(ctx.comm, training.parameters[0], true);
   const PhaseSpace& ps = probe.system->space();
   Hdf5File f(ctx.artifactsPath(), ctx.comm, Hdf5File::Mode::ReadWrite);
@@ -148,14 +157,14 @@ ReducedBasis runReduction(const RunContext& ctx, const TrainingResult& training,
     b.method = f.stringAttribute("/basis", "method");
     b.singularValues = f.doubleAttribute("/basis", "singularValues");
     b.energyCaptured = f.doubleAttribute("/basis", "energyCaptured")[0];
-    const int wantK = red.get<int>("k");
+    const int wantK = basisK(ctx.config);
     GPHR_REQUIRE(wantK == 0 || wantK == b.k, InputError, "basis in '", ctx.artifactsPath(), "' has k = ", b.k,
                  " but the config asks for k = ", wantK);
     return b;
   }
   BasisOptions opt;
   opt.method = red.get<std::string>("method");
-  opt.k = red.get<int>("k");
+  opt.k = basisK(ctx.config);
   opt.energyTolerance = red.get<double>("energyTolerance");
   opt.blockColumns = red.get<int>("blockColumns");
   opt.maxRank = red.get<int>("maxRank");
@@ -178,57 +187,21 @@ ReducedBasis runReduction(const RunContext& ctx, const TrainingResult& training,
 }
 
 void runRom(const RunContext& ctx, const FomResult& fom, RomStages& st) {
-  const long steps = numSteps(ctx.config), saveEvery = ctx.config.sublist("output").get<int>("saveEvery");
-  const double dt = ctx.config.sublist("time").get<double>("dt");
   auto inst = ctx.scene->instantiate(ctx.comm, ctx.mu, true);
-  GalerkinRom rom(inst.system, st.basis.A);
-  DenseModelIntegrator integ(rom, ctx.config.sublist("integrator"), inst.system->nonlinearTerm().polynomialDegree());
-  DenseVector z = rom.project(*inst.y0);  // = 0: the shifted initial state
-  Vector y(inst.system->map());
-  const auto ref = inst.system->reference();
-  double num = 0.0, den = 0.0, fin = 0.0;
-  long saved = 0;
-  Teuchos::Time wall("rom"), obs("obs");
-  double obsSeconds = 0.0;
-  wall.start();
-  const RunStats stats = integ.run(z, dt, steps, [&](long j, double, const DenseVector& zj, const StepReport&) {
-    obs.start(true);
-    st.hamiltonian.push_back(rom.hamiltonian(zj));  // H_s(A z) = H(y0 + A z)
-    if (isSavedStep(j, steps, saveEvery)) {
-      rom.lift(zj, y);
-      y.update(1.0, *ref, 1.0);  // physical state y0 + A z
-      const auto yf = fom.trajectory->getVector(saved++);
-      y.update(-1.0, *yf, 1.0);
-      const double e = y.norm2(), nf = yf->norm2();
-      num += e * e;
-      den += nf * nf;
-      fin = e / nf;
-      st.errors.push_back(e);
-    }
-    obsSeconds += obs.stop();
-  });
-  const double total = wall.stop();
-  const double H0 = fom.hamiltonian.front(), herr = maxDeviation(st.hamiltonian, H0);
-  st.run.set("method", "rom")
-      .set("basis", st.basis.method)
-      .set("k", static_cast<long>(st.basis.k))
-      .set("reducedDim", static_cast<long>(2 * st.basis.k))
-      .set("energy_captured", st.basis.energyCaptured)
-      .set("training_parameters", static_cast<long>(st.training.parameters.size()))
-      .set("training_reused", st.training.reused)
-      .set("basis_cached", st.basisCached)
-      .set("steps", steps)
-      .set("E_L2", std::sqrt(num / den))
-      .set("E_fin", fin)
-      .set("H_err_max", herr)
-      .set("H_err_max_rel", H0 != 0.0 ? herr / std::abs(H0) : herr)
-      .set("t_online_s", total - obsSeconds)
-      .set("t_offline_s", st.training.seconds + st.basisSeconds)
-      .set("t_training_s", st.training.seconds)
-      .set("t_basis_s", st.basisSeconds)
-      .set("newton_iters_avg", double(stats.newtonIterations) / steps)
-      .set("errors_at", "saved steps (every output.saveEvery-th and the last)")
-      .set("status", "ok");
+  for (int k : stageK(ctx.config, st.basis)) {
+    auto A = leadingBasis(st.basis, k);
+    GalerkinRom rom(inst.system, A);
+    ModelRun run = evaluateReducedModel(ctx, fom, *inst.system, *A, rom, true, "rom", k, 0);
+    run.run.set("basis", st.basis.method)
+        .set("energy_captured", st.basis.energyCaptured)
+        .set("training_parameters", static_cast<long>(st.training.parameters.size()))
+        .set("training_reused", st.training.reused)
+        .set("basis_cached", st.basisCached)
+        .set("t_offline_s", st.training.seconds + st.basisSeconds)
+        .set("t_training_s", st.training.seconds)
+        .set("t_basis_s", st.basisSeconds);
+    st.runs.push_back(std::move(run));
+  }
 }
 
 }  // namespace gphr

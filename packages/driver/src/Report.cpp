@@ -6,12 +6,16 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <algorithm>
 #include <filesystem>
+#include <map>
+#include <memory>
 #include <fstream>
 #include <sstream>
 #include <thread>
 
 #include "gphr/driver/Config.hpp"
+#include "gphr/driver/HyperReport.hpp"
 #include "gphr/io/Hdf5File.hpp"
 
 namespace gphr {
@@ -43,18 +47,25 @@ void writeArtifacts(const RunContext& ctx, const FomResult& fom, const RomStages
   f.setAttribute("/", "integrator", ctx.config.sublist("integrator").get<std::string>("scheme"));
   f.setAttribute("/", "parameters", ctx.mu);
   f.setAttribute("/", "config", toYaml(ctx.config));
-  for (const char* g : {"/fom", "/rom"}) f.remove(g);
+  for (const char* g : {"/fom", "/rom", "/runs"}) f.remove(g);
   f.createGroup("/fom");
   f.writeStates("/fom/trajectory", *fom.trajectory, ps);
   f.writeArray("/fom/times", fom.savedTimes, fom.savedTimes.size(), 1);
   f.writeArray("/fom/hamiltonian", fom.hamiltonian, fom.hamiltonian.size(), 1);
   f.setAttribute("/fom/trajectory", "layout", std::string("rows are states y = (q, p) at /fom/times; "
                                                           "physical (unshifted) values"));
-  if (rom) {
-    f.createGroup("/rom");
-    f.writeArray("/rom/hamiltonian", rom->hamiltonian, rom->hamiltonian.size(), 1);
-    f.writeArray("/rom/errors", rom->errors, rom->errors.size(), 1);
-    f.setAttribute("/rom/errors", "layout", std::string("||y - (y0 + A z)|| at /fom/times"));
+  if (!rom) return;
+  f.createGroup("/runs");
+  for (size_t i = 0; i < rom->runs.size(); ++i) {
+    const ModelRun& r = rom->runs[i];
+    const std::string g = "/runs/" + std::to_string(i);
+    f.createGroup(g);
+    f.setAttribute(g, "label", r.label());
+    f.writeArray(g + "/hamiltonian", r.hamiltonian, r.hamiltonian.size(), 1);
+    if (!r.modelHamiltonian.empty())
+      f.writeArray(g + "/model_hamiltonian", r.modelHamiltonian, r.modelHamiltonian.size(), 1);
+    f.writeArray(g + "/errors", r.errors, r.errors.size(), 1);
+    f.setAttribute(g + "/errors", "layout", std::string("||y - (y0 + A z)|| at /fom/times"));
   }
 }
 
@@ -97,7 +108,8 @@ bool plotHamiltonian(const std::string& csv, const std::string& romCsv, const st
   return rc == 0;
 }
 
-void writeSingularValues(const std::vector<double>& s, const std::string& csv, const std::string& png, bool plot) {
+void writeSingularValues(const std::vector<double>& s, const std::string& csv, const std::string& png, bool plot,
+                         const std::string& deimCsv) {
   {
     std::ofstream os(csv);
     os.precision(17);
@@ -109,7 +121,11 @@ void writeSingularValues(const std::vector<double>& s, const std::string& csv, c
   std::ofstream(script) << "set terminal pngcairo size 900,500 noenhanced\nset output '" << png << "'\n"
                         << "set datafile separator ','\nset logscale y\nset format y '%.0e'\nset xlabel 'index j'\n"
                         << "set ylabel 'sigma_j / sigma_1'\nset title 'Singular values of the snapshots'\n"
-                        << "plot '" << csv << "' every ::1 using 1:3 with lines lw 2 title 'basis SVD'\n";
+                        << "plot '" << csv << "' every ::1 using 1:3 with lines lw 2 title 'snapshots (basis A)'"
+                        << (deimCsv.empty() ? std::string()
+                                            : ", '" + deimCsv + "' every ::1 using 1:3 with lines lw 2 title "
+                                                                "'reduced Jacobians (DEIM basis U)'")
+                        << "\n";
   (void)std::system(("gnuplot '" + script + "' > /dev/null 2>&1").c_str());
   std::remove(script.c_str());
 }
@@ -134,7 +150,12 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
     writeArtifacts(ctx, fom, rom, f);
   }
   std::vector<JsonObject> runs{fom.run};
-  if (rom) runs.push_back(rom->run);
+  if (rom)
+    for (const auto& r : rom->runs) runs.push_back(r.run);
+  const ModelRun* firstRom = nullptr;
+  if (rom)
+    for (const auto& r : rom->runs)
+      if (r.method == "rom" && !firstRom) firstRom = &r;
   JsonObject summary;
   summary.set("scene", ctx.scene->name())
       .set("integrator", ctx.config.sublist("integrator").get<std::string>("scheme"))
@@ -143,14 +164,27 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
       .set("runs", runs);
   bool plotted = false;
   std::string why;
+  // The speed-accuracy report (HyperReport.hpp): temporary names, committed when written.
+  std::map<std::string, std::unique_ptr<RenameOnCommit>> hyper;
+  std::map<std::string, std::string> hyperPaths;
+  for (const char* name : {"runs.csv", "report.md", "error_vs_m.png", "pareto.png", "hamiltonian_terms.png",
+                           "hamiltonian_terms.csv", "deim_singular_values.csv", "spacetime.png"}) {
+    hyper[name] = std::make_unique<RenameOnCommit>(ctx.outputDir + "/" + name, ctx.comm);
+    hyperPaths[name] = hyper[name]->tempPath();
+  }
+  const std::string spaceTime = rom ? spaceTimeData(ctx, fom, *rom) : "";
+  std::vector<std::string> hyperFiles;
   if (root) {
     const double H0 = fom.hamiltonian.front();
     writeHistoryCsv(fom.hamiltonian, H0, nullptr, saveEvery, dt, csv.tempPath());
-    if (rom) writeHistoryCsv(rom->hamiltonian, H0, &rom->errors, saveEvery, dt, romCsv.tempPath());
+    if (firstRom) writeHistoryCsv(firstRom->hamiltonian, H0, &firstRom->errors, saveEvery, dt, romCsv.tempPath());
+    if (rom) hyperFiles = writeHyperReport(ctx, fom, *rom, spaceTime, hyperPaths, ctx.config.sublist("output").get<bool>("plots"));
+    const bool deimSv = std::find(hyperFiles.begin(), hyperFiles.end(), "deim_singular_values.csv") != hyperFiles.end();
     if (rom) writeSingularValues(rom->basis.singularValues, svCsv.tempPath(), svPng.tempPath(),
-                                 ctx.config.sublist("output").get<bool>("plots"));
+                                 ctx.config.sublist("output").get<bool>("plots"),
+                                 deimSv ? hyperPaths.at("deim_singular_values.csv") : "");
     if (ctx.config.sublist("output").get<bool>("plots"))
-      plotted = plotHamiltonian(csv.tempPath(), rom ? romCsv.tempPath() : "", png.tempPath(), why);
+      plotted = plotHamiltonian(csv.tempPath(), firstRom ? romCsv.tempPath() : "", png.tempPath(), why);
     if (!plotted && !why.empty()) std::fprintf(stderr, "[gphr] no plots: %s\n", why.c_str());
     std::ofstream(json.tempPath()) << summary.str() << "\n";
   }
@@ -158,12 +192,17 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
   Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(plottedAll));
   if (!inPlace) h5.commit();
   csv.commit();
-  if (rom) romCsv.commit();
+  if (firstRom) romCsv.commit();
   if (rom) svCsv.commit();
   int svPlotted = root && std::filesystem::exists(svPng.tempPath());
   Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(svPlotted));
   if (svPlotted) svPng.commit();
   if (plottedAll) png.commit();
+  for (auto& [name, file] : hyper) {
+    int done = root && std::find(hyperFiles.begin(), hyperFiles.end(), name) != hyperFiles.end();
+    Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(done));
+    if (done) file->commit();
+  }
   json.commit();  // last: summary.json present means the run is complete
   return summary.str();
 }

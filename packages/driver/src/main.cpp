@@ -3,6 +3,7 @@
 #include <Teuchos_TimeMonitor.hpp>
 #include <Tpetra_Core.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -63,7 +64,8 @@ int runMain(const Args& args, const gphr::RCP<const gphr::Comm>& comm) {
   }
   comm->barrier();
   std::unique_ptr<RomStages> rom;
-  if (ctx.config.sublist("pipeline").get<bool>("rom")) {
+  const auto methods = pipelineMethods(ctx.config);
+  if (!methods.empty()) {
     rom = std::make_unique<RomStages>();
     rom->training = runTraining(ctx);
     Teuchos::Time t("basis");
@@ -75,7 +77,8 @@ int runMain(const Args& args, const gphr::RCP<const gphr::Comm>& comm) {
                    2 * rom->basis.k, rom->basis.energyCaptured, rom->basisCached ? " (cached)" : "");
   }
   const FomResult fom = runFullModel(ctx.config, *ctx.scene, ctx.mu, comm);
-  if (rom) runRom(ctx, fom, *rom);
+  if (rom && std::find(methods.begin(), methods.end(), "rom") != methods.end()) runRom(ctx, fom, *rom);
+  if (rom) runHyperReduction(ctx, fom, *rom);
   const std::string summary = writeReport(ctx, fom, rom.get());
   if (root) std::cout << summary << "\n";
   Teuchos::TimeMonitor::summarize(comm.ptr(), std::cout);

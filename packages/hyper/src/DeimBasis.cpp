@@ -18,7 +18,9 @@ DeimBasis computeDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& syst
   const LO nl = static_cast<LO>(rowMap->getNodeNumElements());
   const GO d = static_cast<GO>(rowMap->getGlobalNumElements());
   const int maxRank = static_cast<int>(std::min<GO>(d, opt.maxRank > 0 ? opt.maxRank : kDefaultDeimRank));
-  const int perBlock = opt.blockSnapshots;  // snapshots per POD step (the same on any rank count)
+  // Snapshots per POD step (the same on any rank count): a step costs O(d (rank + columns)^2), so
+  // about maxRank new columns per step balances the number of steps against their size.
+  const int perBlock = opt.blockSnapshots > 0 ? opt.blockSnapshots : std::max(1, (maxRank + r - 1) / r);
   StreamingPod pod(rowMap, maxRank, perBlock * r);
   auto local = rcp(new Map(r, 0, rowMap->getComm(), Tpetra::LocallyReplicated));
   MultiVector block(rowMap, static_cast<size_t>(perBlock) * r);

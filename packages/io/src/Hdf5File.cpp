@@ -104,19 +104,21 @@ void selectLocal(hid_t space, hsize_t count, const PhaseSpace& ps) {
 }
 }  // namespace
 
-void Hdf5File::writeStates(const std::string& name, const MultiVector& states, const PhaseSpace& ps) {
-  const hsize_t count = states.getNumVectors(), N = ps.fullDim(), local = 2 * ps.numLocalDofs();
+// Columns of X as rows of a (cols, N) dataset; `select` picks this rank's entries of each row in
+// the order of its local rows.
+void Hdf5File::writeDistributed(const std::string& name, const MultiVector& X, hsize_t N, const Selector& select) {
+  const hsize_t count = X.getNumVectors(), local = X.getLocalLength();
   hsize_t dims[2] = {count, N};
   Id fspace{H5Screate_simple(2, dims, nullptr), H5Sclose};
   Id dset{H5Dcreate2(file_, name.c_str(), H5T_NATIVE_DOUBLE, fspace.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
           H5Dclose};
   check(dset.id, "creating dataset '" + name + "'", path_);
-  std::vector<double> buf(count * local);
-  auto v = states.getLocalViewHost(Tpetra::Access::ReadOnly);
+  std::vector<double> buf(std::max<hsize_t>(count * local, 1));
+  auto v = X.getLocalViewHost(Tpetra::Access::ReadOnly);
   for (hsize_t j = 0; j < count; ++j)
     for (hsize_t i = 0; i < local; ++i) buf[j * local + i] = v(i, j);
-  selectLocal(fspace.id, count, ps);
-  hsize_t mdims[1] = {count * local};
+  select(fspace.id, count);
+  hsize_t mdims[1] = {std::max<hsize_t>(count * local, 1)};
   Id mspace{H5Screate_simple(1, mdims, nullptr), H5Sclose};
   if (count * local == 0) H5Sselect_none(mspace.id);
   Id xfer{collectiveTransfer(), H5Pclose};
@@ -124,30 +126,63 @@ void Hdf5File::writeStates(const std::string& name, const MultiVector& states, c
         "writing dataset '" + name + "'", path_);
 }
 
-RCP<MultiVector> Hdf5File::readStates(const std::string& name, const PhaseSpace& ps) const {
+RCP<MultiVector> Hdf5File::readDistributed(const std::string& name, const RCP<const Map>& map, hsize_t N,
+                                           const Selector& select, const char* what) const {
   Id dset{openDataset(name), H5Dclose};
   Id fspace{H5Dget_space(dset.id), H5Sclose};
   hsize_t dims[2] = {0, 0};
   GPHR_REQUIRE(H5Sget_simple_extent_ndims(fspace.id) == 2, InputError, "HDF5 file '", path_,
-               "': dataset '", name, "' is not a 2-D array of states");
+               "': dataset '", name, "' is not a 2-D array of ", what, "s");
   H5Sget_simple_extent_dims(fspace.id, dims, nullptr);
-  GPHR_REQUIRE(dims[1] == static_cast<hsize_t>(ps.fullDim()), InputError, "HDF5 file '", path_,
-               "': dataset '", name, "' holds states of size ", dims[1], " but the model has size ",
-               ps.fullDim());
-  const hsize_t count = dims[0], local = 2 * ps.numLocalDofs();
+  GPHR_REQUIRE(dims[1] == N, InputError, "HDF5 file '", path_, "': dataset '", name, "' holds ", what,
+               "s of size ", dims[1], " but the model has size ", N);
+  const hsize_t count = dims[0], local = map->getNodeNumElements();
   std::vector<double> buf(std::max<hsize_t>(count * local, 1));
-  selectLocal(fspace.id, count, ps);
+  select(fspace.id, count);
   hsize_t mdims[1] = {std::max<hsize_t>(count * local, 1)};
   Id mspace{H5Screate_simple(1, mdims, nullptr), H5Sclose};
   if (count * local == 0) H5Sselect_none(mspace.id);
   Id xfer{collectiveTransfer(), H5Pclose};
   check(H5Dread(dset.id, H5T_NATIVE_DOUBLE, mspace.id, fspace.id, xfer.id, buf.data()),
         "reading dataset '" + name + "' (truncated file?)", path_);
-  auto out = rcp(new MultiVector(ps.map(), count));
+  auto out = rcp(new MultiVector(map, std::max<hsize_t>(count, 1)));
   auto v = out->getLocalViewHost(Tpetra::Access::OverwriteAll);
   for (hsize_t j = 0; j < count; ++j)
     for (hsize_t i = 0; i < local; ++i) v(i, j) = buf[j * local + i];
   return out;
+}
+
+void Hdf5File::writeStates(const std::string& name, const MultiVector& states, const PhaseSpace& ps) {
+  writeDistributed(name, states, ps.fullDim(), [&](hid_t sp, hsize_t count) { selectLocal(sp, count, ps); });
+}
+
+RCP<MultiVector> Hdf5File::readStates(const std::string& name, const PhaseSpace& ps) const {
+  return readDistributed(name, ps.map(), ps.fullDim(), [&](hid_t sp, hsize_t count) { selectLocal(sp, count, ps); },
+                         "state");
+}
+
+namespace {
+void selectContiguous(hid_t space, hsize_t count, const Map& map) {
+  const hsize_t m = map.getNodeNumElements();
+  if (m == 0 || count == 0) {
+    H5Sselect_none(space);
+    return;
+  }
+  hsize_t start[2] = {0, static_cast<hsize_t>(map.getMinGlobalIndex() - map.getMinAllGlobalIndex())}, cnt[2] = {count, m};
+  H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, cnt, nullptr);
+}
+}  // namespace
+
+void Hdf5File::writeColumns(const std::string& name, const MultiVector& X) {
+  const Map& map = *X.getMap();
+  GPHR_REQUIRE(map.isContiguous(), InputError, "writeColumns '", name, "': the map must be contiguous");
+  writeDistributed(name, X, map.getGlobalNumElements(), [&](hid_t sp, hsize_t count) { selectContiguous(sp, count, map); });
+}
+
+RCP<MultiVector> Hdf5File::readColumns(const std::string& name, const RCP<const Map>& map) const {
+  GPHR_REQUIRE(map->isContiguous(), InputError, "readColumns '", name, "': the map must be contiguous");
+  return readDistributed(name, map, map->getGlobalNumElements(),
+                         [&](hid_t sp, hsize_t count) { selectContiguous(sp, count, *map); }, "row");
 }
 
 void Hdf5File::writeArray(const std::string& name, const std::vector<double>& data, size_t rows, size_t cols) {

@@ -19,6 +19,10 @@ Teuchos::ParameterList defaultConfig();
 long numSteps(const Teuchos::ParameterList& cfg);
 // The training parameters: training.values (flattened) or the tensor grid training.points.
 std::vector<std::vector<double>> trainingParameters(const Teuchos::ParameterList& cfg);
+// The reduced models to evaluate (pipeline.methods, plus rom if pipeline.rom), checked; and the
+// k values (pipeline.k, else reduction.k).
+std::vector<std::string> pipelineMethods(const Teuchos::ParameterList& cfg);
+std::vector<int> pipelineK(const Teuchos::ParameterList& cfg);
 // A ParameterList as YAML text (stored as provenance in artifacts.h5, compared for caching).
 std::string toYaml(const Teuchos::ParameterList& pl);
 // `gphr --help` text: usage and every key with default, allowed values and description.

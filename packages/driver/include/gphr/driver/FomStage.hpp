@@ -14,6 +14,7 @@ struct FomResult {
   RCP<MultiVector> trajectory;  // physical states y = y_s + y0, every saveEvery-th step and the last
   std::vector<double> savedTimes;
   std::vector<double> hamiltonian;  // H(y^j), j = 0..steps
+  double tOnline = 0.0;             // wall seconds of the time loop (observer excluded)
   JsonObject run;                   // the "runs" entry of summary.json
 };
 

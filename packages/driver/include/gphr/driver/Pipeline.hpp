@@ -20,13 +20,27 @@ struct TrainingResult {
   double seconds = 0.0;
 };
 
+// One evaluated reduced or hyper-reduced model (a "runs" entry of summary.json and its histories).
+struct ModelRun {
+  std::string method;  // rom | gp-deim | deim | sdeim
+  int k = 0, m = 0;    // m = 0 for rom
+  std::vector<double> hamiltonian;       // H(y0 + A z^j) per step: the true Hamiltonian of the lift
+  std::vector<double> modelHamiltonian;  // the model's own H_r / H_hr per step (empty without one)
+  std::vector<double> errors;            // ||y^j - (y0 + A z^j)|| at the saved steps
+  std::vector<RCP<Vector>> states;       // lifted physical states at the saved steps (space-time plots)
+  double eL2 = 0.0, tOnline = 0.0;
+  bool ok = true;
+  JsonObject run;
+  std::string label() const;
+};
+
 struct RomStages {
   TrainingResult training;
   ReducedBasis basis;
   bool basisCached = false;
   double basisSeconds = 0.0;
-  std::vector<double> hamiltonian, errors;  // H(y0 + A z^j) per step; ||y^j - y(z^j)|| at saved steps
-  JsonObject run;                           // the "rom" entry of summary.json
+  std::vector<ModelRun> runs;             // rom, then the hyper-reduced models
+  std::vector<double> deimSingularValues; // of the reduced-Jacobian snapshots (largest k)
 };
 
 // Resumable training: a parameter whose dataset is complete in the file is reused, one without
@@ -34,7 +48,14 @@ struct RomStages {
 // InputError naming the file; a changed training config starts the training over.
 TrainingResult runTraining(const RunContext& ctx);
 ReducedBasis runReduction(const RunContext& ctx, const TrainingResult& training, bool& cached);
-// Galerkin ROM at the test parameter; errors against the full model's saved states.
+// The k the basis is built for: the largest of reduction.k and pipeline.k.
+int basisK(const Teuchos::ParameterList& cfg);
+// Provenance keys of the cached artifacts (the config text each one depends on).
+std::string trainingKey(const Teuchos::ParameterList& cfg);
+std::string basisKey(const Teuchos::ParameterList& cfg);
+// The hyper-reduced models of pipeline.methods (gp-deim, deim, sdeim) for every k and m.
+void runHyperReduction(const RunContext& ctx, const FomResult& fom, RomStages& stages);
+// Galerkin ROM at the test parameter for every k; errors against the full model's saved states.
 void runRom(const RunContext& ctx, const FomResult& fom, RomStages& stages);
 
 }  // namespace gphr

@@ -13,7 +13,7 @@ namespace gphr {
 struct DeimBasisOptions {
   int maxRank = 0;        // singular triplets kept between blocks (>= the largest m wanted); 0: min(d, 400)
   int snapshotEvery = 1;  // use every N-th stored training state (the paper: 20)
-  int blockSnapshots = 1; // reduced-Jacobian snapshots (2k columns each) per incremental POD step
+  int blockSnapshots = 0; // reduced-Jacobian snapshots (2k columns each) per POD step; 0: ~maxRank columns
 };
 
 constexpr int kDefaultDeimRank = 400;

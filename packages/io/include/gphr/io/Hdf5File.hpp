@@ -5,6 +5,7 @@
 // Every call is collective over the file's communicator.
 #include <hdf5.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,10 @@ class Hdf5File {
   // States: columns of `states` (vectors on space.map()) as rows of dataset `name`.
   void writeStates(const std::string& name, const MultiVector& states, const PhaseSpace& space);
   RCP<MultiVector> readStates(const std::string& name, const PhaseSpace& space) const;
+  // Columns of a MultiVector on a contiguous map (e.g. the DEIM basis on the rows of G) as rows
+  // of dataset `name` (shape (cols, global length)), each rank its own hyperslab.
+  void writeColumns(const std::string& name, const MultiVector& X);
+  RCP<MultiVector> readColumns(const std::string& name, const RCP<const Map>& map) const;
   // Replicated 1-D / 2-D double data (e.g. histories), written by rank 0, read by all.
   void writeArray(const std::string& name, const std::vector<double>& data, size_t rows, size_t cols);
   std::vector<double> readArray(const std::string& name, size_t* rows = nullptr, size_t* cols = nullptr) const;
@@ -42,6 +47,10 @@ class Hdf5File {
   std::vector<double> doubleAttribute(const std::string& object, const std::string& key) const;
 
  private:
+  using Selector = std::function<void(hid_t, hsize_t)>;
+  void writeDistributed(const std::string& name, const MultiVector& X, hsize_t N, const Selector& select);
+  RCP<MultiVector> readDistributed(const std::string& name, const RCP<const Map>& map, hsize_t N,
+                                   const Selector& select, const char* what) const;
   hid_t openDataset(const std::string& name) const;
   std::string path_;
   RCP<const Comm> comm_;

@@ -1,0 +1,25 @@
+#pragma once
+// Evaluation of a reduced or hyper-reduced model against the full model, shared by every method
+// of `gphr run` (rom, gp-deim, deim, sdeim): integrate z from 0 (the shifted initial state) with
+// the configured IMR/AVF, lift y = y0 + A z, and measure the paper's errors eq:errNR at the
+// saved steps, the Hamiltonian of the lift and the model's own Hamiltonian at every step.
+// A Newton failure or a non-finite state ends the run with status "diverged" and its step:
+// a result of the report, not a failure of `gphr`.
+#include "gphr/driver/FomStage.hpp"
+#include "gphr/driver/Pipeline.hpp"
+#include "gphr/timeint/DenseBackend.hpp"
+
+namespace gphr {
+
+// The k values of the reduced stages: pipeline.k (or reduction.k; 0 means the basis' own k).
+std::vector<int> stageK(const Teuchos::ParameterList& cfg, const ReducedBasis& basis);
+// The leading 2k columns of a symplectic basis of size kb: [E_k, J^T E_k] = columns [0, k) and
+// [kb, kb + k) (still orthonormal and symplectic).
+RCP<MultiVector> leadingBasis(const ReducedBasis& basis, int k);
+
+// hasHamiltonian: the model has one (rom, gp-deim); the classic DEIM baselines do not.
+ModelRun evaluateReducedModel(const RunContext& ctx, const FomResult& fom, const HamiltonianSystem& system,
+                              const MultiVector& A, DenseHamiltonian& model, bool hasHamiltonian,
+                              const std::string& method, int k, int m, bool keepStates = false);
+
+}  // namespace gphr

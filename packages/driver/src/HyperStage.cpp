@@ -1,0 +1,187 @@
+// The hyper-reduction stages of `gphr run` (paper Sec. 3 and the Sec. 5.2 baselines): for every
+// k of the pipeline, the reduced-Jacobian DEIM basis (cached in artifacts.h5 /deim/k<k> with its
+// provenance), then for every m the DEIM pair, the sample mesh and the model, evaluated like the
+// reduced model. Offline time is split by stage in each run's summary entry.
+#include <Teuchos_Time.hpp>
+#include <algorithm>
+
+#include "gphr/core/Error.hpp"
+#include "gphr/driver/Config.hpp"
+#include "gphr/driver/ModelEvaluation.hpp"
+#include "gphr/driver/Pipeline.hpp"
+#include "gphr/hyper/DeimBasis.hpp"
+#include "gphr/hyper/GpDeimModel.hpp"
+#include "gphr/hyper/GradientDeimModel.hpp"
+#include "gphr/io/Hdf5File.hpp"
+#include "gphr/reduction/Deim.hpp"
+#include "gphr/reduction/GalerkinRom.hpp"
+
+namespace gphr {
+
+namespace {
+
+bool wants(const std::vector<std::string>& methods, const char* m) {
+  return std::find(methods.begin(), methods.end(), m) != methods.end();
+}
+
+std::vector<int> mList(const Teuchos::ParameterList& cfg) {
+  std::vector<int> ms;
+  for (int m : cfg.sublist("pipeline").get<Teuchos::Array<int>>("m")) ms.push_back(m);
+  return ms;
+}
+
+// The training systems (shifted, one per training parameter): cheap to build, kernels differ.
+std::vector<RCP<const HamiltonianSystem>> trainingSystems(const RunContext& ctx, const TrainingResult& tr) {
+  std::vector<RCP<const HamiltonianSystem>> out;
+  for (const auto& mu : tr.parameters) out.push_back(ctx.scene->instantiate(ctx.comm, mu, true).system);
+  return out;
+}
+
+struct CachedDeimBasis {
+  DeimBasis basis;
+  bool cached = false;
+  double seconds = 0.0;
+};
+
+CachedDeimBasis deimBasisFor(const RunContext& ctx, const RomStages& st, const MultiVector& A, int k,
+                             const HamiltonianSystem& test) {
+  const auto& hyp = ctx.config.sublist("hyper");
+  const auto ms = mList(ctx.config);
+  const std::string name = "/deim/k" + std::to_string(k);
+  const std::string key = basisKey(ctx.config) + toYaml(hyp) + "m <= " +
+                          std::to_string(*std::max_element(ms.begin(), ms.end())) + ", k = " + std::to_string(k);
+  Teuchos::Time clock("deim basis");
+  clock.start();
+  CachedDeimBasis out;
+  Hdf5File f(ctx.artifactsPath(), ctx.comm, Hdf5File::Mode::ReadWrite);
+  if (f.hasAttribute(name, "config") && f.stringAttribute(name, "config") == key) {
+    out.basis.U = f.readColumns(name, test.nonlinearTerm().rowMap());
+    out.basis.singularValues = f.doubleAttribute(name, "singularValues");
+    out.basis.snapshots = static_cast<long>(f.doubleAttribute(name, "snapshots")[0]);
+    out.cached = true;
+  } else {
+    DeimBasisOptions opt;
+    opt.snapshotEvery = hyp.get<int>("snapshotEvery");
+    opt.blockSnapshots = hyp.get<int>("blockSnapshots");
+    opt.maxRank = hyp.get<int>("maxRank") > 0 ? hyp.get<int>("maxRank")
+                                              : *std::max_element(ms.begin(), ms.end()) + 32;
+    out.basis = computeDeimBasis(trainingSystems(ctx, st.training), st.training.snapshots, A, opt);
+    if (!f.exists("/deim")) f.createGroup("/deim");
+    f.remove(name);
+    f.writeColumns(name, *out.basis.U);
+    f.setAttribute(name, "singularValues", out.basis.singularValues);
+    f.setAttribute(name, "snapshots", std::vector<double>{double(out.basis.snapshots)});
+    f.setAttribute(name, "layout", std::string("rows are the DEIM basis vectors U (d entries each, row-of-G order)"));
+    f.flush();
+    f.setAttribute(name, "config", key);  // last: marks the dataset complete
+  }
+  out.seconds = clock.stop();
+  if (ctx.comm->getRank() == 0)
+    std::fprintf(stderr, "[gphr] deim basis k = %d: %zu vectors from %ld snapshots%s, %.1f s\n", k,
+                 out.basis.singularValues.size(), out.basis.snapshots, out.cached ? " (cached)" : "", out.seconds);
+  return out;
+}
+
+ModelRun unavailable(const std::string& method, int k, int m, const std::string& why) {
+  ModelRun r;
+  r.method = method, r.k = k, r.m = m, r.ok = false;
+  r.run.set("method", method).set("k", static_cast<long>(k)).set("m", static_cast<long>(m));
+  r.run.set("status", "unavailable").set("reason", why);
+  return r;
+}
+
+void runGpDeim(const RunContext& ctx, const FomResult& fom, RomStages& st, const SceneInstance& inst,
+               const MultiVector& A, int k, const ReducedLinearPart& linear) {
+  const CachedDeimBasis db = deimBasisFor(ctx, st, A, k, *inst.system);
+  if (k == stageK(ctx.config, st.basis).back()) st.deimSingularValues = db.basis.singularValues;
+  // The reduced model's Hessian at z0 = 0, for the convexity diagnostic.
+  GalerkinRom rom(inst.system, rcp(new MultiVector(A, Teuchos::Copy)));
+  DenseMatrix Hr(2 * k, 2 * k);
+  rom.addHessian(DenseVector(2 * k), 1.0, Hr);
+  const double lminR = smallestEigenvalue(Hr);
+  const std::string indices = ctx.config.sublist("hyper").get<std::string>("indices");
+  for (int m : mList(ctx.config)) {
+    if (m > static_cast<int>(db.basis.U->getNumVectors())) {
+      st.runs.push_back(unavailable("gp-deim", k, m, "the DEIM basis has " + std::to_string(db.basis.U->getNumVectors()) +
+                                                         " vectors (numerical rank of the snapshots or hyper.maxRank)"));
+      continue;
+    }
+    Teuchos::Time clock("deim pair");
+    clock.start();
+    const auto idx = selectDeimIndices(*db.basis.U, m, indices);
+    const auto w = computeDeimWeights(*db.basis.U, idx, *inst.system->nonlinearTerm().weights());
+    GpDeimModel model(inst.system->nonlinearTermPtr(), buildSampleMesh(*inst.system, A, idx, w.weights, linear));
+    const double tPair = clock.stop();
+    DenseMatrix Hhr(2 * k, 2 * k);
+    model.addHessian(DenseVector(2 * k), 1.0, Hhr);
+    const double lminHr = smallestEigenvalue(Hhr);
+    const bool keep = m == 2 * k;  // the space-time comparison of fig:pcolor_n40_n60 uses m = 2k
+    ModelRun run = evaluateReducedModel(ctx, fom, *inst.system, A, model, true, "gp-deim", k, m, keep);
+    run.run.set("cond_PtU", w.conditionNumber)
+        .set("hess_min_eig_hr", lminHr)
+        .set("hess_min_eig_rom", lminR)
+        .set("convexity_lost", lminHr < 0.0 && lminR >= 0.0)
+        .set("kernel_rows_per_evaluation", static_cast<long>(model.kernelRowsPerEvaluation()))
+        .set("online_numbers_held", static_cast<long>(model.numbersHeld()))
+        .set("deim_basis_cached", db.cached)
+        .set("t_training_s", st.training.seconds)
+        .set("t_basis_s", st.basisSeconds)
+        .set("t_deim_basis_s", db.seconds)
+        .set("t_deim_pair_s", tPair)
+        .set("t_offline_s", st.training.seconds + st.basisSeconds + db.seconds + tPair);
+    st.runs.push_back(std::move(run));
+  }
+}
+
+// Classic DEIM (U_g from grad N snapshots) for every m, and SDEIM (U_g = A, m = 2k).
+void runGradientDeim(const RunContext& ctx, const FomResult& fom, RomStages& st, const SceneInstance& inst,
+                     const MultiVector& A, int k, const ReducedLinearPart& linear, bool classic, bool sdeim) {
+  const auto ms = mList(ctx.config);
+  auto evaluate = [&](const std::string& method, const MultiVector& Ug, int m, double tBasis) {
+    Teuchos::Time clock("pair");
+    clock.start();
+    GradientDeimModel model(*inst.system, A, makeGradientDeimPair(Ug, m, A), linear);
+    const double tPair = clock.stop();
+    ModelRun run = evaluateReducedModel(ctx, fom, *inst.system, A, model, false, method, k, m,
+                                        method == "sdeim");
+    run.run.set("kernel_rows_per_evaluation", static_cast<long>(model.kernelRowsPerEvaluation()))
+        .set("t_deim_basis_s", tBasis)
+        .set("t_deim_pair_s", tPair)
+        .set("t_offline_s", st.training.seconds + st.basisSeconds + tBasis + tPair);
+    st.runs.push_back(std::move(run));
+  };
+  if (classic) {
+    Teuchos::Time clock("gradient pod");
+    clock.start();
+    const int maxRank = *std::max_element(ms.begin(), ms.end()) + 32;
+    auto Ug = gradientDeimBasis(trainingSystems(ctx, st.training), st.training.snapshots, A, maxRank,
+                                ctx.config.sublist("hyper").get<int>("snapshotEvery"));
+    const double t = clock.stop();
+    for (int m : ms) {
+      if (m > static_cast<int>(Ug->getNumVectors())) {
+        st.runs.push_back(unavailable("deim", k, m, "the gradient POD has " + std::to_string(Ug->getNumVectors()) +
+                                                        " vectors"));
+        continue;
+      }
+      evaluate("deim", *Ug, m, t);
+    }
+  }
+  if (sdeim) evaluate("sdeim", A, 2 * k, 0.0);
+}
+
+}  // namespace
+
+void runHyperReduction(const RunContext& ctx, const FomResult& fom, RomStages& st) {
+  const auto methods = pipelineMethods(ctx.config);
+  const bool gp = wants(methods, "gp-deim"), classic = wants(methods, "deim"), sd = wants(methods, "sdeim");
+  if (!gp && !classic && !sd) return;
+  auto inst = ctx.scene->instantiate(ctx.comm, ctx.mu, true);
+  for (int k : stageK(ctx.config, st.basis)) {
+    auto A = leadingBasis(st.basis, k);
+    const ReducedLinearPart linear = reduceLinearPart(*inst.system, *A);
+    if (gp) runGpDeim(ctx, fom, st, inst, *A, k, linear);
+    if (classic || sd) runGradientDeim(ctx, fom, st, inst, *A, k, linear, classic, sd);
+  }
+}
+
+}  // namespace gphr
