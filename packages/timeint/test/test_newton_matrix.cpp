@@ -12,8 +12,9 @@
 // ~ dt |Hbar| |v| (h |v| / |y1|)^2 = 1e-10 relative to the Hessian part (grad H is a polynomial
 // of degree <= 3); round-off eps_mach |y| / h over the Hessian part 0.1 |v| is
 // ~ 2.2e-16 / (1e-5 x 0.1) = 2.2e-10. Measured: <= 6e-11 on 1 and 2 ranks. The bound 1e-7 is a
-// factor >= 300 above the estimate, while a mis-signed, mis-scaled or misplaced Hessian term
-// (wrong s_q or w_q, J missing, linear part missing) is an O(1) relative error.
+// factor >= 300 above the estimate and far below what a wrong K does: the Hessian's sign flipped,
+// 1 - s_q in place of s_q (AVF), the linear part missing, or the nonlinear part off by 1% all
+// fail (checked).
 #include <gtest/gtest.h>
 
 #include "TestUtils.hpp"
