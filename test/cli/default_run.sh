@@ -1,9 +1,15 @@
 #!/usr/bin/env bash
-# The README's main job: `gphr --output DIR` runs the default scene and writes the whole report.
+# The README's main job: `gphr --output DIR` runs the default scene and writes the whole report,
+# and the report says what the default run is: NLS n = 256, 500 AVF steps with Newton converged
+# and H conserved (AVF bound 1e-9 |H0|), and the Galerkin ROM (k = 10) conserving H_r with
+# E_L2 in [0.012, 0.048]. E_L2 measured 0.02412 (2026-11-22); it is deterministic to ~1e-14 (1 vs
+# 2 ranks), so it only moves when the method changes: a factor 2 either way flags such a change,
+# a broken ROM (wrong basis or reduced gradient) gives O(1), a ROM compared with itself 0.
 set -eu
 gphr=$1
+here=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 "$gphr" --output "$work/out" > "$work/stdout" 2> "$work/stderr" || { cat "$work/stderr"; exit 1; }
-for f in artifacts.h5 summary.json fom_history.csv; do [ -s "$work/out/$f" ] || { echo "missing $f"; exit 1; }; done
-python3 -c "import json,sys; r=json.load(open(sys.argv[1]))['runs'][0]; assert r['status']=='ok' and r['n']==256 and r['steps']==500, r" "$work/out/summary.json"
-echo ok
+for f in artifacts.h5 summary.json fom_history.csv rom_history.csv; do [ -s "$work/out/$f" ] || { echo "missing $f"; exit 1; }; done
+python3 "$here/check_summary.py" check "$work/out/summary.json" --scene nls1d --scheme avf --n 256 --steps 500 \
+  --rom-k 10 --rom-E-L2 0.012 0.048

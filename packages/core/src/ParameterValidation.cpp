@@ -14,6 +14,19 @@ using ChoiceValidator = Teuchos::StringValidator;
 
 namespace {
 
+// Marks a section of a valid list as passed through (see setPassThroughSection).
+class PassThroughValidator : public Teuchos::ParameterEntryValidator {
+ public:
+  const std::string getXMLTypeName() const override { return "gphrPassThroughSection"; }
+  void printDoc(const std::string& doc, std::ostream& os) const override { os << "# " << doc << "\n"; }
+  ValidStringsList validStringValues() const override { return Teuchos::null; }
+  void validate(const Teuchos::ParameterEntry&, const std::string&, const std::string&) const override {}
+};
+
+bool isPassThrough(const Teuchos::ParameterEntry& e) {
+  return !Teuchos::rcp_dynamic_cast<const PassThroughValidator>(e.validator()).is_null();
+}
+
 std::string keyList(const ParameterList& valid) {
   std::string s;
   for (auto it = valid.begin(); it != valid.end(); ++it) s += (s.empty() ? "" : ", ") + valid.name(it);
@@ -74,7 +87,7 @@ void validateParameters(ParameterList& user, const ParameterList& valid, const s
       GPHR_REQUIRE(user.isSublist(key), InputError, "key '", where, key,
                    "' must be a section (a map of keys), not a value; valid keys in it: ",
                    keyList(valid.sublist(key)));
-      validateParameters(user.sublist(key), valid.sublist(key), where + key);
+      if (!isPassThrough(ve)) validateParameters(user.sublist(key), valid.sublist(key), where + key);
       continue;
     }
     GPHR_REQUIRE(!user.isSublist(key), InputError, "key '", where, key,
@@ -97,7 +110,7 @@ void validateParameters(ParameterList& user, const ParameterList& valid, const s
     const std::string key = valid.name(it);
     if (valid.isSublist(key)) {
       if (!user.isSublist(key)) user.sublist(key);
-      validateParameters(user.sublist(key), valid.sublist(key), where + key);
+      if (!isPassThrough(valid.getEntry(key))) validateParameters(user.sublist(key), valid.sublist(key), where + key);
     } else if (!user.isParameter(key)) {
       user.setEntry(key, valid.getEntry(key));
     }
@@ -110,7 +123,8 @@ void describeParameters(const ParameterList& valid, std::ostream& os, int indent
     const std::string key = valid.name(it);
     const Teuchos::ParameterEntry& e = valid.getEntry(key);
     if (e.isList()) {
-      os << pad << key << ":\n";
+      os << pad << key << ":" << (isPassThrough(e) ? " (section passed through)" : "") << "\n";
+      if (isPassThrough(e)) os << pad << "    " << e.docString() << "\n";
       describeParameters(valid.sublist(key), os, indent + 2);
       continue;
     }
@@ -132,6 +146,10 @@ void setDoubleParameter(ParameterList& pl, const std::string& name, double def, 
 void setChoiceParameter(ParameterList& pl, const std::string& name, const std::string& def,
                         const Teuchos::Array<std::string>& choices, const std::string& doc) {
   pl.set(name, def, doc, Teuchos::rcp(new ChoiceValidator(choices)));
+}
+
+void setPassThroughSection(ParameterList& pl, const std::string& name, const std::string& doc) {
+  pl.set(name, ParameterList(name), doc, Teuchos::rcp(new PassThroughValidator));
 }
 
 }  // namespace gphr

@@ -154,10 +154,14 @@ TEST(Scenes, RejectBadSizesAndParameters) {
   Nls1d nls(16);
   EXPECT_THROW(nls.parameterBox().check({1.5}), InputError);
   EXPECT_NO_THROW(nls.parameterBox().check({1.0}));
+  // Below the box too, and the message names the parameter, its value and the box.
   try {
     nls.parameterBox().check({0.5});
+    FAIL() << "eps = 0.5 lies outside [0.9, 1.1] but no InputError was thrown";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("eps = 0.5"), std::string::npos) << e.what();
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("eps = 0.5"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("[0.9, 1.1]"), std::string::npos) << msg;
   }
 }
 

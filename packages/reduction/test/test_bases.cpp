@@ -111,7 +111,9 @@ TEST_P(Bases, SingularValuesMatchDenseSvd) {
 
 // Same basis on P ranks as on one (rank 0 compares). Singular vectors of well-separated
 // singular values are determined to ~ eps / gap; with gaps >= 1e-3 sigma_1 here, 1e-9 is safe.
+// On one rank the "distributed" run would be the serial one itself: nothing to compare.
 TEST_P(Bases, SameOnAnyRankCount) {
+  if (test::comm()->getSize() == 1) GTEST_SKIP() << "compares P > 1 ranks with one; run with mpirun -np 2 or 3";
   const GO n = 48;
   BasisOptions opt;
   opt.method = GetParam();
@@ -134,10 +136,25 @@ INSTANTIATE_TEST_SUITE_P(Methods, Bases, ::testing::Values("psd", "cotangent"));
 
 TEST(Bases, RejectsUnknownMethodAndUnavailableSize) {
   PhaseSpace ps(16, test::comm());
-  auto snaps = std::vector<RCP<const MultiVector>>{rcp(new MultiVector(ps.map(), 3))};
+  // 3 states of an (unshifted) NLS run: linearly independent over C, so the psd data matrix
+  // Q + iP has exactly 3 non-zero singular values.
+  auto snaps = test::fomSnapshots(Nls1d(16).instantiate(test::comm(), {1.0}, false), "avf", 0.05, 2);
   BasisOptions opt;
   opt.method = "pod";
-  EXPECT_THROW(computeSymplecticBasis(snaps, ps, opt), InputError);
+  EXPECT_THROW(computeSymplecticBasis({snaps}, ps, opt), InputError);
+  // k = 3 is available, k = 4 is not.
+  opt.method = "psd";
+  opt.k = 3;
+  EXPECT_EQ(computeSymplecticBasis({snaps}, ps, opt).A->getNumVectors(), 6u);
+  opt.k = 4;
+  try {
+    computeSymplecticBasis({snaps}, ps, opt);
+    FAIL() << "k = 4 from 3 snapshots did not throw";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("k = 4 is not available"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("3 singular vectors"), std::string::npos) << msg;
+  }
 }
 
 }  // namespace

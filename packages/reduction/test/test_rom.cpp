@@ -3,7 +3,9 @@
 //    system in rotated coordinates; the Newton tolerance 1e-12 bounds the difference);
 //  - AVF conserves H_r(z) = H(A z) (same bound as the full model: |dH| <= |gbar| |R|);
 //  - IMR conserves the NLS mass |A z|^2 = |z|^2 with a symplectic basis of either kind, which
-//    commutes with J (unshifted model: the mass is then a quadratic invariant of the ROM).
+//    commutes with J (unshifted model: the mass is then a quadratic invariant of the ROM);
+//  - chord Newton (jacobianReuse) gives the same solution with fewer Newton-matrix assemblies;
+//  - grad H_r and Hess H_r equal central differences of H_r and grad H_r (both scenes).
 #include <gtest/gtest.h>
 
 #include "ReductionTestUtils.hpp"
@@ -62,16 +64,20 @@ struct RomCase {
   ReducedBasis basis;
 };
 
-RomCase nlsRom(const std::string& method, bool shift) {
-  Nls1d scene(64);
-  auto train = scene.instantiate(test::comm(), {1.0}, shift);
-  auto snaps = test::fomSnapshots(train, "avf", 0.02, 60);
-  PhaseSpace ps(64, test::comm());
+// A basis of size 2k trained on `steps` AVF steps at muTrain, and the system at muTest.
+RomCase sceneRom(const Scene& scene, const std::vector<double>& muTrain, const std::vector<double>& muTest,
+                 bool shift, const std::string& method, int k, double dt, long steps) {
+  auto train = scene.instantiate(test::comm(), muTrain, shift);
+  auto snaps = test::fomSnapshots(train, "avf", dt, steps);
   BasisOptions opt;
   opt.method = method;
-  opt.k = 6;
-  auto test = scene.instantiate(test::comm(), {1.05}, shift);
-  return {test.system, computeSymplecticBasis({snaps}, ps, opt)};
+  opt.k = k;
+  auto test = scene.instantiate(test::comm(), muTest, shift);
+  return {test.system, computeSymplecticBasis({snaps}, train.system->space(), opt)};
+}
+
+RomCase nlsRom(const std::string& method, bool shift) {
+  return sceneRom(Nls1d(64), {1.0}, {1.05}, shift, method, 6, 0.02, 60);
 }
 
 TEST(GalerkinRom, AvfConservesReducedHamiltonian) {
@@ -110,6 +116,8 @@ TEST(GalerkinRom, ImrConservesMassWithSymplecticBasis) {
 namespace {
 // The chord option changes only how Newton converges, not the solution: the trajectories differ
 // by at most ~ steps x Newton tolerance x error growth = 100 x 1e-13 x O(10) = 1e-10.
+// And it must take effect: chord Newton assembles (and LU-factors) one Newton matrix per step,
+// full Newton one per iteration, i.e. >= 1 per step and more whenever a step needs 2 iterations.
 TEST(GalerkinRom, JacobianReuseGivesTheSameSolution) {
   auto c = nlsRom("psd", true);
   GalerkinRom rom(c.system, c.basis.A);
@@ -119,10 +127,108 @@ TEST(GalerkinRom, JacobianReuseGivesTheSameSolution) {
   chord.set("jacobianReuse", true);
   DenseModelIntegrator a(rom, exact, 4), b(rom, chord, 4);
   DenseVector za(rom.dim()), zb(rom.dim());
-  a.run(za, 0.02, 100);
+  const RunStats sa = a.run(za, 0.02, 100);
   const RunStats sb = b.run(zb, 0.02, 100);
   za -= zb;
   EXPECT_LE(za.normFrobenius(), 1e-10);
-  EXPECT_GT(sb.newtonIterations, 0);
+  EXPECT_EQ(a.backend().newtonMatrixAssemblies(), sa.newtonIterations);  // full Newton: one per iteration
+  EXPECT_LE(b.backend().newtonMatrixAssemblies(), 100);                  // chord: at most one per step
+  EXPECT_LT(b.backend().newtonMatrixAssemblies(), a.backend().newtonMatrixAssemblies());
+  EXPECT_GT(b.backend().newtonMatrixAssemblies(), 0);
+  EXPECT_GE(sb.newtonIterations, sa.newtonIterations);  // linear instead of quadratic convergence
 }
+
+// GalerkinRom's derivatives against central differences of H_r and grad H_r, on both scenes,
+// shifted and not (a wrong reduced Hessian only slows Newton down, so no trajectory test notices
+// it). The point z is a reduced state of the training run plus a generic perturbation, so every
+// term of H (NLS |u|^4, SWE chi |grad Phi|^2) contributes.
+// Error of a central difference with step h along d, for H_r a polynomial of degree p <= 4 in z:
+// truncation h^2/6 |D^3 f[d,d,d]| ~ (h |d| / |z|)^2 |Df[d]| = 1e-10 relative with
+// h |d| = 1e-5 |z|; round-off eps_mach C |f| / (h |d|) ~ 2.2e-16 x 1e5 x C relative, where
+// C <= ~10 is the cancellation among the terms of f (NLS: the Laplacian part against the
+// quartic part), so <= ~2e-10. Measured: <= 5e-10 (gradient), <= 7e-11 (Hessian) on 1 and 2
+// ranks. kFdTol = 1e-7 keeps a factor >= 200 above that, and is far below what a wrong term
+// does: L_r missing, A^T Hess N A off by 1% or grad H_r off by 0.1% all fail (checked).
+constexpr double kFdTol = 1e-7;
+
+struct RomFdCase {
+  std::string name;
+  std::shared_ptr<Scene> scene;
+  std::vector<double> mu;
+  bool shift;
+};
+
+std::vector<RomFdCase> romFdCases() {  // both scenes at their test parameters, shifted and not
+  std::vector<RomFdCase> out;
+  for (bool shift : {false, true}) {
+    const std::string tag = shift ? "_shifted" : "";
+    out.push_back({"nls" + tag, std::make_shared<Nls1d>(64), {1.0932}, shift});
+    out.push_back({"swe" + tag, std::make_shared<Swe2d>(8), {1.6435, 0.7762}, shift});
+  }
+  return out;
+}
+
+DenseVector genericDense(int dim, double scale, unsigned seed) {
+  DenseVector v(dim);
+  for (int i = 0; i < dim; ++i) v(i) = scale * std::sin(1.3 * i + 0.7 * seed + 0.1 * i * i / (1.0 + i));
+  return v;
+}
+
+class RomDerivatives : public ::testing::TestWithParam<int> {
+ protected:
+  void SetUp() override {
+    c_ = romFdCases()[GetParam()];
+    auto s = c_.scene->instantiate(test::comm(), c_.mu, c_.shift);
+    auto snaps = test::fomSnapshots(s, "avf", 0.01, 20);
+    BasisOptions opt;
+    opt.k = 4;
+    basis_ = computeSymplecticBasis({snaps}, s.system->space(), opt).A;
+    rom_ = std::make_unique<GalerkinRom>(s.system, basis_);
+    z_ = rom_->project(*snaps->getVector(20));
+    z_ += genericDense(rom_->dim(), 0.1 * z_.normFrobenius(), 1);
+  }
+  // d = the generic direction `seed`, zp/zm = z -+ h d with h |d| = 1e-5 |z|; returns h.
+  double alongDirection(unsigned seed, DenseVector& d, DenseVector& zp, DenseVector& zm) const {
+    d = genericDense(rom_->dim(), 1.0, seed);
+    const double h = 1e-5 * z_.normFrobenius() / d.normFrobenius();
+    zp = z_, zm = z_;
+    DenseBackend::update(zp, h, d, 1.0);
+    DenseBackend::update(zm, -h, d, 1.0);
+    return h;
+  }
+  RomFdCase c_;
+  RCP<MultiVector> basis_;
+  std::unique_ptr<GalerkinRom> rom_;
+  DenseVector z_;
+};
+
+TEST_P(RomDerivatives, GradientMatchesFiniteDifferenceOfHamiltonian) {
+  const int dim = rom_->dim();
+  DenseVector g(dim), d(dim), zp(dim), zm(dim);
+  rom_->gradient(z_, g);
+  for (unsigned seed = 2; seed < 5; ++seed) {
+    const double h = alongDirection(seed, d, zp, zm);
+    const double fd = (rom_->hamiltonian(zp) - rom_->hamiltonian(zm)) / (2 * h), exact = g.dot(d);
+    EXPECT_LE(std::abs(fd - exact), kFdTol * std::abs(exact)) << c_.name << " seed " << seed;
+  }
+}
+
+TEST_P(RomDerivatives, HessianMatchesFiniteDifferenceOfGradient) {
+  const int dim = rom_->dim();
+  DenseMatrix H(dim, dim);
+  rom_->addHessian(z_, 1.0, H);
+  DenseVector gp(dim), gm(dim), d(dim), zp(dim), zm(dim), Hd(dim);
+  for (unsigned seed = 2; seed < 5; ++seed) {
+    const double h = alongDirection(seed, d, zp, zm);
+    rom_->gradient(zp, gp);
+    rom_->gradient(zm, gm);
+    Hd.multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, H, d, 0.0);
+    DenseBackend::update(gp, -1.0 / (2 * h), gm, 1.0 / (2 * h));  // gp = FD of grad H_r along d
+    gp -= Hd;
+    EXPECT_LE(gp.normFrobenius(), kFdTol * Hd.normFrobenius()) << c_.name << " seed " << seed;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, RomDerivatives, ::testing::Range(0, 4));
+
 }  // namespace

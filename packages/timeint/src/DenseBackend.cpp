@@ -16,6 +16,7 @@ DenseBackend::DenseBackend(DenseHamiltonian& model)
     : model_(model), hbar_(model.dim(), model.dim()), K_(model.dim(), model.dim()), pivots_(model.dim()) {}
 
 void DenseBackend::endNewtonMatrix() {
+  ++assemblies_;
   const int n = model_.dim(), k = n / 2;
   // K = I + J hbar: (J hbar)_{i,:} = hbar_{k+i,:}, (J hbar)_{k+i,:} = -hbar_{i,:}.
   for (int c = 0; c < n; ++c)

@@ -24,8 +24,6 @@ struct FullModelBackend::Solver {
   RCP<BelosProblem> problem;
   RCP<Preconditioner> prec;
   double tolerance = 1e-12;
-  int recomputeEvery = 1;
-  long assemblies = 0;
 };
 
 Teuchos::ParameterList FullModelBackend::validParameters() {
@@ -35,6 +33,9 @@ Teuchos::ParameterList FullModelBackend::validParameters() {
   setDoubleParameter(pl, "tolerance", 1e-12, 1e-16, 1e-2,
                      "relative residual tolerance of each linear solve");
   setIntParameter(pl, "maxIterations", 500, 1, 100000, "iteration limit of each linear solve");
+  setIntParameter(pl, "krylovVectors", 30, 1, 1000,
+                  "GMRES restart length (Krylov vectors of length 2n kept per solve; at most maxIterations); "
+                  "the preconditioned solves take 2-10 iterations");
   setChoiceParameter(pl, "preconditioner", "RILUK",
                      Teuchos::tuple<std::string>("RILUK", "ILUT", "RELAXATION", "AMESOS2", "none"),
                      "Ifpack2 preconditioner, per rank (block Jacobi); AMESOS2 = exact KLU2 solve of each "
@@ -46,8 +47,25 @@ Teuchos::ParameterList FullModelBackend::validParameters() {
   return pl;
 }
 
-FullModelBackend::FullModelBackend(RCP<const HamiltonianSystem> system, Teuchos::ParameterList ls)
-    : system_(system), solver_(new Solver) {
+Teuchos::ParameterList FullModelBackend::preconditionerParameters(const Teuchos::ParameterList& ls) {
+  const std::string pt = ls.get<std::string>("preconditioner");
+  Teuchos::ParameterList pp;
+  if (pt == "RILUK") pp.set("fact: iluk level-of-fill", ls.get<int>("iluFill"));
+  if (pt == "RELAXATION") pp.set("relaxation: type", "Symmetric Gauss-Seidel");
+  if (pt == "AMESOS2") {
+    pp.set("Amesos2 solver name", "KLU2");
+    pp.sublist("Amesos2");  // Amesos2 insists on a sublist of this name
+  }
+  return pp;
+}
+
+int FullModelBackend::krylovVectors(const Teuchos::ParameterList& ls) {
+  return std::min(ls.get<int>("krylovVectors"), ls.get<int>("maxIterations"));
+}
+
+FullModelBackend::FullModelBackend(RCP<const HamiltonianSystem> system, Teuchos::ParameterList ls,
+                                   bool ownLinearSolver)
+    : system_(system) {
   validateParameters(ls, validParameters(), "linearSolver");
   newtonMatrix_ = rcp(new CrsMatrix(system_->hessianGraph(true)));
   newtonMatrix_->fillComplete(system_->map(), system_->map());  // packed storage (LocalScatter)
@@ -58,12 +76,14 @@ FullModelBackend::FullModelBackend(RCP<const HamiltonianSystem> system, Teuchos:
     identity_ = LocalScatter(*newtonMatrix_->getCrsGraph(), diag, diag);
     ones_.assign(diag.size(), 1.0);
   }
+  recomputeEvery_ = ls.get<int>("preconditionerRecomputeEvery");
+  if (!ownLinearSolver) return;
+  solver_.reset(new Solver);
   solver_->tolerance = ls.get<double>("tolerance");
-  solver_->recomputeEvery = ls.get<int>("preconditionerRecomputeEvery");
   auto belosParams = Teuchos::parameterList();
   belosParams->set("Convergence Tolerance", solver_->tolerance);
   belosParams->set("Maximum Iterations", ls.get<int>("maxIterations"));
-  belosParams->set("Num Blocks", std::min(ls.get<int>("maxIterations"), 200));
+  if (ls.get<std::string>("method") == "GMRES") belosParams->set("Num Blocks", krylovVectors(ls));
   belosParams->set("Implicit Residual Scaling", "Norm of RHS");
   belosParams->set("Explicit Residual Scaling", "Norm of RHS");
   Belos::SolverFactory<Scalar, MultiVector, Operator> factory;
@@ -75,14 +95,7 @@ FullModelBackend::FullModelBackend(RCP<const HamiltonianSystem> system, Teuchos:
     beginNewtonMatrix();
     newtonMatrix_->fillComplete(system_->map(), system_->map());
     solver_->prec = Ifpack2::Factory::create<Tpetra::RowMatrix<Scalar, LO, GO, Node>>(pt, newtonMatrix_);
-    Teuchos::ParameterList pp;
-    if (pt == "RILUK") pp.set("fact: iluk level-of-fill", ls.get<int>("iluFill"));
-    if (pt == "RELAXATION") pp.set("relaxation: type", "Symmetric Gauss-Seidel");
-    if (pt == "AMESOS2") {
-      pp.set("Amesos2 solver name", "KLU2");
-      pp.sublist("Amesos2");  // Amesos2 insists on a sublist of this name
-    }
-    solver_->prec->setParameters(pp);
+    solver_->prec->setParameters(preconditionerParameters(ls));
     solver_->prec->initialize();
   }
 }
@@ -98,10 +111,13 @@ void FullModelBackend::beginNewtonMatrix() {
 
 void FullModelBackend::endNewtonMatrix() {
   newtonMatrix_->fillComplete(system_->map(), system_->map());
-  if (!solver_->prec.is_null() && solver_->assemblies++ % solver_->recomputeEvery == 0) solver_->prec->compute();
+  refreshDue_ = assemblies_++ % recomputeEvery_ == 0;
+  if (solver_ && !solver_->prec.is_null() && refreshDue_) solver_->prec->compute();
 }
 
 int FullModelBackend::solveNewton(const Vector& rhs, Vector& dx) {
+  GPHR_REQUIRE(solver_ != nullptr, SolverError, "FullModelBackend::solveNewton: this backend was built without "
+               "a linear solver (the NOX driver solves with Stratimikos)");
   dx.putScalar(0.0);
   auto& p = *solver_->problem;
   p.setOperator(newtonMatrix_);

@@ -16,7 +16,27 @@ Teuchos::ParameterList integratorValidParameters() {
   setIntParameter(pl, "maxNewtonIterations", 25, 1, 1000, "Newton iteration limit per step");
   pl.set("jacobianReuse", false,
          "chord Newton: the Newton matrix is assembled once per step (cheaper reduced models, linear convergence)");
+  setChoiceParameter(pl, "newtonSolver", "nox", Teuchos::tuple<std::string>("nox", "gphr"),
+                     "Newton driver of the full model's steps: nox (NOX::Thyra, configured by the nox section) or "
+                     "gphr (GPHR's own loop); reduced models always use GPHR's loop (dense LU)");
   pl.sublist("linearSolver") = FullModelBackend::validParameters();
+  pl.sublist("nox") = noxValidParameters();
+  return pl;
+}
+
+Teuchos::ParameterList noxValidParameters() {
+  Teuchos::ParameterList pl("nox");
+  setChoiceParameter(pl, "Nonlinear Solver", "Line Search Based",
+                     Teuchos::tuple<std::string>("Line Search Based", "Trust Region Based", "Inexact Trust Region Based"),
+                     "NOX solver; the status test is always ||R||_2 <= newtonTolerance or maxNewtonIterations "
+                     "reached (failure) or a non-finite R (failure)");
+  setPassThroughSection(pl, "Direction",
+                        "NOX Direction (default Method: Newton; Newton.Linear Solver.Tolerance defaults to "
+                        "linearSolver.tolerance)");
+  setPassThroughSection(pl, "Line Search", "NOX Line Search, e.g. Method: Full Step (default), Backtrack, Polynomial");
+  setPassThroughSection(pl, "Trust Region", "NOX Trust Region options of the trust-region solvers");
+  setPassThroughSection(pl, "Printing", "NOX Printing (default Output Information: 0, errors only)");
+  setPassThroughSection(pl, "Solver Options", "NOX Solver Options");
   return pl;
 }
 

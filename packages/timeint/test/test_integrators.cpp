@@ -5,6 +5,7 @@
 //  - IMR conserves the quadratic invariant sum(q^2 + p^2) of the NLS.
 //  - Both schemes have order 2.
 //  - eps = 0 (linear NLS): both equal the dense Cayley recurrence of y' = J L y.
+// These run with the default Newton driver (NOX); test_nox compares it with GPHR's own loop.
 #include <gtest/gtest.h>
 
 #include <Teuchos_LAPACK.hpp>
@@ -157,18 +158,22 @@ TEST(Linear, EpsZeroEqualsDenseCayleyRecurrence) {
 TEST(Newton, NonConvergenceNamesStepTimeAndResidual) {
   Nls1d scene(32);
   auto s = scene.instantiate(test::comm(), {1.0}, false);
-  auto pl = integratorParams("imr", 1e-12);
-  pl.set("maxNewtonIterations", 1);
-  FullModelIntegrator integ(s.system, pl);
-  Vector y(*s.y0, Teuchos::Copy);
-  try {
-    integ.run(y, 0.5, 3);
-    FAIL() << "Newton with one iteration cannot reach 1e-12 at dt = 0.5";
-  } catch (const SolverError& e) {
-    std::cerr << e.what() << "\n";
-    const std::string msg = e.what();
-    EXPECT_NE(msg.find("step 1 (t = 0.5)"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("residual norm"), std::string::npos) << msg;
+  for (const char* driver : {"nox", "gphr"}) {
+    auto pl = integratorParams("imr", 1e-12);
+    pl.set("maxNewtonIterations", 1);
+    pl.set("newtonSolver", driver);
+    FullModelIntegrator integ(s.system, pl);
+    Vector y(*s.y0, Teuchos::Copy);
+    try {
+      integ.run(y, 0.5, 3);
+      FAIL() << driver << ": Newton with one iteration cannot reach 1e-12 at dt = 0.5";
+    } catch (const SolverError& e) {
+      std::cerr << e.what() << "\n";
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find("step 1 (t = 0.5)"), std::string::npos) << msg;
+      EXPECT_NE(msg.find("residual norm"), std::string::npos) << msg;
+      EXPECT_NE(msg.find("after 1 iterations"), std::string::npos) << msg;
+    }
   }
 }
 

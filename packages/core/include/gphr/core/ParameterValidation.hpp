@@ -24,5 +24,8 @@ void setDoubleParameter(Teuchos::ParameterList& pl, const std::string& name, dou
                         double hi, const std::string& doc);
 void setChoiceParameter(Teuchos::ParameterList& pl, const std::string& name, const std::string& def,
                         const Teuchos::Array<std::string>& choices, const std::string& doc);
+// A section whose contents are not checked here but passed through to a library that reads them
+// itself (e.g. NOX's "Line Search"): the user must give a section (or nothing) under that key.
+void setPassThroughSection(Teuchos::ParameterList& pl, const std::string& name, const std::string& doc);
 
 }  // namespace gphr

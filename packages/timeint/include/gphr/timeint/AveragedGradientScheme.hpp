@@ -50,6 +50,14 @@ struct NewtonOptions {
   bool reuseJacobian = false;
 };
 
+// The one failure message of both Newton drivers (GPHR's loop and NOX): where and how far.
+inline std::string newtonFailureMessage(const NewtonOptions& o, long step, double time, const StepReport& rep,
+                                        const std::string& driver = "Newton") {
+  return detail::concat(driver, " did not converge at step ", step, " (t = ", time, "): residual norm ",
+                        rep.residualNorm, " after ", rep.newtonIterations, " iterations (tolerance ",
+                        o.tolerance, ", at most ", o.maxIterations, ")");
+}
+
 template <class Backend>
 class AveragedGradientScheme {
  public:
@@ -62,25 +70,18 @@ class AveragedGradientScheme {
   const QuadratureRule& rule() const { return rule_; }
   const NewtonOptions& options() const { return opts_; }
 
-  // Solve (*) for y1, starting from the guess in y1. Throws SolverError if Newton fails;
-  // `step` and `time` only label that message.
+  // Solve (*) for y1, starting from the guess in y1, with GPHR's own Newton loop (the dense
+  // reduced models' driver; the full model's default driver is NOX, NoxNewtonSolver, which calls
+  // residual() and assembleNewtonMatrix() below). Throws SolverError if Newton fails; `step` and
+  // `time` only label that message.
   StepReport step(const Vector& y0, Vector& y1, double dt, long step = 0, double time = 0.0) {
     StepReport rep;
     for (;;) {
       rep.residualNorm = residual(y0, y1, dt);
       if (rep.residualNorm <= opts_.tolerance) return rep;
       GPHR_REQUIRE(std::isfinite(rep.residualNorm) && rep.newtonIterations < opts_.maxIterations,
-                   SolverError, "Newton did not converge at step ", step, " (t = ", time,
-                   "): residual norm ", rep.residualNorm, " after ", rep.newtonIterations,
-                   " iterations (tolerance ", opts_.tolerance, ", at most ", opts_.maxIterations, ")");
-      if (rep.newtonIterations == 0 || !opts_.reuseJacobian) {
-        be_.beginNewtonMatrix();
-        for (int q = 0; q < rule_.size(); ++q) {
-          Backend::update(yq_, 1.0 - rule_.nodes[q], y0, rule_.nodes[q], y1, 0.0);
-          be_.addHessian(yq_, -dt * rule_.weights[q] * rule_.nodes[q]);
-        }
-        be_.endNewtonMatrix();
-      }
+                   SolverError, newtonFailureMessage(opts_, step, time, rep));
+      if (rep.newtonIterations == 0 || !opts_.reuseJacobian) assembleNewtonMatrix(y0, y1, dt);
       Backend::update(rhs_, -1.0, res_, 0.0);
       rep.linearIterations += be_.solveNewton(rhs_, dx_);
       Backend::update(y1, 1.0, dx_, 1.0);
@@ -88,20 +89,32 @@ class AveragedGradientScheme {
     }
   }
 
-  // Average gradient gbar = sum_q w_q grad H(y0 + s_q (y1 - y0)) of the last residual().
+  // The backend's Newton matrix := K(y0, y1) = I - dt J sum_q w_q s_q Hess H(y0 + s_q (y1 - y0)).
+  void assembleNewtonMatrix(const Vector& y0, const Vector& y1, double dt) {
+    be_.beginNewtonMatrix();
+    for (int q = 0; q < rule_.size(); ++q) {
+      Backend::update(yq_, 1.0 - rule_.nodes[q], y0, rule_.nodes[q], y1, 0.0);
+      be_.addHessian(yq_, -dt * rule_.weights[q] * rule_.nodes[q]);
+    }
+    be_.endNewtonMatrix();
+  }
+
+  // Average gradient gbar = sum_q w_q grad H(y0 + s_q (y1 - y0)) of the last residual() (with
+  // either driver, the last residual evaluated in a step is that of the accepted y1).
   const Vector& averageGradient() const { return gsum_; }
 
-  // R = y1 - y0 - dt J gbar; returns ||R||.
-  double residual(const Vector& y0, const Vector& y1, double dt) {
+  // R = y1 - y0 - dt J gbar into R; returns ||R||.
+  double residual(const Vector& y0, const Vector& y1, double dt, Vector& R) {
     for (int q = 0; q < rule_.size(); ++q) {
       Backend::update(yq_, 1.0 - rule_.nodes[q], y0, rule_.nodes[q], y1, 0.0);
       be_.gradient(yq_, g_);
       Backend::update(gsum_, rule_.weights[q], g_, q == 0 ? 0.0 : 1.0);
     }
-    be_.applyJ(gsum_, res_);
-    Backend::update(res_, 1.0, y1, -1.0, y0, -dt);
-    return Backend::norm(res_);
+    be_.applyJ(gsum_, R);
+    Backend::update(R, 1.0, y1, -1.0, y0, -dt);
+    return Backend::norm(R);
   }
+  double residual(const Vector& y0, const Vector& y1, double dt) { return residual(y0, y1, dt, res_); }
 
  private:
   Backend& be_;

@@ -38,6 +38,8 @@ class DenseBackend {
   void addHessian(const Vector& z, double scale) { model_.addHessian(z, scale, hbar_); }
   void endNewtonMatrix();  // K = I + J hbar (hbar holds -dt Hbar), then LU
   int solveNewton(const Vector& rhs, Vector& dx);
+  // Newton matrices assembled and LU-factored so far (endNewtonMatrix() calls).
+  long newtonMatrixAssemblies() const { return assemblies_; }
 
   static void update(Vector& y, double a, const Vector& x, double b);
   static void update(Vector& y, double a, const Vector& x, double b, const Vector& z, double c);
@@ -49,6 +51,7 @@ class DenseBackend {
   DenseMatrix hbar_, K_;
   std::vector<int> pivots_;
   Teuchos::LAPACK<int, double> lapack_;
+  long assemblies_ = 0;
 };
 
 }  // namespace gphr

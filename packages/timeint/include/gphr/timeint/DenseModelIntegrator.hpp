@@ -13,6 +13,7 @@ class DenseModelIntegrator {
   DenseModelIntegrator(DenseHamiltonian& model, Teuchos::ParameterList integrator, int degree);
   RunStats run(DenseVector& z, double dt, long steps, const StepObserver<DenseVector>& observer = {});
   AveragedGradientScheme<DenseBackend>& scheme() { return scheme_; }
+  const DenseBackend& backend() const { return backend_; }
 
  private:
   static Teuchos::ParameterList validated(Teuchos::ParameterList pl);

@@ -2,7 +2,8 @@
 // Backend of AveragedGradientScheme for the full model on Tpetra: the Newton matrix
 // K = I - dt J Hbar is assembled as a CrsMatrix on the Hessian graph (plus canonical pairs) and
 // solved with Belos (through Belos::SolverFactory) and an optional Ifpack2 preconditioner.
-// Configured by a ParameterList (validParameters() documents it).
+// Configured by a ParameterList (validParameters() documents it). Under the NOX driver the
+// backend only assembles (ownLinearSolver = false): Stratimikos solves, with the same settings.
 #include <Teuchos_ParameterList.hpp>
 #include <memory>
 
@@ -15,10 +16,16 @@ class FullModelBackend {
  public:
   using Vector = gphr::Vector;
 
-  // linearSolver: see validParameters(); validated here.
-  FullModelBackend(RCP<const HamiltonianSystem> system, Teuchos::ParameterList linearSolver);
+  // linearSolver: see validParameters(); validated here. ownLinearSolver = false: no Belos /
+  // Ifpack2 objects (solveNewton() must not be called), for a driver that solves K itself.
+  FullModelBackend(RCP<const HamiltonianSystem> system, Teuchos::ParameterList linearSolver,
+                   bool ownLinearSolver = true);
   ~FullModelBackend();
   static Teuchos::ParameterList validParameters();
+  // From a validated linearSolver list, for both drivers: Ifpack2's parameters for the chosen
+  // preconditioner, and GMRES's Krylov space size ("Num Blocks").
+  static Teuchos::ParameterList preconditionerParameters(const Teuchos::ParameterList& linearSolver);
+  static int krylovVectors(const Teuchos::ParameterList& linearSolver);
 
   Vector create() const { return Vector(system_->map()); }
   void gradient(const Vector& y, Vector& g) { system_->gradient(y, g); }
@@ -27,6 +34,10 @@ class FullModelBackend {
   void addHessian(const Vector& y, double scale) { system_->addHessian(y, scale, *newtonMatrix_, true); }
   void endNewtonMatrix();
   int solveNewton(const Vector& rhs, Vector& dx);
+  // The Newton matrix (assembled in place), and whether the last endNewtonMatrix() was one at which
+  // the preconditioner is to be refactored (every linearSolver.preconditionerRecomputeEvery).
+  RCP<CrsMatrix> newtonMatrix() const { return newtonMatrix_; }
+  bool preconditionerRefreshDue() const { return refreshDue_; }
 
   static void update(Vector& y, double a, const Vector& x, double b) { y.update(a, x, b); }
   static void update(Vector& y, double a, const Vector& x, double b, const Vector& z, double c) {
@@ -43,7 +54,10 @@ class FullModelBackend {
   RCP<CrsMatrix> newtonMatrix_;
   LocalScatter identity_;
   std::vector<Scalar> ones_;
-  std::unique_ptr<Solver> solver_;
+  std::unique_ptr<Solver> solver_;  // null when !ownLinearSolver
+  int recomputeEvery_ = 1;
+  long assemblies_ = 0;
+  bool refreshDue_ = false;
 };
 
 }  // namespace gphr

@@ -1,27 +1,36 @@
 #pragma once
 // The full model's time integrator: FullModelBackend + AveragedGradientScheme, configured by a
-// validated `integrator` ParameterList (integratorValidParameters()).
+// validated `integrator` ParameterList (integratorValidParameters()). The Newton driver of each
+// step is NOX (NoxNewtonSolver, default) or GPHR's own loop (integrator.newtonSolver: gphr).
+#include <memory>
+
 #include "gphr/timeint/FullModelBackend.hpp"
 #include "gphr/timeint/Integrator.hpp"
+#include "gphr/timeint/NoxNewton.hpp"
 
 namespace gphr {
 
 class FullModelIntegrator {
  public:
   FullModelIntegrator(RCP<const HamiltonianSystem> system, Teuchos::ParameterList integrator);
+  ~FullModelIntegrator();
 
   // Advance y (in place) by `steps` steps of size dt; the observer sees every state.
   RunStats run(Vector& y, double dt, long steps, const StepObserver<Vector>& observer = {},
                double t0 = 0.0, long firstStep = 0);
+  // One step from y0, starting from the guess in y1, with the configured driver.
+  StepReport step(const Vector& y0, Vector& y1, double dt, long stepNo = 0, double time = 0.0);
   AveragedGradientScheme<FullModelBackend>& scheme() { return scheme_; }
   FullModelBackend& backend() { return backend_; }
   const Teuchos::ParameterList& parameters() const { return params_; }
+  bool usesNox() const { return nox_ != nullptr; }
 
  private:
   static Teuchos::ParameterList validated(Teuchos::ParameterList pl);
   Teuchos::ParameterList params_;
   FullModelBackend backend_;
   AveragedGradientScheme<FullModelBackend> scheme_;
+  std::unique_ptr<NoxNewtonSolver> nox_;  // null: GPHR's loop (scheme_.step)
 };
 
 }  // namespace gphr

@@ -10,8 +10,13 @@
 namespace gphr {
 
 // Valid keys: scheme (imr|avf), quadraturePoints (0 = from G's degree), newtonTolerance,
-// maxNewtonIterations, and the section linearSolver (FullModelBackend::validParameters()).
+// maxNewtonIterations, jacobianReuse, newtonSolver (nox|gphr, full model only), and the sections
+// linearSolver (FullModelBackend::validParameters()) and nox (noxValidParameters()).
 Teuchos::ParameterList integratorValidParameters();
+
+// The `nox` section: top-level keys of NOX's parameter list; its sections (Direction, Line Search,
+// Trust Region, Printing, Solver Options) are passed through to NOX unchecked.
+Teuchos::ParameterList noxValidParameters();
 
 // IMR: the 1-point Gauss rule. AVF: Gauss-Legendre with quadraturePoints nodes, or when 0 the
 // fewest that are exact for G of polynomial degree `degree` (a non-polynomial G, degree 0, gets 3).
@@ -31,9 +36,10 @@ template <class Vector>
 using StepObserver = std::function<void(long, double, const Vector&, const StepReport&)>;
 
 // Advance y by `steps` steps of size dt from time t0. The Newton guess for y^{j+1} is the linear
-// extrapolation 2 y^j - y^{j-1} (y^0 for the first step).
-template <class Backend>
-RunStats integrate(AveragedGradientScheme<Backend>& scheme, Backend& backend, typename Backend::Vector& y,
+// extrapolation 2 y^j - y^{j-1} (y^0 for the first step). Stepper: AveragedGradientScheme (GPHR's
+// Newton loop) or NoxNewtonSolver, both with step(y0, y1, dt, stepNo, t) -> StepReport.
+template <class Stepper, class Backend>
+RunStats integrate(Stepper& scheme, Backend& backend, typename Backend::Vector& y,
                    double dt, long steps, const StepObserver<typename Backend::Vector>& observer,
                    double t0 = 0.0, long firstStep = 0) {
   using V = typename Backend::Vector;

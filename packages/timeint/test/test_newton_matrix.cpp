@@ -1,0 +1,93 @@
+// The full model's Newton matrix K = I - dt J sum_q w_q s_q Hess H(y_q), as
+// AveragedGradientScheme::assembleNewtonMatrix assembles it into FullModelBackend (for both Newton
+// drivers, NOX and GPHR's loop), is the derivative of the scheme's residual
+//   R(y1) = y1 - y0 - dt J sum_q w_q grad H(y0 + s_q (y1 - y0))   (AveragedGradientScheme::residual):
+//   K v = (R(y1 + h v) - R(y1 - h v)) / (2h) + O(h^2)   for generic v.
+// A wrong K only slows Newton down (it still converges to the root of R), so no trajectory test
+// notices it; this one does.
+// The identity part of K is trivially right, so the comparison is made on the Hessian part
+// K v - v = -dt J Hbar v, relative to its size. dt is 10x the paper's (NLS 0.1, SWE 0.05) so
+// that this part is ~10% of |v| (checked: > 5%) and Hessian errors are not hidden behind I.
+// Tolerance: with h |v| = 1e-5 |y1|, the truncation error h^2/6 |R'''[v,v,v]| is
+// ~ dt |Hbar| |v| (h |v| / |y1|)^2 = 1e-10 relative to the Hessian part (grad H is a polynomial
+// of degree <= 3); round-off eps_mach |y| / h over the Hessian part 0.1 |v| is
+// ~ 2.2e-16 / (1e-5 x 0.1) = 2.2e-10. Measured: <= 6e-11 on 1 and 2 ranks. The bound 1e-7 is a
+// factor >= 300 above the estimate and far below what a wrong K does: the Hessian's sign flipped,
+// 1 - s_q in place of s_q (AVF), the linear part missing, or the nonlinear part off by 1% all
+// fail (checked).
+#include <gtest/gtest.h>
+
+#include "TestUtils.hpp"
+#include "gphr/models/Scene.hpp"
+#include "gphr/timeint/FullModelBackend.hpp"
+#include "gphr/timeint/Integrator.hpp"
+
+using namespace gphr;
+
+namespace {
+
+constexpr double kTol = 1e-7;  // see the header
+
+struct Case {
+  std::string name;
+  std::shared_ptr<Scene> scene;
+  std::vector<double> mu;
+  bool shift;
+  std::string scheme;
+  double dt;
+};
+
+std::vector<Case> cases() {
+  std::vector<Case> out;
+  for (const char* scheme : {"imr", "avf"})
+    for (bool shift : {false, true}) {
+      const std::string tag = std::string(scheme) + (shift ? "_shifted" : "");
+      out.push_back({"nls_" + tag, std::make_shared<Nls1d>(64), {1.0932}, shift, scheme, 0.1});
+      out.push_back({"swe_" + tag, std::make_shared<Swe2d>(8), {1.6435, 0.7762}, shift, scheme, 0.05});
+    }
+  return out;
+}
+
+class NewtonMatrix : public ::testing::TestWithParam<int> {};
+
+TEST_P(NewtonMatrix, IsTheDerivativeOfTheResidual) {
+  const Case c = cases()[GetParam()];
+  auto s = c.scene->instantiate(test::comm(), c.mu, c.shift);
+  const auto& sys = *s.system;
+  FullModelBackend backend(s.system, Teuchos::ParameterList("linearSolver"), false);  // assembly only
+  const QuadratureRule rule = quadratureFor(c.scheme, 0, sys.nonlinearTerm().polynomialDegree());
+  ASSERT_EQ(rule.size(), c.scheme == "imr" ? 1 : 2);
+  AveragedGradientScheme<FullModelBackend> scheme(backend, rule, NewtonOptions{});
+
+  // Generic y0 (every term of H non-zero) and y1 about 10% away from it, so that the quadrature
+  // points y0 + s_q (y1 - y0) of AVF are distinct states.
+  Vector y0(*s.y0, Teuchos::Copy), y1(sys.map()), v(sys.map());
+  test::fillByGid(v, 0.3, 1);
+  y0.update(1.0, v, 1.0);
+  test::fillByGid(v, 0.1 * y0.norm2() / v.norm2(), 2);
+  y1.update(1.0, y0, 1.0, v, 0.0);
+  scheme.assembleNewtonMatrix(y0, y1, c.dt);
+  const CrsMatrix& K = *backend.newtonMatrix();
+
+  Vector Kv(sys.map()), Rp(sys.map()), Rm(sys.map()), yp(sys.map()), ym(sys.map());
+  for (unsigned seed = 3; seed < 5; ++seed) {
+    test::fillByGid(v, 1.0, seed);
+    K.apply(v, Kv);
+    Kv.update(-1.0, v, 1.0);  // Hessian part K v - v
+    const double size = Kv.norm2();
+    EXPECT_GT(size, 0.05 * v.norm2()) << c.name << ": the Hessian part is too small to test";
+    const double h = 1e-5 * y1.norm2() / v.norm2();
+    yp.update(1.0, y1, h, v, 0.0);
+    ym.update(1.0, y1, -h, v, 0.0);
+    scheme.residual(y0, yp, c.dt, Rp);
+    scheme.residual(y0, ym, c.dt, Rm);
+    Rp.update(-1.0 / (2 * h), Rm, 1.0 / (2 * h));  // FD of R along v
+    Rp.update(-1.0, v, -1.0, Kv, 1.0);            // minus (v + Hessian part) = minus K v
+    EXPECT_LE(Rp.norm2(), kTol * size) << c.name << " seed " << seed;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(ScenesAndRules, NewtonMatrix, ::testing::Range(0, 8),
+                         [](const ::testing::TestParamInfo<int>& i) { return cases()[i.param].name; });
+
+}  // namespace
