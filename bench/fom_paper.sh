@@ -1,8 +1,13 @@
 #!/usr/bin/env bash
 # Benchmark of the full model at the paper's configurations (issue: foundation), side by side in
-# one run: NLS/AVF, SWE/IMR, SWE/AVF on 1 and 2 MPI ranks, next to the paper's MATLAB times, plus
-# a short preconditioner comparison (T shortened) that justifies the default.
+# one run: NLS/AVF, SWE/IMR, SWE/AVF on 1 and 2 MPI ranks, each with both Newton drivers
+# (integrator.newtonSolver: nox and gphr), next to the paper's MATLAB times, plus a short
+# preconditioner comparison (T shortened) that justifies the default.
 # usage: bash bench/fom_paper.sh [BUILD_DIR] [all|paper|pc|reuse]   (prints tables; raw summaries in bench-out/)
+#   paper: per configuration one row, NOX's wall seconds (t_online_s), CPU seconds of the whole run
+#          (all ranks, incl. setup; steadier than wall time on a shared machine), Newton iterations
+#          per step and GMRES iterations per Newton iteration, beside GPHR's loop's
+#          (speedup: paper_s / NOX's wall_s)
 #   reuse: linearSolver.preconditionerRecomputeEvery in {1, 5, 20, 100}, SWE IMR T = 0.5 and NLS AVF T = 2
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -18,8 +23,9 @@ run() {  # run NAME CONFIG RANKS [INTEGRATOR_LINE] [TIME_LINE]: replace those li
   cp "$cfg" "$c"
   [ -n "$integ" ] && sed -i "s|^  integrator:.*|  integrator: $integ|" "$c"
   [ -n "$time" ] && sed -i "s|^  time:.*|  time: $time|" "$c"
-  if [ "$np" -eq 1 ]; then "$gphr" run "$c" --output "$out/$name" > "$out/$name.log" 2>&1
-  else mpirun --oversubscribe -np "$np" "$gphr" run "$c" --output "$out/$name" > "$out/$name.log" 2>&1; fi
+  local TIMEFORMAT='%U %S'  # CPU seconds (user, system) of the run, all ranks: $out/NAME.cpu
+  if [ "$np" -eq 1 ]; then { time "$gphr" run "$c" --output "$out/$name" > "$out/$name.log" 2>&1; } 2> "$out/$name.cpu"
+  else { time mpirun --oversubscribe -np "$np" "$gphr" run "$c" --output "$out/$name" > "$out/$name.log" 2>&1; } 2> "$out/$name.cpu"; fi
 }
 row() {  # row NAME PAPER_SECONDS
   python3 - "$out/$1/summary.json" "$1" "$2" <<'PY'
@@ -30,6 +36,31 @@ print(f"{sys.argv[2]:<28} {r['ranks']:>5} {r['steps']:>6} {r['t_online_s']:>9.1f
       f"{r['linear_iters_per_newton']:>10.2f} {r['H_err_max_rel']:>10.1e} {paper:>9} {ratio:>9}")
 PY
 }
+drivers() {  # drivers NAME CONFIG RANKS PAPER_SECONDS [SCHEME]: both Newton drivers, one row side by side
+  local name=$1 cfg=$2 np=$3 paper=$4 scheme=${5:-avf} d
+  for d in nox gphr; do run ${name}_$d "$cfg" "$np" "{scheme: $scheme, newtonSolver: $d}"; done
+  python3 - "$out/${name}_nox" "$out/${name}_gphr" "$name" "$paper" <<'PY'
+import json, sys
+def load(d): return json.load(open(d + "/summary.json"))["runs"][0], sum(map(float, open(d + ".cpu").read().split()))
+(a, ca), (b, cb) = load(sys.argv[1]), load(sys.argv[2]); paper = sys.argv[4]
+ratio = f"{float(paper) / a['t_online_s']:.1f}x" if paper != "-" else "-"
+def cols(r, c): return f"{r['t_online_s']:>7.1f} {c:>6.1f} {r['newton_iters_avg']:>6.2f} {r['linear_iters_per_newton']:>6.2f}"
+print(f"{sys.argv[3]:<12} {a['ranks']:>5} {a['steps']:>5} | {cols(a, ca)} | {cols(b, cb)} | {a['H_err_max_rel']:>8.1e} "
+      f"{b['H_err_max_rel']:>8.1e} {paper:>7} {ratio:>7}")
+PY
+}
+if [ "$part" = paper ] || [ "$part" = all ]; then
+  printf '%-12s %5s %5s | %-28s | %-28s | %-17s\n' "" "" "" "NOX (default)" "GPHR's loop" "H_err_rel"
+  printf '%-12s %5s %5s | %7s %6s %6s %6s | %7s %6s %6s %6s | %8s %8s %7s %7s\n' run ranks steps wall_s cpu_s nwt/st \
+    lin/nw wall_s cpu_s nwt/st lin/nw nox gphr paper_s speedup
+  for np in 1 2; do
+    drivers nls_avf_np$np bench/configs/nls_paper.yaml $np 220
+    drivers swe_imr_np$np bench/configs/swe_paper.yaml $np 297.29 imr
+    drivers swe_avf_np$np bench/configs/swe_paper.yaml $np 414.10
+  done
+  [ "$part" = paper ] && exit 0
+  echo
+fi
 printf '%-28s %5s %6s %9s %9s %10s %10s %9s %9s\n' run ranks steps wall_s newton/st lin/newton H_err_rel paper_s speedup
 if [ "$part" = reuse ]; then
   for r in 1 5 20 100; do
@@ -40,14 +71,6 @@ if [ "$part" = reuse ]; then
   done
   exit 0
 fi
-for np in 1 2; do
-  [ "$part" = pc ] && break
-  run nls_avf_np$np bench/configs/nls_paper.yaml $np; row nls_avf_np$np 220
-  run swe_imr_np$np bench/configs/swe_paper.yaml $np '{scheme: imr}'; row swe_imr_np$np 297.29
-  run swe_avf_np$np bench/configs/swe_paper.yaml $np; row swe_avf_np$np 414.10
-done
-[ "$part" = paper ] && exit 0
-echo
 echo "preconditioner comparison (1 rank, T shortened to 2):"
 for pc in RILUK AMESOS2 RELAXATION none; do
   run nls_pc_$pc bench/configs/nls_paper.yaml 1 "{scheme: avf, linearSolver: {preconditioner: $pc, maxIterations: 2000}}" "{T: 2.0, dt: 0.01}"

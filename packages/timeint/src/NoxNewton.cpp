@@ -12,6 +12,7 @@
 #include <NOX_Thyra_Group.H>
 #include <NOX_Thyra_Vector.H>
 #include <NOX_Utils.H>
+#include <Ifpack2_Preconditioner.hpp>
 #include <Stratimikos_DefaultLinearSolverBuilder.hpp>
 #include <Teuchos_AbstractFactoryStd.hpp>
 #include <Thyra_DefaultLinearOpSource.hpp>
@@ -92,10 +93,9 @@ class StepEquation : public Thyra::StateFuncModelEvaluatorBase<double> {
   mutable bool assembledThisStep_ = false;
 };
 
-// Belos solver names of Stratimikos for linearSolver.method (the same Belos managers as
-// Belos::SolverFactory's names in FullModelBackend: "GMRES" is Pseudo Block GMRES there).
+// Stratimikos' names of the Belos solver managers FullModelBackend uses for linearSolver.method.
 std::string stratimikosBelosName(const std::string& method) {
-  if (method == "GMRES") return "Pseudo Block GMRES";
+  if (method == "GMRES") return "Block GMRES";
   if (method == "TFQMR") return "TFQMR";
   return "BiCGStab";
 }
@@ -163,10 +163,19 @@ NoxNewtonSolver::NoxNewtonSolver(Scheme& scheme, FullModelBackend& backend, cons
     precFactory = builder.createPreconditioningStrategy("Ifpack2");
     prec = precFactory->createPrec();
   }
+  // The first refresh builds the Ifpack2 preconditioner through the Stratimikos factory (initialize
+  // + compute); later ones only recompute its factors for the new values of the same matrix, as
+  // FullModelBackend does (the factory would rebuild the symbolic factorisation every time).
   const auto source = Thyra::defaultLinearOpSource<double>(W);
   FullModelBackend* be = &backend;
-  auto refresh = [be, precFactory, prec, source]() {
-    if (!prec.is_null() && be->preconditionerRefreshDue()) precFactory->initializePrec(source, prec.get());
+  auto ifpack = Teuchos::rcp(new RCP<Ifpack2::Preconditioner<Scalar, LO, GO, Node>>());
+  auto refresh = [be, precFactory, prec, source, ifpack]() {
+    if (prec.is_null() || !be->preconditionerRefreshDue()) return;
+    if (!ifpack->is_null()) return (*ifpack)->compute();
+    precFactory->initializePrec(source, prec.get());
+    const auto op = Teuchos::rcp_dynamic_cast<Thyra::TpetraLinearOp<Scalar, LO, GO, Node>>(
+        prec->getNonconstUnspecifiedPrecOp(), true);
+    *ifpack = Teuchos::rcp_dynamic_cast<Ifpack2::Preconditioner<Scalar, LO, GO, Node>>(op->getTpetraOperator(), true);
   };
   m.model = Teuchos::rcp(new StepEquation(scheme, m.space, W, lows, refresh));
 
