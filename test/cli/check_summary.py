@@ -83,8 +83,30 @@ def check(a):
     lo, hi = a.rom_E_L2
     require(lo <= rom["E_L2"] <= hi and 0 < rom["E_fin"], "rom E_L2 %s outside [%s, %s] (E_fin %s)"
             % (rom["E_L2"], lo, hi, rom["E_fin"]))
-    return "fom n=%d H_err_rel=%.2e; rom k=%d E_L2=%.6g E_fin=%.6g" % (
+    msg = "fom n=%d H_err_rel=%.2e; rom k=%d E_L2=%.6g E_fin=%.6g" % (
         fom["n"], fom["H_err_max_rel"], rom["k"], rom["E_L2"], rom["E_fin"])
+    if a.gp_deim:
+        msg += "; " + check_gp_deim(s, rom, a)
+    return msg
+
+
+def check_gp_deim(s, rom, a):
+    """GP-DEIM runs for every m asked: each ran (status ok, finite numbers), AVF conserved its own
+    H_hr to the same bound as the full model (H_model_err_max), and at the largest m the error is
+    within RATIO of the reduced model's (the issue's 10% target is the benchmark's; here the
+    default scene's measured ratio 1.0000 at m = 40 gets the same 10%)."""
+    want = sorted(a.gp_deim[:-1])
+    ratio = a.gp_deim[-1]
+    runs = [r for r in s["runs"] if r.get("method") == "gp-deim"]
+    require(sorted(r["m"] for r in runs) == want, "gp-deim runs for m = %s, expected %s" % ([r["m"] for r in runs], want))
+    for r in runs:
+        check_keys_and_numbers(r, ("E_L2", "E_fin", "t_online_s", "H_model_err_max", "cond_PtU", "t_offline_s"))
+        h0 = abs(run_of(s, "fom")["H0"])
+        require(a.scheme != "avf" or r["H_model_err_max"] <= AVF_H_REL_MAX * h0,
+                "gp-deim m=%d: H_hr drifted by %r" % (r["m"], r["H_model_err_max"]))
+    top = max(runs, key=lambda r: r["m"])
+    require(top["E_L2"] <= ratio * rom["E_L2"], "gp-deim m=%d E_L2 %r > %s x rom %r" % (top["m"], top["E_L2"], ratio, rom["E_L2"]))
+    return "gp-deim m=%s E_L2(m=%d)/E_L2(rom)=%.4f" % (want, top["m"], top["E_L2"] / rom["E_L2"])
 
 
 def same(a):
@@ -124,6 +146,8 @@ def main():
     c.add_argument("--newton-tol", type=float, default=1e-10, help="the config's integrator.newtonTolerance")
     c.add_argument("--rom-k", type=int)
     c.add_argument("--rom-E-L2", type=float, nargs=2, metavar=("LO", "HI"))
+    c.add_argument("--gp-deim", type=float, nargs="+", metavar="M",
+                   help="m values of the gp-deim runs, then the allowed E_L2 ratio to the rom at the largest m")
     c.set_defaults(fn=check)
     d = sub.add_parser("same")
     d.add_argument("a")

@@ -113,6 +113,7 @@ ModelRun evaluateReducedModel(const RunContext& ctx, const FomResult& fom, const
       .set("H_err_max_rel", H0 != 0.0 ? herr / std::abs(H0) : herr)
       .set("t_online_s", run.tOnline)
       .set("newton_iters_avg", run.ok ? double(stats.newtonIterations) / steps : nan)
+      .set("newton_matrices", run.ok ? stats.newtonMatrices : -1L)
       .set("errors_at", "saved steps (every output.saveEvery-th and the last)")
       .set("status", status);
   if (hasHamiltonian && run.ok) run.run.set("H_model_err_max", maxDeviation(run.modelHamiltonian, run.modelHamiltonian.front()));

@@ -16,6 +16,12 @@ Teuchos::ParameterList integratorValidParameters() {
   setIntParameter(pl, "maxNewtonIterations", 25, 1, 1000, "Newton iteration limit per step");
   pl.set("jacobianReuse", false,
          "chord Newton: the Newton matrix is assembled once per step (cheaper reduced models, linear convergence)");
+  pl.set("jacobianLag", false,
+         "keep the Newton matrix (and its LU) across steps and re-assemble only when Newton slows down, as CVODE "
+         "does (GPHR's Newton; same tolerance, far fewer Hessians for reduced and hyper-reduced models)");
+  setDoubleParameter(pl, "jacobianLagRate", 0.3, 1e-3, 0.99,
+                     "with jacobianLag: re-assemble when ||R|| shrinks by less than this factor in one iteration");
+  setIntParameter(pl, "jacobianLagMaxSteps", 20, 1, 1000000, "with jacobianLag: re-assemble at least every N steps");
   setChoiceParameter(pl, "newtonSolver", "nox", Teuchos::tuple<std::string>("nox", "gphr"),
                      "Newton driver of the full model's steps: nox (NOX::Thyra, configured by the nox section) or "
                      "gphr (GPHR's own loop); reduced models always use GPHR's loop (dense LU)");
@@ -52,6 +58,9 @@ NewtonOptions newtonOptionsFrom(const Teuchos::ParameterList& pl) {
   o.tolerance = pl.get<double>("newtonTolerance");
   o.maxIterations = pl.get<int>("maxNewtonIterations");
   o.reuseJacobian = pl.get<bool>("jacobianReuse");
+  o.lagJacobian = pl.get<bool>("jacobianLag");
+  o.lagRate = pl.get<double>("jacobianLagRate");
+  o.lagMaxSteps = pl.get<int>("jacobianLagMaxSteps");
   return o;
 }
 

@@ -38,6 +38,7 @@ namespace gphr {
 struct StepReport {
   int newtonIterations = 0;
   int linearIterations = 0;
+  int newtonMatrices = 0;     // Newton matrices assembled (and factored / preconditioned) in the step
   double residualNorm = 0.0;  // ||R(y1)|| at acceptance
 };
 
@@ -48,6 +49,13 @@ struct NewtonOptions {
   // iteration of each step. Converges linearly instead of quadratically, but saves the Hessian
   // assemblies that dominate the reduced model's cost (A^T Hess N A is O(n k^2)).
   bool reuseJacobian = false;
+  // Lagged Newton matrix across steps (as CVODE does): keep the last factored matrix from step to
+  // step and re-assemble only when Newton slows down (||R_{i+1}|| > lagRate ||R_i|| with a stale
+  // matrix), after lagMaxSteps steps, or when dt changes. Same tolerance, far fewer Hessians and
+  // LU factorisations for the reduced and hyper-reduced models.
+  bool lagJacobian = false;
+  double lagRate = 0.3;
+  int lagMaxSteps = 20;
 };
 
 // The one failure message of both Newton drivers (GPHR's loop and NOX): where and how far.
@@ -76,12 +84,25 @@ class AveragedGradientScheme {
   // `time` only label that message.
   StepReport step(const Vector& y0, Vector& y1, double dt, long step = 0, double time = 0.0) {
     StepReport rep;
+    if (opts_.lagJacobian && (dt != lagDt_ || ++lagAge_ > opts_.lagMaxSteps)) haveMatrix_ = false;
+    bool fresh = false;  // the current matrix was assembled in this step
+    double previous = 0.0;
     for (;;) {
       rep.residualNorm = residual(y0, y1, dt);
       if (rep.residualNorm <= opts_.tolerance) return rep;
       GPHR_REQUIRE(std::isfinite(rep.residualNorm) && rep.newtonIterations < opts_.maxIterations,
                    SolverError, newtonFailureMessage(opts_, step, time, rep));
-      if (rep.newtonIterations == 0 || !opts_.reuseJacobian) assembleNewtonMatrix(y0, y1, dt);
+      bool assemble = rep.newtonIterations == 0 || !opts_.reuseJacobian;
+      if (opts_.lagJacobian)
+        assemble = !haveMatrix_ || (!fresh && rep.newtonIterations > 0 && rep.residualNorm > opts_.lagRate * previous);
+      if (assemble) {
+        assembleNewtonMatrix(y0, y1, dt);
+        ++rep.newtonMatrices;
+        fresh = haveMatrix_ = true;
+        lagDt_ = dt;
+        lagAge_ = 0;
+      }
+      previous = rep.residualNorm;
       Backend::update(rhs_, -1.0, res_, 0.0);
       rep.linearIterations += be_.solveNewton(rhs_, dx_);
       Backend::update(y1, 1.0, dx_, 1.0);
@@ -121,6 +142,9 @@ class AveragedGradientScheme {
   QuadratureRule rule_;
   NewtonOptions opts_;
   Vector yq_, gsum_, g_, res_, rhs_, dx_;
+  bool haveMatrix_ = false;  // lagJacobian: a factored matrix from an earlier step is in the backend
+  double lagDt_ = 0.0;
+  int lagAge_ = 0;
 };
 
 }  // namespace gphr

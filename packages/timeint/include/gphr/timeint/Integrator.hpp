@@ -27,6 +27,7 @@ struct RunStats {
   long steps = 0;
   long newtonIterations = 0;
   long linearIterations = 0;
+  long newtonMatrices = 0;  // Newton matrices assembled (dense models: LU factorisations)
   double maxResidual = 0.0;
   double wallSeconds = 0.0;
 };
@@ -57,6 +58,7 @@ RunStats integrate(Stepper& scheme, Backend& backend, typename Backend::Vector& 
     stats.steps++;
     stats.newtonIterations += rep.newtonIterations;
     stats.linearIterations += rep.linearIterations;
+    stats.newtonMatrices += rep.newtonMatrices;
     stats.maxResidual = std::max(stats.maxResidual, rep.residualNorm);
     if (observer) observer(stepNo, t, y, rep);
   }
