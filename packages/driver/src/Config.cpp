@@ -50,6 +50,10 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
                      "interpolation indices: greedy DEIM (Chaturantabut-Sorensen) or QDEIM (pivoted QR)");
   setIntParameter(hyp, "maxRank", 0, 0, 1000000,
                   "singular triplets kept by the streaming POD of the DEIM snapshots; 0: max(m) + 32, at most d");
+  setChoiceParameter(hyp, "svd", "exact", Teuchos::tuple<std::string>("exact", "randomized"),
+                     "DEIM basis: exact streaming POD (incremental TSQR + SVD) or the randomized range finder (HMT11)");
+  setIntParameter(hyp, "oversampling", 10, 0, 10000, "randomized: extra columns of the sketch");
+  setIntParameter(hyp, "powerIterations", 1, 0, 10, "randomized: power iterations (one streamed pass each)");
   setIntParameter(hyp, "blockSnapshots", 0, 0, 100000,
                   "reduced-Jacobian snapshots per incremental POD step; 0: about maxRank columns per step");
   auto& out = pl.sublist("output");

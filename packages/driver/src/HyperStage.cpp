@@ -63,6 +63,9 @@ CachedDeimBasis deimBasisFor(const RunContext& ctx, const RomStages& st, const M
     DeimBasisOptions opt;
     opt.snapshotEvery = hyp.get<int>("snapshotEvery");
     opt.blockSnapshots = hyp.get<int>("blockSnapshots");
+    opt.svd = hyp.get<std::string>("svd");
+    opt.oversampling = hyp.get<int>("oversampling");
+    opt.powerIterations = hyp.get<int>("powerIterations");
     opt.maxRank = hyp.get<int>("maxRank") > 0 ? hyp.get<int>("maxRank")
                                               : *std::max_element(ms.begin(), ms.end()) + 32;
     out.basis = computeDeimBasis(trainingSystems(ctx, st.training), st.training.snapshots, A, opt);

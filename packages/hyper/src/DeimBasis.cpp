@@ -1,70 +1,197 @@
 #include "gphr/hyper/DeimBasis.hpp"
 
+#include <Teuchos_BLAS.hpp>
+#include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_LAPACK.hpp>
+
+#include <cmath>
+#include <random>
+
 #include "gphr/core/Error.hpp"
 #include "gphr/reduction/ReducedRowKernel.hpp"
 #include "gphr/reduction/StreamingPod.hpp"
 
 namespace gphr {
 
-DeimBasis computeDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& systems,
-                           const std::vector<RCP<const MultiVector>>& states, const MultiVector& A,
-                           const DeimBasisOptions& opt) {
-  GPHR_REQUIRE(!systems.empty() && systems.size() == states.size(), InputError, "DEIM basis: ", systems.size(),
-               " systems for ", states.size(), " snapshot sets (need one per training parameter)");
-  GPHR_REQUIRE(opt.snapshotEvery >= 1, InputError, "DEIM basis: snapshotEvery = ", opt.snapshotEvery,
-               " (allowed: >= 1)");
+namespace {
+
+// Calls fn(jac, index) for every used reduced-Jacobian snapshot, jac = this rank's rows of
+// J_G(y0_j + A A^T y_s) A (row-major, local rows x 2k). Written once for every pass of both SVDs.
+template <class Fn>
+long forEachJacobianSnapshot(const std::vector<RCP<const HamiltonianSystem>>& systems,
+                             const std::vector<RCP<const MultiVector>>& states, const MultiVector& A, int every,
+                             std::vector<Scalar>& jac, Fn&& fn) {
   const RCP<const Map> rowMap = systems[0]->nonlinearTerm().rowMap();
   const int r = static_cast<int>(A.getNumVectors());
-  const LO nl = static_cast<LO>(rowMap->getNodeNumElements());
-  const GO d = static_cast<GO>(rowMap->getGlobalNumElements());
-  const int maxRank = static_cast<int>(std::min<GO>(d, opt.maxRank > 0 ? opt.maxRank : kDefaultDeimRank));
-  // Snapshots per POD step (the same on any rank count): a step costs O(d (rank + columns)^2), so
-  // about maxRank new columns per step balances the number of steps against their size.
-  const int perBlock = opt.blockSnapshots > 0 ? opt.blockSnapshots : std::max(1, (maxRank + r - 1) / r);
-  StreamingPod pod(rowMap, maxRank, perBlock * r);
   auto local = rcp(new Map(r, 0, rowMap->getComm(), Tpetra::LocallyReplicated));
-  MultiVector block(rowMap, static_cast<size_t>(perBlock) * r);
-  std::vector<Scalar> jac(static_cast<size_t>(nl) * r);
-  int filled = 0;
   long used = 0;
-  auto flush = [&] {
-    if (filled == 0) return;
-    if (filled == perBlock) {
-      pod.add(block);
-    } else {
-      pod.add(*block.subView(Teuchos::Range1D(0, static_cast<size_t>(filled) * r - 1)));
-    }
-    filled = 0;
-  };
   for (size_t j = 0; j < systems.size(); ++j) {
     const HamiltonianSystem& sys = *systems[j];
-    GPHR_REQUIRE(sys.nonlinearTerm().rowMap()->isSameAs(*rowMap), InputError,
-                 "DEIM basis: training system ", j, " has another row map of G");
+    GPHR_REQUIRE(sys.nonlinearTerm().rowMap()->isSameAs(*rowMap), InputError, "DEIM basis: training system ", j,
+                 " has another row map of G");
     ReducedRowKernel kernel(sys.nonlinearTermPtr(), ownedRowSample(sys, A), sys.space().comm());
     MultiVector Z(local, states[j]->getNumVectors());
     Z.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, A, *states[j], 0.0);  // z = A^T y_s
     auto zv = Z.getLocalViewHost(Tpetra::Access::ReadOnly);
     Teuchos::SerialDenseVector<int, double> z(r);
-    for (size_t c = 0; c < states[j]->getNumVectors(); c += opt.snapshotEvery) {
+    for (size_t c = 0; c < states[j]->getNumVectors(); c += every) {
       for (int i = 0; i < r; ++i) z(i) = zv(i, c);
       kernel.evaluate(z, true, false);
       kernel.reducedJacobian(jac.data());
-      {
-        auto b = block.getLocalViewHost(Tpetra::Access::ReadWrite);
-        for (LO i = 0; i < nl; ++i)
-          for (int a = 0; a < r; ++a) b(i, static_cast<size_t>(filled) * r + a) = jac[static_cast<size_t>(i) * r + a];
-      }
-      ++used;
-      if (++filled == perBlock) flush();
+      fn(jac, used++);
     }
   }
+  return used;
+}
+
+void checkInputs(const std::vector<RCP<const HamiltonianSystem>>& systems,
+                 const std::vector<RCP<const MultiVector>>& states, const DeimBasisOptions& opt) {
+  GPHR_REQUIRE(!systems.empty() && systems.size() == states.size(), InputError, "DEIM basis: ", systems.size(),
+               " systems for ", states.size(), " snapshot sets (need one per training parameter)");
+  GPHR_REQUIRE(opt.snapshotEvery >= 1, InputError, "DEIM basis: snapshotEvery = ", opt.snapshotEvery,
+               " (allowed: >= 1)");
+  GPHR_REQUIRE(opt.svd == "exact" || opt.svd == "randomized", InputError, "DEIM basis: svd '", opt.svd,
+               "' is not one of 'exact', 'randomized'");
+}
+
+void requireNonzero(long used, int rank) {
+  GPHR_REQUIRE(rank > 0, InputError, "DEIM basis: the ", used,
+               " reduced-Jacobian snapshots are all zero (a linear problem, e.g. eps = 0, has nothing to hyper-reduce)");
+}
+
+// Randomized range finder (Halko, Martinsson & Tropp 2011, Alg. 4.3/4.4) over the streamed M_J:
+//   Y = M_J Omega (Omega Gaussian, regenerated per snapshot from a seed: the same on any rank
+//   count), q power passes Y = M_J M_J^T Q, Q = orth(Y), then B B^T = sum_s (Q^T J_s)(Q^T J_s)^T
+//   (ell x ell, LAPACK SYEV: small and dense), U = Q W, sigma = sqrt(lambda).
+// Each pass regenerates the snapshots (cheap: one kernel evaluation each); nothing of size
+// d x (2k states) is held. The Gram matrix squares sigma: values below ~1e-7 sigma_1 are not
+// resolved, far below the DEIM sizes worth using.
+DeimBasis randomizedDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& systems,
+                              const std::vector<RCP<const MultiVector>>& states, const MultiVector& A,
+                              const DeimBasisOptions& opt, int maxRank) {
+  const RCP<const Map> rowMap = systems[0]->nonlinearTerm().rowMap();
+  const auto& comm = *rowMap->getComm();
+  const int r = static_cast<int>(A.getNumVectors());
+  const LO nl = static_cast<LO>(rowMap->getNodeNumElements());
+  const GO d = static_cast<GO>(rowMap->getGlobalNumElements());
+  const int ell = static_cast<int>(std::min<GO>(d, maxRank + opt.oversampling));
+  Teuchos::BLAS<int, double> blas;
+  std::vector<Scalar> jac(static_cast<size_t>(nl) * r), omega(static_cast<size_t>(r) * ell),
+      ct(static_cast<size_t>(r) * ell), ctSum(ct.size());
+  MultiVector Y(rowMap, ell);
+  auto yData = [&] { return Y.getLocalViewHost(Tpetra::Access::ReadWrite).data(); };  // column-major, stride nl
+  GPHR_REQUIRE(Y.isConstantStride() && (nl == 0 || Y.getStride() == static_cast<size_t>(nl)), InputError,
+               "DEIM basis: unexpected MultiVector layout");
+  // Pass 0: Y = sum_s J_s Omega_s.
+  long used = forEachJacobianSnapshot(systems, states, A, opt.snapshotEvery, jac, [&](const auto& J, long s) {
+    std::mt19937_64 rng(opt.seed + 0x9E3779B97F4A7C15ull * static_cast<unsigned long long>(s + 1));
+    std::normal_distribution<double> normal;
+    for (auto& x : omega) x = normal(rng);
+    if (nl > 0) blas.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, nl, ell, r, 1.0, J.data(), r, omega.data(), r, 1.0, yData(), nl);
+  });
+  // Q = orth(Y) (StreamingPod: TSQR, or the replicated route when ell > rows per rank).
+  auto orth = [&] {
+    StreamingPod q(rowMap, ell, ell, -1.0);
+    q.add(Y);
+    requireNonzero(used, q.rank());
+    return rcp(new MultiVector(q.leftVectors(), Teuchos::Copy));
+  };
+  // C_s = J_s^T Q (r x ell), summed over the ranks.
+  auto project = [&](const MultiVector& Q, const std::vector<Scalar>& J) {
+    const int cols = static_cast<int>(Q.getNumVectors());
+    std::fill(ct.begin(), ct.end(), 0.0);
+    auto qv = Q.getLocalViewHost(Tpetra::Access::ReadOnly);
+    if (nl > 0) blas.GEMM(Teuchos::NO_TRANS, Teuchos::NO_TRANS, r, cols, nl, 1.0, J.data(), r, qv.data(), nl, 0.0, ct.data(), r);
+    Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, r * cols, ct.data(), ctSum.data());
+    return cols;
+  };
+  RCP<MultiVector> Q = orth();
+  for (int pass = 0; pass < opt.powerIterations; ++pass) {  // Y = M M^T Q
+    Y = MultiVector(rowMap, Q->getNumVectors());
+    forEachJacobianSnapshot(systems, states, A, opt.snapshotEvery, jac, [&](const auto& J, long) {
+      const int cols = project(*Q, J);
+      if (nl > 0) blas.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, nl, cols, r, 1.0, J.data(), r, ctSum.data(), r, 1.0, yData(), nl);
+    });
+    Q = orth();
+  }
+  const int cols = static_cast<int>(Q->getNumVectors());
+  std::vector<Scalar> G(static_cast<size_t>(cols) * cols, 0.0);
+  double energy = 0.0;
+  forEachJacobianSnapshot(systems, states, A, opt.snapshotEvery, jac, [&](const auto& J, long) {
+    project(*Q, J);
+    blas.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, cols, cols, r, 1.0, ctSum.data(), r, ctSum.data(), r, 1.0, G.data(), cols);
+    double local = 0.0;
+    for (double x : J) local += x * x;
+    double global = 0.0;
+    Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, local, Teuchos::outArg(global));
+    energy += global;
+  });
+  std::vector<double> lambda(cols), work(1);
+  Teuchos::LAPACK<int, double> lapack;
+  int info = 0;
+  lapack.SYEV('V', 'U', cols, G.data(), cols, lambda.data(), work.data(), -1, &info);
+  work.resize(std::max(1, static_cast<int>(work[0])));
+  lapack.SYEV('V', 'U', cols, G.data(), cols, lambda.data(), work.data(), static_cast<int>(work.size()), &info);
+  GPHR_REQUIRE(info == 0, SolverError, "DEIM basis: LAPACK SYEV failed (info = ", info, ")");
+  DeimBasis out;
+  const double floor = 1e-7 * std::sqrt(std::max(lambda[cols - 1], 0.0));  // Gram: sqrt(eps) resolution
+  auto local = rcp(new Map(cols, 0, rowMap->getComm(), Tpetra::LocallyReplicated));
+  for (int j = cols - 1; j >= 0 && static_cast<int>(out.singularValues.size()) < maxRank; --j) {
+    const double sigma = std::sqrt(std::max(lambda[j], 0.0));
+    if (sigma <= floor || sigma == 0.0) break;
+    out.singularValues.push_back(sigma);
+  }
+  const int keep = static_cast<int>(out.singularValues.size());
+  requireNonzero(used, keep);
+  MultiVector W(local, keep);
+  {
+    auto w = W.getLocalViewHost(Tpetra::Access::OverwriteAll);
+    for (int c = 0; c < keep; ++c)
+      for (int a = 0; a < cols; ++a) w(a, c) = G[a + static_cast<size_t>(cols) * (cols - 1 - c)];
+  }
+  out.U = rcp(new MultiVector(rowMap, keep));
+  out.U->multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, *Q, W, 0.0);
+  out.snapshots = used;
+  out.energy = energy;
+  return out;
+}
+
+}  // namespace
+
+DeimBasis computeDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& systems,
+                           const std::vector<RCP<const MultiVector>>& states, const MultiVector& A,
+                           const DeimBasisOptions& opt) {
+  checkInputs(systems, states, opt);
+  const RCP<const Map> rowMap = systems[0]->nonlinearTerm().rowMap();
+  const int r = static_cast<int>(A.getNumVectors());
+  const LO nl = static_cast<LO>(rowMap->getNodeNumElements());
+  const GO d = static_cast<GO>(rowMap->getGlobalNumElements());
+  const int maxRank = static_cast<int>(std::min<GO>(d, opt.maxRank > 0 ? opt.maxRank : kDefaultDeimRank));
+  if (opt.svd == "randomized") return randomizedDeimBasis(systems, states, A, opt, maxRank);
+  // Snapshots per POD step (the same on any rank count): a step costs O(d (rank + columns)^2), so
+  // about maxRank new columns per step balances the number of steps against their size.
+  const int perBlock = opt.blockSnapshots > 0 ? opt.blockSnapshots : std::max(1, (maxRank + r - 1) / r);
+  StreamingPod pod(rowMap, maxRank, perBlock * r);
+  MultiVector block(rowMap, static_cast<size_t>(perBlock) * r);
+  std::vector<Scalar> jac(static_cast<size_t>(nl) * r);
+  int filled = 0;
+  auto flush = [&] {
+    if (filled == perBlock) pod.add(block);
+    else if (filled > 0) pod.add(*block.subView(Teuchos::Range1D(0, static_cast<size_t>(filled) * r - 1)));
+    filled = 0;
+  };
+  const long used = forEachJacobianSnapshot(systems, states, A, opt.snapshotEvery, jac, [&](const auto& J, long) {
+    auto b = block.getLocalViewHost(Tpetra::Access::ReadWrite);
+    for (LO i = 0; i < nl; ++i)
+      for (int a = 0; a < r; ++a) b(i, static_cast<size_t>(filled) * r + a) = J[static_cast<size_t>(i) * r + a];
+    if (++filled == perBlock) flush();
+  });
   flush();
+  requireNonzero(used, pod.rank());
   DeimBasis out;
   out.singularValues = pod.singularValues();
   out.snapshots = used;
   out.energy = pod.totalEnergy();
-  GPHR_REQUIRE(pod.rank() > 0, InputError, "DEIM basis: the ", used,
-               " reduced-Jacobian snapshots are all zero (a linear problem, e.g. eps = 0, has nothing to hyper-reduce)");
   out.U = rcp(new MultiVector(pod.leftVectors(), Teuchos::Copy));
   return out;
 }

@@ -1,8 +1,8 @@
 #pragma once
 // The DEIM basis of GP-DEIM (paper sec:ConstrDEIM): POD of the reduced-Jacobian snapshots
 //   M_J = [ J_G(y0_j + A A^T y_s) A ]   (eq:snaps_JG, shifted: y_s = y - y0_j),
-// d x 2k per kept training state, streamed into an incremental SVD (StreamingPod) so that M_J
-// (d x 2k x states: 5 GB at the paper's NLS sizes) is never held.
+// d x 2k per kept training state, streamed into an incremental SVD (StreamingPod) or a
+// randomized range finder, so that M_J (d x 2k x states: 5 GB at the paper's NLS sizes) is never held.
 #include <string>
 #include <vector>
 
@@ -14,6 +14,12 @@ struct DeimBasisOptions {
   int maxRank = 0;        // singular triplets kept between blocks (>= the largest m wanted); 0: min(d, 400)
   int snapshotEvery = 1;  // use every N-th stored training state (the paper: 20)
   int blockSnapshots = 0; // reduced-Jacobian snapshots (2k columns each) per POD step; 0: ~maxRank columns
+  // exact: the streaming POD (incremental TSQR + SVD); randomized: the range finder of HMT11
+  // (one streamed pass + powerIterations passes + one for B B^T), oversampling extra columns.
+  std::string svd = "exact";
+  int oversampling = 10;
+  int powerIterations = 1;
+  unsigned long long seed = 20231122;
 };
 
 constexpr int kDefaultDeimRank = 400;
