@@ -10,6 +10,15 @@ GpDeimModel::GpDeimModel(RCP<const NonlinearTerm> term, const SampleMesh& mesh)
     : ReducedHamiltonian(mesh.linear, rcp(new ReducedRowKernel(term, mesh.sample, Teuchos::null))),
       numbersHeld_(mesh.numbersHeld()) {}
 
+RCP<GpDeimModel> buildGpDeimModel(const HamiltonianSystem& system, const MultiVector& A, const MultiVector& U, int m,
+                                  const std::string& indexMethod, DeimWeights* diagnostics) {
+  const auto idx = selectDeimIndices(U, m, indexMethod);
+  const auto w = computeDeimWeights(U, idx, *system.nonlinearTerm().weights());
+  if (diagnostics) *diagnostics = w;
+  return rcp(new GpDeimModel(system.nonlinearTermPtr(),
+                             buildSampleMesh(system, A, idx, w.weights, reduceLinearPart(system, A))));
+}
+
 double smallestEigenvalue(const DenseMatrix& H) {
   const int n = H.numRows();
   std::vector<double> a(static_cast<size_t>(n) * n), ev(n), work(1);

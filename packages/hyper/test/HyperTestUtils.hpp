@@ -45,12 +45,7 @@ inline HyperCase nlsCase(GO n, int k, const RCP<const Comm>& c) {
 
 inline RCP<GpDeimModel> gpDeimModel(const HyperCase& hc, int m, const std::string& method = "deim",
                                     DeimWeights* diag = nullptr) {
-  const auto idx = selectDeimIndices(*hc.deim.U, m, method);
-  const auto w = computeDeimWeights(*hc.deim.U, idx, *hc.test.system->nonlinearTerm().weights());
-  if (diag) *diag = w;
-  const auto& sys = *hc.test.system;
-  auto mesh = buildSampleMesh(sys, *hc.basis.A, idx, w.weights, reduceLinearPart(sys, *hc.basis.A));
-  return rcp(new GpDeimModel(sys.nonlinearTermPtr(), mesh));
+  return buildGpDeimModel(*hc.test.system, *hc.basis.A, *hc.deim.U, m, method, diag);
 }
 
 inline Teuchos::ParameterList denseIntegrator(const std::string& scheme, double tol = 1e-12) {

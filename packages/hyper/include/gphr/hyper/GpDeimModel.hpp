@@ -5,6 +5,7 @@
 // a DenseHamiltonian on its sample mesh (replicated on every rank), so IMR/AVF and the dense
 // Newton serve it unchanged and it is Hamiltonian by construction.
 #include "gphr/hyper/SampleMesh.hpp"
+#include "gphr/reduction/Deim.hpp"
 
 namespace gphr {
 
@@ -20,6 +21,12 @@ class GpDeimModel final : public ReducedHamiltonian {
  private:
   size_t numbersHeld_;
 };
+
+// The whole online construction in one call, for users embedding GPHR: DEIM indices ("deim" or
+// "qdeim") from the first m columns of U, the weights from the system's v, the sample mesh and
+// the model. `diagnostics` (optional) receives the weights and cond(P^T U). Collective.
+RCP<GpDeimModel> buildGpDeimModel(const HamiltonianSystem& system, const MultiVector& A, const MultiVector& U, int m,
+                                  const std::string& indexMethod = "deim", DeimWeights* diagnostics = nullptr);
 
 // Smallest eigenvalue of a symmetric Hessian (LAPACK SYEV: a small dense eigenproblem, where an
 // Anasazi solve would cost more than it saves). Used to flag (k, m) whose H_hr is not convex
