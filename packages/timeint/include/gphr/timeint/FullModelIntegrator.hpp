@@ -1,7 +1,7 @@
 #pragma once
 // The full model's time integrator: FullModelBackend + AveragedGradientScheme, configured by a
 // validated `integrator` ParameterList (integratorValidParameters()). The Newton driver of each
-// step is NOX (NoxNewtonSolver, default) or GPHR's own loop (integrator.newtonSolver: gphr).
+// step is GPHR's own loop (default) or NOX (integrator.newtonSolver: nox, NoxNewtonSolver).
 #include <memory>
 
 #include "gphr/timeint/FullModelBackend.hpp"
