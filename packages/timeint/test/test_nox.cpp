@@ -195,6 +195,11 @@ TEST(NoxConfig, SectionsArePassedThroughWithDefaults) {
   // The integrator keeps the nox section as given (no GPHR keys added to it) ...
   EXPECT_EQ(integ.parameters().sublist("nox").sublist("Line Search").get<std::string>("Method"), "Backtrack");
   EXPECT_EQ(integ.parameters().sublist("nox").sublist("Line Search").sublist("Backtrack").get<int>("Max Iters"), 7);
+  // What NOX gets: the user's keys, GPHR's defaults for the linear tolerance and the printing.
+  const auto& np = integ.nox()->noxParameters();
+  EXPECT_EQ(np.sublist("Line Search").get<std::string>("Method"), "Backtrack");
+  EXPECT_EQ(np.sublist("Direction").sublist("Newton").sublist("Linear Solver").get<double>("Tolerance"), 1e-13);
+  EXPECT_EQ(np.sublist("Printing").get<int>("Output Information"), 0);
   // ... and an invalid value inside a passed-through section is NOX's to reject.
   pl.sublist("nox").sublist("Line Search").set("Method", "Bogus");
   EXPECT_ANY_THROW(FullModelIntegrator(s.system, pl));

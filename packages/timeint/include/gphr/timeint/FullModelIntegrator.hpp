@@ -24,6 +24,7 @@ class FullModelIntegrator {
   FullModelBackend& backend() { return backend_; }
   const Teuchos::ParameterList& parameters() const { return params_; }
   bool usesNox() const { return nox_ != nullptr; }
+  const NoxNewtonSolver* nox() const { return nox_.get(); }  // null under GPHR's loop
 
  private:
   static Teuchos::ParameterList validated(Teuchos::ParameterList pl);
