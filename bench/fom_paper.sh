@@ -50,7 +50,7 @@ print(f"{sys.argv[3]:<12} {a['ranks']:>5} {a['steps']:>5} | {cols(a, ca)} | {col
 PY
 }
 if [ "$part" = paper ] || [ "$part" = all ]; then
-  printf '%-12s %5s %5s | %-28s | %-28s | %-17s\n' "" "" "" "NOX (default)" "GPHR's loop" "H_err_rel"
+  printf '%-12s %5s %5s | %-28s | %-28s | %-17s\n' "" "" "" "NOX" "GPHR's loop (default)" "H_err_rel"
   printf '%-12s %5s %5s | %7s %6s %6s %6s | %7s %6s %6s %6s | %8s %8s %7s %7s\n' run ranks steps wall_s cpu_s nwt/st \
     lin/nw wall_s cpu_s nwt/st lin/nw nox gphr paper_s speedup
   for np in 1 2; do

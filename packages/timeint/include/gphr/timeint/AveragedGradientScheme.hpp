@@ -78,10 +78,10 @@ class AveragedGradientScheme {
   const QuadratureRule& rule() const { return rule_; }
   const NewtonOptions& options() const { return opts_; }
 
-  // Solve (*) for y1, starting from the guess in y1, with GPHR's own Newton loop (the dense
-  // reduced models' driver; the full model's default driver is NOX, NoxNewtonSolver, which calls
-  // residual() and assembleNewtonMatrix() below). Throws SolverError if Newton fails; `step` and
-  // `time` only label that message.
+  // Solve (*) for y1, starting from the guess in y1, with GPHR's own Newton loop (the driver of
+  // the reduced models and, by default, of the full model; the full model's alternative driver is
+  // NOX, NoxNewtonSolver, which calls residual() and assembleNewtonMatrix() below). Throws
+  // SolverError if Newton fails; `step` and `time` only label that message.
   StepReport step(const Vector& y0, Vector& y1, double dt, long step = 0, double time = 0.0) {
     StepReport rep;
     if (opts_.lagJacobian && (dt != lagDt_ || ++lagAge_ > opts_.lagMaxSteps)) haveMatrix_ = false;

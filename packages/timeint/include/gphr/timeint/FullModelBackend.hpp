@@ -38,6 +38,7 @@ class FullModelBackend {
   // the preconditioner is to be refactored (every linearSolver.preconditionerRecomputeEvery).
   RCP<CrsMatrix> newtonMatrix() const { return newtonMatrix_; }
   bool preconditionerRefreshDue() const { return refreshDue_; }
+  long newtonMatrixAssemblies() const { return assemblies_; }  // endNewtonMatrix() calls so far
 
   static void update(Vector& y, double a, const Vector& x, double b) { y.update(a, x, b); }
   static void update(Vector& y, double a, const Vector& x, double b, const Vector& z, double c) {

@@ -1,7 +1,7 @@
 #pragma once
 // The full model's time integrator: FullModelBackend + AveragedGradientScheme, configured by a
 // validated `integrator` ParameterList (integratorValidParameters()). The Newton driver of each
-// step is NOX (NoxNewtonSolver, default) or GPHR's own loop (integrator.newtonSolver: gphr).
+// step is GPHR's own loop (default) or NOX (integrator.newtonSolver: nox, NoxNewtonSolver).
 #include <memory>
 
 #include "gphr/timeint/FullModelBackend.hpp"
@@ -24,6 +24,7 @@ class FullModelIntegrator {
   FullModelBackend& backend() { return backend_; }
   const Teuchos::ParameterList& parameters() const { return params_; }
   bool usesNox() const { return nox_ != nullptr; }
+  const NoxNewtonSolver* nox() const { return nox_.get(); }  // null under GPHR's loop
 
  private:
   static Teuchos::ParameterList validated(Teuchos::ParameterList pl);
