@@ -1,11 +1,20 @@
 #include "gphr/reduction/ReducedRowKernel.hpp"
 
-#include <Teuchos_BLAS.hpp>
+#include <KokkosBlas2_gemv.hpp>
+#include <KokkosBlas3_gemm.hpp>
 #include <Teuchos_CommHelpers.hpp>
 
 #include "gphr/core/Error.hpp"
 
 namespace gphr {
+
+namespace {
+// Column-major (LayoutLeft) views of the row-major buffers: KokkosKernels is instantiated for
+// LayoutLeft (and calls BLAS for host views), and a row-major M x r array is a column-major r x M one.
+using ColMajor = Kokkos::View<Scalar**, Kokkos::LayoutLeft, Kokkos::HostSpace, Kokkos::MemoryUnmanaged>;
+using Vec = Kokkos::View<Scalar*, Kokkos::LayoutLeft, Kokkos::HostSpace, Kokkos::MemoryUnmanaged>;
+using ConstVec = Kokkos::View<const Scalar*, Kokkos::LayoutLeft, Kokkos::HostSpace, Kokkos::MemoryUnmanaged>;
+}  // namespace
 
 ReducedRowKernel::ReducedRowKernel(RCP<const NonlinearTerm> term, RowSample sample, RCP<const Comm> sumOver)
     : term_(term), sample_(std::move(sample)), sumOver_(sumOver) {
@@ -52,17 +61,12 @@ void ReducedRowKernel::setWeights(const std::vector<Scalar>& w) {
 void ReducedRowKernel::evaluate(const DenseVector& z, bool withGradient, bool withHessian) {
   const int r = reducedDim();
   GPHR_REQUIRE(z.length() == r, InputError, "reduced row kernel: z has length ", z.length(), ", expected ", r);
-  {
-    const auto AS = AS_;
-    const auto yref = yref_;
-    const auto vals = batch_.values;
-    const Kokkos::View<const Scalar*, Kokkos::HostSpace, Kokkos::MemoryUnmanaged> zv(z.values(), r);
-    Kokkos::parallel_for(
-        "gphr::reducedStencilValues", Kokkos::RangePolicy<ExecSpace>(0, AS.extent(0)), KOKKOS_LAMBDA(const size_t j) {
-          Scalar v = yref(j);
-          for (int c = 0; c < r; ++c) v += AS(j, c) * zv(c);
-          vals(j) = v;
-        });
+  if (numStencilEntries() > 0) {
+    // values = yref + A_S z: KokkosBlas gemv on A_S^T (column-major r x M, the same memory as the
+    // row-major A_S), which is BLAS on a host build and a device kernel elsewhere.
+    Kokkos::deep_copy(batch_.values, yref_);
+    const ConstVec zv(z.values(), r);
+    KokkosBlas::gemv("T", 1.0, basisT(), zv, 1.0, batch_.values);
   }
   RowBatch b = batch_;
   if (!withGradient) b.grad = HostView1();
@@ -139,8 +143,7 @@ void ReducedRowKernel::addGradient(DenseVector& g, double scale) const {
   weightedGradients();
   // A_S^T u: AS_ row-major (M x r) is A_S^T column-major (r x M).
   std::fill(gradBuf_.begin(), gradBuf_.end(), 0.0);
-  Teuchos::BLAS<int, double> blas;
-  if (M > 0) blas.GEMV(Teuchos::NO_TRANS, r, static_cast<int>(M), 1.0, AS_.data(), r, u_.data(), 1, 0.0, gradBuf_.data(), 1);
+  if (M > 0) KokkosBlas::gemv("N", 1.0, basisT(), ConstVec(u_.data(), M), 0.0, Vec(gradBuf_.data(), r));
   if (!sumOver_.is_null()) {
     Teuchos::reduceAll(*sumOver_, Teuchos::REDUCE_SUM, r, gradBuf_.data(), sumBuf_.data());
     std::copy(sumBuf_.begin(), sumBuf_.begin() + r, gradBuf_.begin());
@@ -153,11 +156,9 @@ void ReducedRowKernel::addHessian(DenseMatrix& H, double scale) const {
   const size_t M = numStencilEntries();
   weightedHessianBlocks();
   // A_S^T W: both row-major M x r, i.e. column-major r x M: (A_S^T)(W^T)^T.
-  Teuchos::BLAS<int, double> blas;
   std::fill(hessBuf_.begin(), hessBuf_.end(), 0.0);
   if (M > 0)
-    blas.GEMM(Teuchos::NO_TRANS, Teuchos::TRANS, r, r, static_cast<int>(M), 1.0, AS_.data(), r, W_.data(), r, 0.0,
-              hessBuf_.data(), r);
+    KokkosBlas::gemm("N", "T", 1.0, basisT(), ColMajor(W_.data(), r, M), 0.0, ColMajor(hessBuf_.data(), r, r));
   if (!sumOver_.is_null()) {
     Teuchos::reduceAll(*sumOver_, Teuchos::REDUCE_SUM, r * r, hessBuf_.data(), sumBuf_.data());
     hessBuf_.swap(sumBuf_);

@@ -11,8 +11,9 @@
 // One kernel evaluation gives value, gradient and Hessian together.
 //
 // Kernels: Kokkos parallel_for over stencil entries (values y = yref + A_S z) and over rows
-// (the blocks w_i Hess G_i A_Si), then one BLAS GEMV / GEMM with the stacked basis rows
-// (an M x 2k matrix, M = sum of the stencil sizes). Buffers are allocated once, at construction.
+// (the blocks w_i Hess G_i A_Si), and KokkosBlas GEMV / GEMM with the stacked basis rows (an
+// M x 2k matrix, M = sum of the stencil sizes; BLAS on a host build, device kernels on a GPU
+// build). Buffers are allocated once, at construction.
 #include <Teuchos_SerialDenseMatrix.hpp>
 #include <Teuchos_SerialDenseVector.hpp>
 #include <vector>
@@ -63,6 +64,9 @@ class ReducedRowKernel {
 
  private:
   using Rows2 = Kokkos::View<Scalar**, Kokkos::LayoutRight, Kokkos::HostSpace>;
+  // A_S^T as a column-major r x M view of AS_'s memory (KokkosBlas' instantiated layout).
+  using ConstColMajor = Kokkos::View<const Scalar**, Kokkos::LayoutLeft, Kokkos::HostSpace, Kokkos::MemoryUnmanaged>;
+  ConstColMajor basisT() const { return ConstColMajor(AS_.data(), static_cast<size_t>(reducedDim()), AS_.extent(0)); }
   void weightedGradients() const;      // u = w_i grad G_i per stencil entry
   void weightedHessianBlocks() const;  // W = w_i Hess G_i A_Si per row
   RCP<const NonlinearTerm> term_;
