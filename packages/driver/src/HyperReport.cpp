@@ -103,19 +103,19 @@ std::string spaceTimeData(const RunContext& ctx, const FomResult& fom, const Rom
   fields.push_back({"fom", f});
   for (const auto& r : st.runs)
     if (!r.states.empty()) fields.push_back({r.label(), {r.states.begin(), r.states.end()}});
+  // Gathered on rank 0 by one Import per state (offline). Blocks are separated by two blank lines,
+  // as gnuplot's `index` wants; the "# name" lines are gnuplot comments naming them.
+  const RCP<const Map> map = fom.trajectory->getMap();
+  const GO N = static_cast<GO>(map->getGlobalNumElements()), n = N / 2;
+  const auto root = rcp(new Map(N, ctx.comm->getRank() == 0 ? N : 0, 0, ctx.comm));
+  const Import toRoot(map, root);
+  Vector g(root);
   std::ostringstream os;
   os.precision(6);
   for (const auto& [name, states] : fields) {
-    os << "# " << name << "\n";
-    for (size_t j = 0; j < states.size(); ++j) {
-      const GO N = states[j]->getGlobalLength(), n = N / 2;
-      std::vector<GO> all(N);
-      for (GO i = 0; i < N; ++i) all[i] = i;
-      auto map = states[j]->getMap();
-      // gather to rank 0 via an import (states are on the state map)
-      auto root = rcp(new Map(N, ctx.comm->getRank() == 0 ? N : 0, 0, ctx.comm));
-      Vector g(root);
-      g.doImport(*states[j], Import(map, root), Tpetra::INSERT);
+    os << (os.tellp() > 0 ? "\n\n" : "") << "# " << name << "\n";
+    for (const auto& state : states) {
+      g.doImport(*state, toRoot, Tpetra::INSERT);
       if (ctx.comm->getRank() != 0) continue;
       auto v = g.getLocalViewHost(Tpetra::Access::ReadOnly);
       for (GO i = 0; i < n; ++i) os << (i ? "," : "") << std::sqrt(v(i, 0) * v(i, 0) + v(n + i, 0) * v(n + i, 0));
@@ -212,20 +212,6 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
       if (line.rfind("# ", 0) == 0)
         b << "set title '" << line.substr(2) << "'\nplot '" << dat << "' index " << idx++ << " matrix with image\n";
     b << "unset multiplot\n";
-    // gnuplot's `index` separates blocks by two blank lines: rewrite the data that way.
-    std::string data = spaceTime;
-    std::string out;
-    std::istringstream in2(data);
-    bool firstBlock = true;
-    while (std::getline(in2, line)) {
-      if (line.rfind("# ", 0) == 0) {
-        if (!firstBlock) out += "\n\n";
-        firstBlock = false;
-        continue;
-      }
-      out += line + "\n";
-    }
-    std::ofstream(dat) << out;
     if (gnuplot(p.at("spacetime.png"), b.str())) written.push_back("spacetime.png");
     std::remove(dat.c_str());
   }

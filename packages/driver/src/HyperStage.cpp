@@ -94,7 +94,7 @@ ModelRun unavailable(const std::string& method, int k, int m, const std::string&
 }
 
 void runGpDeim(const RunContext& ctx, const FomResult& fom, RomStages& st, const SceneInstance& inst,
-               const MultiVector& A, int k) {
+               const MultiVector& A, int k, const ReducedLinearPart& linear) {
   const CachedDeimBasis db = deimBasisFor(ctx, st, A, k, *inst.system);
   if (k == stageK(ctx.config, st.basis).back()) st.deimSingularValues = db.basis.singularValues;
   // The reduced model's Hessian at z0 = 0, for the convexity diagnostic.
@@ -112,7 +112,7 @@ void runGpDeim(const RunContext& ctx, const FomResult& fom, RomStages& st, const
     Teuchos::Time clock("deim pair");
     clock.start();
     DeimWeights w;
-    auto hr = buildGpDeimModel(*inst.system, A, *db.basis.U, m, indices, &w);
+    auto hr = buildGpDeimModel(*inst.system, A, *db.basis.U, m, indices, &w, &linear);
     GpDeimModel& model = *hr;
     const double tPair = clock.stop();
     DenseMatrix Hhr(2 * k, 2 * k);
@@ -182,7 +182,7 @@ void runHyperReduction(const RunContext& ctx, const FomResult& fom, RomStages& s
   for (int k : stageK(ctx.config, st.basis)) {
     auto A = leadingBasis(st.basis, k);
     const ReducedLinearPart linear = reduceLinearPart(*inst.system, *A);
-    if (gp) runGpDeim(ctx, fom, st, inst, *A, k);
+    if (gp) runGpDeim(ctx, fom, st, inst, *A, k, linear);
     if (classic || sd) runGradientDeim(ctx, fom, st, inst, *A, k, linear, classic, sd);
   }
 }

@@ -11,12 +11,13 @@ GpDeimModel::GpDeimModel(RCP<const NonlinearTerm> term, const SampleMesh& mesh)
       numbersHeld_(mesh.numbersHeld()) {}
 
 RCP<GpDeimModel> buildGpDeimModel(const HamiltonianSystem& system, const MultiVector& A, const MultiVector& U, int m,
-                                  const std::string& indexMethod, DeimWeights* diagnostics) {
+                                  const std::string& indexMethod, DeimWeights* diagnostics,
+                                  const ReducedLinearPart* linear) {
   const auto idx = selectDeimIndices(U, m, indexMethod);
   const auto w = computeDeimWeights(U, idx, *system.nonlinearTerm().weights());
   if (diagnostics) *diagnostics = w;
   return rcp(new GpDeimModel(system.nonlinearTermPtr(),
-                             buildSampleMesh(system, A, idx, w.weights, reduceLinearPart(system, A))));
+                             buildSampleMesh(system, A, idx, w.weights, linear ? *linear : reduceLinearPart(system, A))));
 }
 
 double smallestEigenvalue(const DenseMatrix& H) {

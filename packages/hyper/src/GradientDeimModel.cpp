@@ -37,8 +37,7 @@ GradientDeimPair makeGradientDeimPair(const MultiVector& Ug, int m, const MultiV
   out.B.shape(r, m);
   for (int c = 0; c < r; ++c)
     for (int j = 0; j < m; ++j) out.B(c, j) = rhs[j + static_cast<size_t>(m) * c];
-  DeimWeights w = computeDeimWeights(Ug, out.entries, *Ug.getVector(0));  // for cond(P^T U) only
-  out.conditionNumber = w.conditionNumber;
+  out.conditionNumber = deimConditionNumber(Ug, out.entries);
   return out;
 }
 

@@ -102,7 +102,32 @@ std::vector<GO> qdeim(const MultiVector& U, int m) {
   for (int j = 0; j < m; ++j) idx[j] = all[jpvt[j] - 1];
   return idx;
 }
+// P^T U (m x m, column-major) from the gathered rows (row-major, nc entries each).
+std::vector<double> pointRows(const std::vector<double>& rows, int m, int nc) {
+  std::vector<double> B(static_cast<size_t>(m) * m);
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j) B[i + static_cast<size_t>(m) * j] = rows[static_cast<size_t>(i) * nc + j];
+  return B;
+}
+
+// cond_2 from the singular values (m is small: a dense LAPACK SVD is the right tool).
+double conditionNumber(std::vector<double> B, int m) {
+  std::vector<double> S(m), work(1), dummy(1);
+  int info = 0;
+  Lapack lapack;
+  lapack.GESVD('N', 'N', m, m, B.data(), m, S.data(), dummy.data(), 1, dummy.data(), 1, work.data(), -1, nullptr, &info);
+  work.resize(std::max(1, static_cast<int>(work[0])));
+  lapack.GESVD('N', 'N', m, m, B.data(), m, S.data(), dummy.data(), 1, dummy.data(), 1, work.data(),
+               static_cast<int>(work.size()), nullptr, &info);
+  return S[m - 1] > 0.0 ? S[0] / S[m - 1] : std::numeric_limits<double>::infinity();
+}
 }  // namespace
+
+double deimConditionNumber(const MultiVector& U, const std::vector<GO>& indices) {
+  const int m = static_cast<int>(indices.size()), nc = static_cast<int>(U.getNumVectors());
+  GPHR_REQUIRE(m >= 1 && m <= nc, InputError, "DEIM: ", m, " indices for a basis of ", nc, " columns");
+  return conditionNumber(pointRows(gatherRows(U, indices), m, nc), m);
+}
 
 std::vector<GO> selectDeimIndices(const MultiVector& U, int m, const std::string& method) {
   GPHR_REQUIRE(m >= 1 && m <= static_cast<int>(U.getNumVectors()), InputError, "DEIM: m = ", m,
@@ -122,22 +147,9 @@ DeimWeights computeDeimWeights(const MultiVector& U, const std::vector<GO>& indi
   MultiVector Utv(local, 1);
   Utv.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, U, v, 0.0);
   const std::vector<double> rows = gatherRows(U, indices);  // (P^T U)(i, j) = rows[i * nc + j]
-  std::vector<double> B(static_cast<size_t>(m) * m), Bsvd;
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < m; ++j) B[i + static_cast<size_t>(m) * j] = rows[static_cast<size_t>(i) * nc + j];
-  Bsvd = B;
+  std::vector<double> B = pointRows(rows, m, nc);
   DeimWeights out;
-  {  // cond_2 from the singular values (m is small: a dense LAPACK SVD is the right tool)
-    std::vector<double> S(m), work(1), dummy(1);
-    int info = 0;
-    Lapack lapack;
-    lapack.GESVD('N', 'N', m, m, Bsvd.data(), m, S.data(), dummy.data(), 1, dummy.data(), 1, work.data(), -1, nullptr,
-                 &info);
-    work.resize(std::max(1, static_cast<int>(work[0])));
-    lapack.GESVD('N', 'N', m, m, Bsvd.data(), m, S.data(), dummy.data(), 1, dummy.data(), 1, work.data(),
-                 static_cast<int>(work.size()), nullptr, &info);
-    out.conditionNumber = S[m - 1] > 0.0 ? S[0] / S[m - 1] : std::numeric_limits<double>::infinity();
-  }
+  out.conditionNumber = conditionNumber(B, m);
   out.weights.resize(m);
   auto c = Utv.getLocalViewHost(Tpetra::Access::ReadOnly);
   for (int j = 0; j < m; ++j) out.weights[j] = c(j, 0);

@@ -24,9 +24,11 @@ class GpDeimModel final : public ReducedHamiltonian {
 
 // The whole online construction in one call, for users embedding GPHR: DEIM indices ("deim" or
 // "qdeim") from the first m columns of U, the weights from the system's v, the sample mesh and
-// the model. `diagnostics` (optional) receives the weights and cond(P^T U). Collective.
+// the model. `diagnostics` (optional) receives the weights and cond(P^T U); `linear` (optional)
+// is L_r, f_r, c when the caller already has them (a sweep over m). Collective.
 RCP<GpDeimModel> buildGpDeimModel(const HamiltonianSystem& system, const MultiVector& A, const MultiVector& U, int m,
-                                  const std::string& indexMethod = "deim", DeimWeights* diagnostics = nullptr);
+                                  const std::string& indexMethod = "deim", DeimWeights* diagnostics = nullptr,
+                                  const ReducedLinearPart* linear = nullptr);
 
 // Smallest eigenvalue of a symmetric Hessian (LAPACK SYEV: a small dense eigenproblem, where an
 // Anasazi solve would cost more than it saves). Used to flag (k, m) whose H_hr is not convex

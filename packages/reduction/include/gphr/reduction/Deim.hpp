@@ -23,6 +23,8 @@ struct DeimWeights {
   std::vector<double> weights;    // (U^T P)^{-1} U^T v, one per index
   double conditionNumber = 0.0;   // cond_2(P^T U): the DEIM error amplification
 };
+// cond_2(P^T U) of U's first indices.size() columns (LAPACK SVD of the m x m matrix). Collective.
+double deimConditionNumber(const MultiVector& U, const std::vector<GO>& indices);
 // U's first indices.size() columns. Collective.
 DeimWeights computeDeimWeights(const MultiVector& U, const std::vector<GO>& indices, const Vector& v);
 
