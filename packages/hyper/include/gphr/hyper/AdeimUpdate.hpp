@@ -1,0 +1,60 @@
+#pragma once
+// The rank-r update of the DEIM basis of GP-ADEIM (paper Sec. 4.1, alg:basis_adapt), on small
+// replicated dense data: the rows P (interpolation, m) and S (sampling, m_s) of U_j and of the
+// reduced-Jacobian window F_j (d x wbar, wbar = 2k w). Nothing here is of size n or d.
+//
+//   C_j = (P^T U_j)^{-1} P^T F_j                                   DEIM coefficients (m x wbar)
+//   S^T R_j = S^T U_j C_j - S^T F_j                                 residual at the sampling rows
+//   (a, b) = argmin_{rank r} || S^T R_j + a b^T C_j ||_F            eq:min_prob
+//   b_i: eigenvectors of  C (S^T R)^T (S^T R) C^T v = lambda C C^T v  for the r largest lambda  eq:gen_eval
+//   a_i = -S^T R C^T b_i / ||C^T b_i||^2                            eq:ai_from_bi
+//   S^T U_{j+1} = S^T U_j + a b^T,  the other rows unchanged       eq:Uupdate, eq:Scheck
+#include <vector>
+
+#include "gphr/timeint/DenseBackend.hpp"
+
+namespace gphr {
+
+struct AdeimUpdateOptions {
+  // r: > 0 a fixed rank (capped by the numerical rank below); 0: the numerical rank of
+  // S^T R C^T with the relative tolerance rankTol (sigma_i > rankTol sigma_1: the scale of F
+  // does not matter, the paper's tau_r).
+  int rank = 0;
+  double rankTol = 1e-8;
+  // Directions of C with sigma_i(C) <= coefficientTol sigma_1(C) are dropped (the rank-revealing
+  // route after theo:minprob_eig_equivalence). Below 1e-8 the Gram matrix C C^T has a condition
+  // number past 1e16, numerically singular; an update along such a direction would need
+  // coefficients b ~ 1/sigma_i and fits what F barely excites.
+  double coefficientTol = 1e-8;
+};
+
+struct AdeimUpdate {
+  DenseMatrix C;                    // DEIM coefficients C_j (m x wbar)
+  DenseMatrix a;                    // m_s x r: the update of the rows S (eq:ai_from_bi)
+  DenseMatrix b;                    // m x r   (eq:gen_eval)
+  std::vector<double> eigenvalues;  // all non-zero lambda of eq:gen_eval, descending (r-bar of them)
+  int rank = 0;                     // r used (0: no update, the residual is zero)
+  int coefficientRank = 0;          // numerical rank of C kept
+  double residualBefore = 0.0;      // ||S^T R_j||_F
+  double residualAfter = 0.0;       // ||S^T R_j + a b^T C_j||_F = sqrt(before^2 - sum_{i<=r} lambda_i)
+};
+
+// PtU: P^T U_j (m x m); PtF: P^T F_j (m x wbar); StU: S^T U_j (m_s x m); StF: S^T F_j (m_s x wbar).
+// InputError on mismatched sizes or a singular P^T U; never NaN: a zero residual or a zero C gives
+// rank 0 (no update).
+AdeimUpdate computeAdeimUpdate(const DenseMatrix& PtU, const DenseMatrix& PtF, const DenseMatrix& StU,
+                               const DenseMatrix& StF, const AdeimUpdateOptions& options);
+
+// StU += a b^T (the rows S of U_{j+1}).
+void applyAdeimUpdate(const AdeimUpdate& update, DenseMatrix& StU);
+
+// The DEIM coefficients C = (P^T U)^{-1} P^T F (LAPACK GESV). InputError naming the pivot when
+// P^T U is singular.
+DenseMatrix deimCoefficients(const DenseMatrix& PtU, const DenseMatrix& PtF);
+
+// Orthonormal basis V_r (wbar x r_C) of the row space of C, r_C its numerical rank with the
+// relative tolerance tol: C_bar = V_r V_r^T = C^T (C C^T)^{-1} C, the projector of Lemma
+// theo:update_error and alg:indices_adapt, without forming C C^T.
+DenseMatrix coefficientRowSpace(const DenseMatrix& C, double tol);
+
+}  // namespace gphr

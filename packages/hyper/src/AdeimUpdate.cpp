@@ -1,0 +1,164 @@
+#include "gphr/hyper/AdeimUpdate.hpp"
+
+#include <Teuchos_LAPACK.hpp>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "gphr/core/Error.hpp"
+
+namespace gphr {
+namespace {
+
+using Teuchos::NO_TRANS;
+using Teuchos::TRANS;
+
+// Thin SVD A = U diag(s) Vt (LAPACK GESVD; A is small and dense: an Anasazi solve would cost
+// more than it saves at these sizes).
+struct ThinSvd {
+  DenseMatrix U, Vt;
+  std::vector<double> s;
+};
+
+ThinSvd thinSvd(const DenseMatrix& A) {
+  const int m = A.numRows(), n = A.numCols(), mn = std::min(m, n);
+  ThinSvd r;
+  r.s.assign(mn, 0.0);
+  r.U.shape(m, mn);
+  r.Vt.shape(mn, n);
+  if (mn == 0) return r;
+  DenseMatrix a(A);
+  std::vector<double> work(1);
+  Teuchos::LAPACK<int, double> lapack;
+  int info = 0;
+  lapack.GESVD('S', 'S', m, n, a.values(), a.stride(), r.s.data(), r.U.values(), r.U.stride(), r.Vt.values(),
+               r.Vt.stride(), work.data(), -1, nullptr, &info);
+  work.resize(std::max(1, static_cast<int>(work[0])));
+  lapack.GESVD('S', 'S', m, n, a.values(), a.stride(), r.s.data(), r.U.values(), r.U.stride(), r.Vt.values(),
+               r.Vt.stride(), work.data(), static_cast<int>(work.size()), nullptr, &info);
+  GPHR_REQUIRE(info == 0, SolverError, "GP-ADEIM: LAPACK GESVD failed (info = ", info, ") on a ", m, " x ", n,
+               " matrix");
+  return r;
+}
+
+// Singular values above tol * s_1 (and above zero).
+int countAbove(const std::vector<double>& s, double tol) {
+  int r = 0;
+  while (r < static_cast<int>(s.size()) && s[r] > 0.0 && s[r] > tol * s[0]) ++r;
+  return r;
+}
+
+bool allFinite(const DenseMatrix& A) {
+  for (int j = 0; j < A.numCols(); ++j)
+    for (int i = 0; i < A.numRows(); ++i)
+      if (!std::isfinite(A(i, j))) return false;
+  return true;
+}
+
+DenseMatrix product(Teuchos::ETransp ta, Teuchos::ETransp tb, const DenseMatrix& A, const DenseMatrix& B) {
+  DenseMatrix C(ta == NO_TRANS ? A.numRows() : A.numCols(), tb == NO_TRANS ? B.numCols() : B.numRows());
+  C.multiply(ta, tb, 1.0, A, B, 0.0);
+  return C;
+}
+
+}  // namespace
+
+DenseMatrix deimCoefficients(const DenseMatrix& PtU, const DenseMatrix& PtF) {
+  const int m = PtU.numRows();
+  GPHR_REQUIRE(PtU.numCols() == m && PtF.numRows() == m, InputError, "DEIM coefficients: P^T U is ", m, " x ",
+               PtU.numCols(), " and P^T F has ", PtF.numRows(), " rows (need m x m and m rows)");
+  DenseMatrix lu(PtU), C(PtF);
+  std::vector<int> piv(m);
+  int info = 0;
+  Teuchos::LAPACK<int, double>().GESV(m, C.numCols(), lu.values(), lu.stride(), piv.data(), C.values(), C.stride(),
+                                      &info);
+  GPHR_REQUIRE(info == 0 && allFinite(C), InputError, "DEIM coefficients: P^T U is singular (LAPACK GESV info = ",
+               info, "): the interpolation rows do not determine the DEIM basis");
+  return C;
+}
+
+DenseMatrix coefficientRowSpace(const DenseMatrix& C, double tol) {
+  const ThinSvd svd = thinSvd(C);
+  const int rc = countAbove(svd.s, tol);
+  DenseMatrix V(C.numCols(), rc);
+  for (int l = 0; l < rc; ++l)
+    for (int i = 0; i < C.numCols(); ++i) V(i, l) = svd.Vt(l, i);
+  return V;
+}
+
+// eq:gen_eval is solved through two SVDs instead of LAPACK's SYGV on the pencil: with
+// C = U_c diag(s_c) V_c^T (rank r_C after the cut-off) and v = U_c diag(1/s_c) c, the pencil
+// (C X^T X C^T, C C^T), X = S^T R, becomes the standard symmetric eigenproblem of M^T M with
+// M = X V_c (m_s x r_C): lambda_i = sigma_i(M)^2 and b_i = U_c diag(1/s_c) w_i, w_i the right
+// singular vectors of M. This never forms C C^T, whose condition number is cond(C)^2, and the
+// SVD of C is the rank-revealing factorization the paper prescribes for rank-deficient C.
+// (The tests check the result against SYGV on well-conditioned data.)
+AdeimUpdate computeAdeimUpdate(const DenseMatrix& PtU, const DenseMatrix& PtF, const DenseMatrix& StU,
+                               const DenseMatrix& StF, const AdeimUpdateOptions& opt) {
+  const int m = PtU.numRows(), ms = StU.numRows(), wbar = PtF.numCols();
+  GPHR_REQUIRE(StU.numCols() == m && StF.numRows() == ms && StF.numCols() == wbar, InputError,
+               "GP-ADEIM update: S^T U is ", ms, " x ", StU.numCols(), ", S^T F ", StF.numRows(), " x ", StF.numCols(),
+               " (need m_s x m and m_s x wbar with m = ", m, ", wbar = ", wbar, ")");
+  GPHR_REQUIRE(opt.rank >= 0 && opt.rankTol >= 0.0 && opt.coefficientTol >= 0.0, InputError,
+               "GP-ADEIM update: rank ", opt.rank, ", rankTol ", opt.rankTol, ", coefficientTol ", opt.coefficientTol,
+               " (need non-negative values)");
+  GPHR_REQUIRE(allFinite(PtF) && allFinite(StF) && allFinite(StU), InputError,
+               "GP-ADEIM update: non-finite entries in the snapshot window or the DEIM basis rows");
+  AdeimUpdate up;
+  up.C = deimCoefficients(PtU, PtF);
+  DenseMatrix X = product(NO_TRANS, NO_TRANS, StU, up.C);  // S^T R = S^T U C - S^T F
+  const double fitted = X.normFrobenius();
+  X -= StF;
+  up.residualBefore = up.residualAfter = X.normFrobenius();
+  up.a.shape(ms, 0);
+  up.b.shape(m, 0);
+  // A residual at the round-off level of its own subtraction is zero: no update (U unchanged).
+  const double roundoff = 100.0 * std::numeric_limits<double>::epsilon() * (fitted + StF.normFrobenius());
+  if (up.residualBefore <= roundoff) return up;
+
+  const ThinSvd cs = thinSvd(up.C);
+  up.coefficientRank = countAbove(cs.s, opt.coefficientTol);
+  const int rc = up.coefficientRank;
+  if (rc == 0) return up;
+  DenseMatrix Vc(wbar, rc);
+  for (int l = 0; l < rc; ++l)
+    for (int i = 0; i < wbar; ++i) Vc(i, l) = cs.Vt(l, i);
+  const ThinSvd ms_ = thinSvd(product(NO_TRANS, NO_TRANS, X, Vc));  // M = X V_c
+  const int rbar = countAbove(ms_.s, std::max(ms, rc) * std::numeric_limits<double>::epsilon());
+  for (int i = 0; i < rbar; ++i) up.eigenvalues.push_back(ms_.s[i] * ms_.s[i]);
+  int r = rbar;
+  if (opt.rank > 0) {
+    r = std::min(opt.rank, rbar);
+  } else {
+    const ThinSvd ts = thinSvd(product(NO_TRANS, TRANS, X, up.C));  // S^T R C^T, the paper's tau_r test
+    r = std::min(countAbove(ts.s, opt.rankTol), rbar);
+  }
+  up.rank = r;
+  up.a.shape(ms, r);
+  up.b.shape(m, r);
+  for (int i = 0; i < r; ++i) {
+    for (int l = 0; l < rc; ++l)  // b_i = U_c diag(1/s_c) w_i
+      for (int row = 0; row < m; ++row) up.b(row, i) += cs.U(row, l) * ms_.Vt(i, l) / cs.s[l];
+  }
+  // a_i = -S^T R C^T b_i / ||C^T b_i||^2 (eq:ai_from_bi)
+  const DenseMatrix g = product(TRANS, NO_TRANS, up.C, up.b);  // wbar x r: C^T b_i
+  const DenseMatrix Xg = product(NO_TRANS, NO_TRANS, X, g);
+  for (int i = 0; i < r; ++i) {
+    double gg = 0.0;
+    for (int l = 0; l < wbar; ++l) gg += g(l, i) * g(l, i);
+    for (int row = 0; row < ms; ++row) up.a(row, i) = -Xg(row, i) / gg;
+  }
+  // ||S^T R + a b^T C||_F, evaluated (eq:update_error states it equals before^2 - sum lambda_i).
+  X.multiply(NO_TRANS, TRANS, 1.0, up.a, g, 1.0);
+  up.residualAfter = X.normFrobenius();
+  return up;
+}
+
+void applyAdeimUpdate(const AdeimUpdate& up, DenseMatrix& StU) {
+  GPHR_REQUIRE(StU.numRows() == up.a.numRows() && StU.numCols() == up.b.numRows(), InputError,
+               "GP-ADEIM update: S^T U is ", StU.numRows(), " x ", StU.numCols(), ", the update ", up.a.numRows(),
+               " x ", up.b.numRows());
+  if (up.rank > 0) StU.multiply(NO_TRANS, TRANS, 1.0, up.a, up.b, 1.0);
+}
+
+}  // namespace gphr
