@@ -11,12 +11,11 @@ size_t SampleMesh::numbersHeld() const {
          sample.weights.size() + sample.basisRows.size() + sample.reference.size() + r * r + r + 1;
 }
 
-SampleMesh buildSampleMesh(const HamiltonianSystem& system, const MultiVector& A, const std::vector<GO>& rows,
-                           const std::vector<double>& weights, ReducedLinearPart linear) {
+RowSample gatherRowSample(const HamiltonianSystem& system, const MultiVector& A, const std::vector<GO>& rows,
+                          const std::vector<double>& weights) {
   GPHR_REQUIRE(rows.size() == weights.size() && !rows.empty(), InputError, "sample mesh: ", rows.size(),
                " rows and ", weights.size(), " weights (need the same number, at least one)");
-  SampleMesh mesh;
-  RowSample& s = mesh.sample;
+  RowSample s;
   s.rows = rows;
   s.weights = weights;
   s.reducedDim = static_cast<int>(A.getNumVectors());
@@ -25,6 +24,13 @@ SampleMesh buildSampleMesh(const HamiltonianSystem& system, const MultiVector& A
   s.shifted = !system.reference().is_null();
   s.reference = s.shifted ? gatherRows(*system.reference(), s.stencil.gids)
                           : std::vector<double>(s.stencil.gids.size(), 0.0);
+  return s;
+}
+
+SampleMesh buildSampleMesh(const HamiltonianSystem& system, const MultiVector& A, const std::vector<GO>& rows,
+                           const std::vector<double>& weights, ReducedLinearPart linear) {
+  SampleMesh mesh;
+  mesh.sample = gatherRowSample(system, A, rows, weights);
   mesh.linear = std::move(linear);
   return mesh;
 }

@@ -31,6 +31,13 @@ ReducedHamiltonian::ReducedHamiltonian(ReducedLinearPart linear, RCP<ReducedRowK
                linear_.L.numRows());
 }
 
+void ReducedHamiltonian::replaceRows(RCP<ReducedRowKernel> rows) {
+  GPHR_REQUIRE(rows->reducedDim() == dim(), InputError, "reduced Hamiltonian: a row sample of ", rows->reducedDim(),
+               " reduced coordinates cannot replace one of ", dim());
+  rows_ = rows;
+  haveLast_ = false;
+}
+
 // Gradient and Hessian come from one kernel evaluation per point: the kernel always computes
 // both (s^2 numbers per row, cheap next to the GEMM of addHessian) and is rerun only when z moves.
 void ReducedHamiltonian::evaluateAt(const DenseVector& z) {

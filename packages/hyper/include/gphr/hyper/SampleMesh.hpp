@@ -13,6 +13,11 @@ struct SampleMesh {
   size_t numbersHeld() const;
 };
 
+// The rows `rows` of G with their stencils, the rows of A and y0 under them, and the weights:
+// gathered collectively, replicated (also GP-ADEIM's moving interpolation and sampling rows).
+RowSample gatherRowSample(const HamiltonianSystem& system, const MultiVector& A, const std::vector<GO>& rows,
+                          const std::vector<double>& weights);
+
 // Gathers (collectively) what the rows `rows` of the system's G need; weights one per row.
 SampleMesh buildSampleMesh(const HamiltonianSystem& system, const MultiVector& A, const std::vector<GO>& rows,
                            const std::vector<double>& weights, ReducedLinearPart linear);

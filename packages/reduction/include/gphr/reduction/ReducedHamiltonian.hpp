@@ -34,6 +34,12 @@ class ReducedHamiltonian : public DenseHamiltonian {
   // share one evaluation).
   long kernelEvaluations() const { return evaluations_; }
 
+ protected:
+  // A model whose row sample moves (GP-ADEIM) swaps it here; the cached evaluation is dropped.
+  void replaceRows(RCP<ReducedRowKernel> rows);
+  // The row kernel was evaluated elsewhere (at another z): the cached evaluation is stale.
+  void forgetEvaluation() { haveLast_ = false; }
+
  private:
   void evaluateAt(const DenseVector& z);
   ReducedLinearPart linear_;

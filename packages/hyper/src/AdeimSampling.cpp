@@ -1,0 +1,114 @@
+#include "gphr/hyper/AdeimSampling.hpp"
+
+#include <Teuchos_BLAS.hpp>
+#include <Teuchos_CommHelpers.hpp>
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <set>
+
+#include "gphr/core/Error.hpp"
+
+namespace gphr {
+
+// Row-major rows x cols arrays are column-major cols x rows: R^T = C^T U_l^T - F_l^T is one GEMM
+// (wbar x rows, row i of R contiguous), the projection V^T R^T another.
+std::vector<double> residualRowNorms(const std::vector<double>& Ul, const std::vector<double>& Fl, int rows,
+                                     const DenseMatrix& C, const DenseMatrix* V) {
+  const int m = C.numRows(), wbar = C.numCols();
+  GPHR_REQUIRE(Ul.size() == static_cast<size_t>(rows) * m && Fl.size() == static_cast<size_t>(rows) * wbar,
+               InputError, "sampling scores: ", Ul.size(), " basis and ", Fl.size(), " snapshot entries for ", rows,
+               " rows (need rows x ", m, " and rows x ", wbar, ")");
+  std::vector<double> out(rows, 0.0);
+  if (rows == 0) return out;
+  Teuchos::BLAS<int, double> blas;
+  std::vector<double> Rt(Fl);
+  blas.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, wbar, rows, m, 1.0, C.values(), C.stride(), Ul.data(), m, -1.0,
+            Rt.data(), wbar);
+  const double* X = Rt.data();
+  int len = wbar;
+  std::vector<double> Pt;
+  if (V) {
+    len = V->numCols();
+    Pt.assign(static_cast<size_t>(len) * rows, 0.0);
+    if (len > 0)
+      blas.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, len, rows, wbar, 1.0, V->values(), V->stride(), Rt.data(), wbar,
+                0.0, Pt.data(), len);
+    X = Pt.data();
+  }
+  for (int i = 0; i < rows; ++i) out[i] = len > 0 ? blas.NRM2(len, X + static_cast<size_t>(i) * len, 1) : 0.0;
+  return out;
+}
+
+namespace {
+struct Candidate {
+  double score;
+  long long gid;
+};
+bool better(const Candidate& a, const Candidate& b) {
+  return a.score > b.score || (a.score == b.score && a.gid < b.gid);
+}
+}  // namespace
+
+std::vector<GO> largestScoreRows(const Map& rowMap, const std::vector<double>& scores, const std::vector<GO>& exclude,
+                                 const SampleCount& count) {
+  const LO nl = static_cast<LO>(rowMap.getNodeNumElements());
+  GPHR_REQUIRE(static_cast<LO>(scores.size()) == nl, InputError, "sampling: ", scores.size(), " scores for ", nl,
+               " local rows");
+  const int K = count.fixed > 0 ? count.fixed : count.atMost;
+  GPHR_REQUIRE(K > 0 && count.atLeast <= std::max(K, count.atLeast), InputError, "sampling: asked for ", K,
+               " rows (at least ", count.atLeast, ")");
+  const std::set<GO> skip(exclude.begin(), exclude.end());
+  std::vector<Candidate> local;
+  for (LO i = 0; i < nl; ++i) {
+    const GO g = rowMap.getGlobalElement(i);
+    GPHR_REQUIRE(std::isfinite(scores[i]), SolverError, "sampling: non-finite residual at row ", g);
+    if (!skip.count(g)) local.push_back({scores[i], static_cast<long long>(g)});
+  }
+  const size_t keep = std::min(local.size(), static_cast<size_t>(K));
+  std::partial_sort(local.begin(), local.begin() + keep, local.end(), better);
+  local.resize(K, Candidate{-1.0, -1});  // padded: every rank sends K candidates
+  std::vector<double> s(K), allS;
+  std::vector<long long> g(K), allG;
+  for (int i = 0; i < K; ++i) s[i] = local[i].score, g[i] = local[i].gid;
+  const int np = rowMap.getComm()->getSize();
+  allS.resize(static_cast<size_t>(np) * K);
+  allG.resize(allS.size());
+  Teuchos::gatherAll(*rowMap.getComm(), K, s.data(), np * K, allS.data());
+  Teuchos::gatherAll(*rowMap.getComm(), K, g.data(), np * K, allG.data());
+  std::vector<Candidate> all;
+  for (size_t i = 0; i < allS.size(); ++i)
+    if (allG[i] >= 0) all.push_back({allS[i], allG[i]});
+  std::sort(all.begin(), all.end(), better);
+  size_t n = std::min(all.size(), static_cast<size_t>(K));
+  if (count.fixed <= 0 && !all.empty()) {
+    const double floor = count.relTol * all.front().score;
+    size_t above = 0;
+    while (above < all.size() && all[above].score > floor) ++above;
+    n = std::min(n, std::max(above, static_cast<size_t>(count.atLeast)));
+    n = std::min(n, all.size());
+  }
+  std::vector<GO> rows;
+  for (size_t i = 0; i < n; ++i) rows.push_back(static_cast<GO>(all[i].gid));
+  std::sort(rows.begin(), rows.end());
+  return rows;
+}
+
+std::vector<GO> randomRows(const Map& rowMap, const std::vector<GO>& exclude, int count, unsigned long long seed,
+                           long draw) {
+  GPHR_REQUIRE(rowMap.isContiguous(), InputError, "random sampling needs a contiguous row map of G");
+  const GO lo = rowMap.getMinAllGlobalIndex(), hi = rowMap.getMaxAllGlobalIndex();
+  const std::set<GO> skip(exclude.begin(), exclude.end());
+  const GO available = (hi - lo + 1) - static_cast<GO>(skip.size());
+  const GO n = std::min<GO>(count, std::max<GO>(available, 0));
+  std::mt19937_64 gen(seed + 0x9E3779B97F4A7C15ull * static_cast<unsigned long long>(draw + 1));
+  std::uniform_int_distribution<GO> pick(lo, hi);
+  std::set<GO> rows;
+  while (static_cast<GO>(rows.size()) < n) {
+    const GO g = pick(gen);
+    if (!skip.count(g)) rows.insert(g);
+  }
+  return {rows.begin(), rows.end()};
+}
+
+}  // namespace gphr

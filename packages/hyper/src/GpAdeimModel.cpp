@@ -1,0 +1,266 @@
+#include "gphr/hyper/GpAdeimModel.hpp"
+
+#include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_OrdinalTraits.hpp>
+#include <Teuchos_Time.hpp>
+
+#include "gphr/core/Error.hpp"
+#include "gphr/core/ParameterValidation.hpp"
+#include "gphr/core/ReplicatedGather.hpp"
+#include "gphr/hyper/AdeimSampling.hpp"
+#include "gphr/hyper/DeimBasis.hpp"
+#include "gphr/reduction/Deim.hpp"
+#include "gphr/timeint/FullModelIntegrator.hpp"
+
+namespace gphr {
+
+Teuchos::ParameterList adeimValidParameters() {
+  Teuchos::ParameterList pl("adeim");
+  setIntParameter(pl, "initialWindow", 5, 1, 1000000, "delta0: full-model steps for (U_0, P_0); first update after them");
+  setIntParameter(pl, "updateEvery", 5, 1, 1000000, "delta: steps between DEIM basis updates");
+  setIntParameter(pl, "window", 1, 1, 1000000, "w: reduced states in the snapshot window F_j (w < delta0)");
+  setIntParameter(pl, "resampleEvery", 5, 1, 1000000, "gamma: steps between sampling-row updates (a multiple of delta)");
+  setIntParameter(pl, "updateRank", 0, 0, 1000000, "r: fixed update rank; 0 = numerical rank of S^T R C^T by rankTol");
+  setDoubleParameter(pl, "rankTol", 1e-8, 0.0, 1.0, "tau_r: sigma_i(S^T R C^T) > rankTol sigma_1 (relative)");
+  setDoubleParameter(pl, "coefficientTol", 1e-8, 0.0, 1.0,
+                     "directions of C_j with sigma_i <= coefficientTol sigma_1 are dropped (C C^T numerically singular)");
+  setIntParameter(pl, "numSamples", 0, 0, 100000000, "m_s: sampling rows (>= m); 0 = chosen by sampleTol");
+  setDoubleParameter(pl, "sampleTol", 1e-3, 0.0, 1.0,
+                     "tau_s: rows whose score exceeds sampleTol x the largest score (relative: the scale of F does not matter)");
+  setIntParameter(pl, "maxSamples", 0, 0, 100000000, "cap on m_s chosen by sampleTol; 0 = 4 m");
+  setChoiceParameter(pl, "sampling", "projected", Teuchos::tuple<std::string>("projected", "residual", "random"),
+                     "sampling rule: rows of R_j C_bar_j (alg:indices_adapt), of R_j (Peherstorfer 2020), or random");
+  setChoiceParameter(pl, "indices", "deim", Teuchos::tuple<std::string>("deim", "qdeim"),
+                     "interpolation rows P_{j+1} from U_{j+1}: greedy DEIM or QDEIM");
+  setChoiceParameter(pl, "initialBasis", "fom", Teuchos::tuple<std::string>("fom", "training"),
+                     "(U_0, P_0) from the first initialWindow full-model steps at the test parameter, or the training DEIM basis");
+  pl.set("monitorResidual", true, "record ||U_{j+1} C_j - F_j||_F over all d rows at every update (O(d) each)");
+  setIntParameter(pl, "seed", 20240601, 0, 2147483647, "seed of the random sampling rule");
+  return pl;
+}
+
+AdeimOptions adeimOptionsFrom(Teuchos::ParameterList pl, int m) {
+  validateParameters(pl, adeimValidParameters(), "adeim");
+  AdeimOptions o;
+  o.initialWindow = pl.get<int>("initialWindow");
+  o.updateEvery = pl.get<int>("updateEvery");
+  o.window = pl.get<int>("window");
+  o.resampleEvery = pl.get<int>("resampleEvery");
+  o.update.rank = pl.get<int>("updateRank");
+  o.update.rankTol = pl.get<double>("rankTol");
+  o.update.coefficientTol = pl.get<double>("coefficientTol");
+  o.numSamples = pl.get<int>("numSamples");
+  o.sampleTol = pl.get<double>("sampleTol");
+  o.maxSamples = pl.get<int>("maxSamples") > 0 ? pl.get<int>("maxSamples") : 4 * m;
+  o.sampling = pl.get<std::string>("sampling");
+  o.indices = pl.get<std::string>("indices");
+  o.initialBasis = pl.get<std::string>("initialBasis");
+  o.monitorResidual = pl.get<bool>("monitorResidual");
+  o.seed = static_cast<unsigned long long>(pl.get<int>("seed"));
+  GPHR_REQUIRE(o.window < o.initialWindow, InputError, "adeim.window = ", o.window, " must be smaller than adeim.initialWindow = ",
+               o.initialWindow, " (the window of the first update lies in the first delta0 steps)");
+  GPHR_REQUIRE(o.resampleEvery % o.updateEvery == 0, InputError, "adeim.resampleEvery = ", o.resampleEvery,
+               " must be a multiple of adeim.updateEvery = ", o.updateEvery, " (sampling rows change at updates)");
+  GPHR_REQUIRE(o.numSamples == 0 || o.numSamples >= m, InputError, "adeim.numSamples = ", o.numSamples,
+               " must be at least m = ", m, " (or 0 to choose it by sampleTol)");
+  GPHR_REQUIRE(o.maxSamples >= m, InputError, "adeim.maxSamples = ", o.maxSamples, " must be at least m = ", m);
+  GPHR_REQUIRE(o.sampling != "random" || o.numSamples > 0, InputError,
+               "adeim.sampling = random needs adeim.numSamples > 0 (sampleTol ranks rows by their residual)");
+  GPHR_REQUIRE(o.update.rank <= m, InputError, "adeim.updateRank = ", o.update.rank, " exceeds m = ", m);
+  return o;
+}
+
+namespace {
+DenseMatrix toDense(const std::vector<double>& rowMajor, int rows, int cols) {
+  DenseMatrix M(rows, cols);
+  for (int i = 0; i < rows; ++i)
+    for (int j = 0; j < cols; ++j) M(i, j) = rowMajor[static_cast<size_t>(i) * cols + j];
+  return M;
+}
+
+// The GP-DEIM row kernel of (U, m): interpolation rows and weights. Collective.
+RCP<ReducedRowKernel> interpolationKernel(const HamiltonianSystem& system, const MultiVector& A, const MultiVector& U,
+                                          int m, const std::string& indices) {
+  const auto P = selectDeimIndices(U, m, indices);
+  const auto w = computeDeimWeights(U, P, *system.nonlinearTerm().weights());
+  return rcp(new ReducedRowKernel(system.nonlinearTermPtr(), gatherRowSample(system, A, P, w.weights), Teuchos::null));
+}
+
+RCP<MultiVector> leadingColumns(const MultiVector& U, int m) {
+  GPHR_REQUIRE(m >= 1 && static_cast<size_t>(m) <= U.getNumVectors(), InputError, "GP-ADEIM: m = ", m,
+               " but the initial DEIM basis has ", U.getNumVectors(), " columns");
+  return rcp(new MultiVector(*U.subCopy(Teuchos::Range1D(0, m - 1))));
+}
+}  // namespace
+
+GpAdeimModel::GpAdeimModel(RCP<const HamiltonianSystem> system, RCP<const MultiVector> A, const MultiVector& U0, int m,
+                           ReducedLinearPart linear, AdeimOptions options)
+    : ReducedHamiltonian(std::move(linear), interpolationKernel(*system, *A, *leadingColumns(U0, m), m, options.indices)),
+      system_(system),
+      A_(A),
+      U_(leadingColumns(U0, m)),
+      m_(m),
+      opt_(std::move(options)) {
+  P_ = rows().sample().rows;
+  owned_ = rcp(new ReducedRowKernel(system_->nonlinearTermPtr(), ownedRowSample(*system_, *A_), Teuchos::null));
+}
+
+bool GpAdeimModel::isUpdateStep(long step) const {
+  return step >= opt_.initialWindow && (step - opt_.initialWindow) % opt_.updateEvery == 0;
+}
+
+// Reduced-Jacobian rows J_G(y0 + A z_s) A of the kernel's rows for the window states, side by
+// side: row-major rows x (2k w).
+void GpAdeimModel::windowSnapshots(ReducedRowKernel& kernel, DenseMatrix& F) {
+  const int r = kernel.reducedDim(), rows = kernel.numRows(), cols = r * static_cast<int>(window_.size());
+  std::vector<double> buf(static_cast<size_t>(rows) * r);
+  F.shape(rows, cols);
+  int s = 0;
+  for (const DenseVector& z : window_) {
+    kernel.evaluate(z, true, false);
+    kernel.reducedJacobian(buf.data());
+    for (int i = 0; i < rows; ++i)
+      for (int c = 0; c < r; ++c) F(i, s * r + c) = buf[static_cast<size_t>(i) * r + c];
+    ++s;
+  }
+}
+
+bool GpAdeimModel::afterStep(long step, const DenseVector& z) {
+  window_.push_back(z);
+  if (static_cast<int>(window_.size()) > opt_.window) window_.pop_front();
+  if (!isUpdateStep(step)) return false;
+  Teuchos::Time timer("adeim");
+  timer.start();
+  AdeimUpdateRecord rec;
+  rec.step = step;
+  rec.hrBefore = hamiltonian(z);
+  DenseMatrix PtF, StF;
+  windowSnapshots(rows(), PtF);
+  forgetEvaluation();
+  const DenseMatrix PtU = toDense(gatherRows(*U_, P_), m_, m_);
+  const DenseMatrix C = deimCoefficients(PtU, PtF);
+  ownedFValid_ = false;
+  const long updateNo = (step - opt_.initialWindow) / opt_.updateEvery;
+  if ((step - opt_.initialWindow) % opt_.resampleEvery == 0 || S_.empty()) {
+    resample(C, updateNo);
+    rec.resampled = true;
+  }
+  if (S_.empty()) {  // m = d: no row outside P, and the DEIM projection is the identity
+    rec.hrAfter = rec.hrBefore;
+    rec.seconds = timer.stop();
+    records_.push_back(rec);
+    return false;
+  }
+  windowSnapshots(*sampling_, StF);
+  DenseMatrix StU = toDense(gatherRows(*U_, S_), static_cast<int>(S_.size()), m_);
+  const AdeimUpdate up = computeAdeimUpdate(PtU, PtF, StU, StF, opt_.update);
+  rec.rank = up.rank;
+  rec.coefficientRank = up.coefficientRank;
+  rec.numSamples = static_cast<int>(S_.size());
+  rec.sampledBefore = up.residualBefore;
+  rec.sampledAfter = up.residualAfter;
+  if (up.rank > 0) {
+    applyAdeimUpdate(up, StU);
+    writeSampledRows(StU);
+  }
+  if (opt_.monitorResidual) rec.fullResidual = fullResidual(up.C);
+  if (up.rank > 0) moveInterpolationRows();
+  rec.hrAfter = hamiltonian(z);
+  rec.seconds = timer.stop();
+  records_.push_back(rec);
+  return up.rank > 0;
+}
+
+// F_j on this rank's rows (computed once per update, shared by resampling and monitoring).
+namespace {
+std::vector<double> rowMajor(const DenseMatrix& M) {
+  std::vector<double> out(static_cast<size_t>(M.numRows()) * M.numCols());
+  for (int i = 0; i < M.numRows(); ++i)
+    for (int j = 0; j < M.numCols(); ++j) out[static_cast<size_t>(i) * M.numCols() + j] = M(i, j);
+  return out;
+}
+std::vector<double> ownedRows(const MultiVector& U) {
+  auto u = U.getLocalViewHost(Tpetra::Access::ReadOnly);
+  const size_t rows = u.extent(0), m = u.extent(1);
+  std::vector<double> out(rows * m);
+  for (size_t i = 0; i < rows; ++i)
+    for (size_t j = 0; j < m; ++j) out[i * m + j] = u(i, j);
+  return out;
+}
+}  // namespace
+
+void GpAdeimModel::resample(const DenseMatrix& C, long updateNo) {
+  const Map& rowMap = *system_->nonlinearTerm().rowMap();
+  if (opt_.sampling == "random") {
+    S_ = randomRows(rowMap, P_, opt_.numSamples, opt_.seed, updateNo);
+  } else {
+    if (!ownedFValid_) {
+      DenseMatrix F;
+      windowSnapshots(*owned_, F);
+      ownedF_ = rowMajor(F);
+      ownedFValid_ = true;
+    }
+    const DenseMatrix V = coefficientRowSpace(C, opt_.update.coefficientTol);
+    const auto scores = residualRowNorms(ownedRows(*U_), ownedF_, owned_->numRows(), C,
+                                         opt_.sampling == "projected" ? &V : nullptr);
+    SampleCount count;
+    count.fixed = opt_.numSamples;
+    count.relTol = opt_.sampleTol;
+    count.atLeast = m_;
+    count.atMost = opt_.maxSamples;
+    S_ = largestScoreRows(rowMap, scores, P_, count);
+  }
+  if (S_.empty()) return;
+  sampling_ = rcp(new ReducedRowKernel(system_->nonlinearTermPtr(),
+                                       gatherRowSample(*system_, *A_, S_, std::vector<double>(S_.size(), 1.0)),
+                                       Teuchos::null));
+}
+
+double GpAdeimModel::fullResidual(const DenseMatrix& C) {
+  if (!ownedFValid_) {
+    DenseMatrix F;
+    windowSnapshots(*owned_, F);
+    ownedF_ = rowMajor(F);
+    ownedFValid_ = true;
+  }
+  const auto norms = residualRowNorms(ownedRows(*U_), ownedF_, owned_->numRows(), C, nullptr);
+  double local = 0.0, global = 0.0;
+  for (double v : norms) local += v * v;
+  Teuchos::reduceAll(*U_->getMap()->getComm(), Teuchos::REDUCE_SUM, 1, &local, &global);
+  return std::sqrt(global);
+}
+
+void GpAdeimModel::writeSampledRows(const DenseMatrix& StU) {
+  const Map& map = *U_->getMap();
+  auto u = U_->getLocalViewHost(Tpetra::Access::ReadWrite);
+  for (size_t i = 0; i < S_.size(); ++i) {
+    const LO l = map.getLocalElement(S_[i]);
+    if (l == Teuchos::OrdinalTraits<LO>::invalid()) continue;
+    for (int c = 0; c < m_; ++c) u(l, c) = StU(static_cast<int>(i), c);
+  }
+}
+
+void GpAdeimModel::moveInterpolationRows() {
+  replaceRows(interpolationKernel(*system_, *A_, *U_, m_, opt_.indices));
+  P_ = rows().sample().rows;
+}
+
+RCP<MultiVector> initialAdeimBasis(RCP<const HamiltonianSystem> system, const Vector& y0, const MultiVector& A,
+                                   const Teuchos::ParameterList& integrator, double dt, int delta0, int m) {
+  FullModelIntegrator integ(system, integrator);
+  Vector y(y0, Teuchos::Copy);
+  auto states = rcp(new MultiVector(system->map(), delta0 + 1));
+  integ.run(y, dt, delta0, [&](long j, double, const Vector& yj, const StepReport&) {
+    Tpetra::deep_copy(*states->getVectorNonConst(j), yj);
+  });
+  DeimBasisOptions opt;
+  opt.maxRank = m;
+  opt.svd = "exact";
+  const DeimBasis basis = computeDeimBasis({system}, {states}, A, opt);
+  GPHR_REQUIRE(static_cast<int>(basis.U->getNumVectors()) >= m, InputError, "GP-ADEIM: the first ", delta0,
+               " full-model steps give ", basis.U->getNumVectors(), " independent reduced-Jacobian directions, fewer than m = ",
+               m, " (raise adeim.initialWindow, lower m, or use adeim.initialBasis = training)");
+  return basis.U;
+}
+
+}  // namespace gphr
