@@ -9,6 +9,7 @@
 
 #include "gphr/core/Error.hpp"
 #include "gphr/core/ParameterValidation.hpp"
+#include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/models/SceneFactory.hpp"
 #include "gphr/timeint/Integrator.hpp"
 
@@ -39,10 +40,10 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
   pipe.set("rom", false, "train, build the basis and evaluate the Galerkin reduced model beside the full model");
   pipe.set("methods", Teuchos::Array<std::string>(),
            "models to evaluate beside the full model, any of: rom, gp-deim (gradient-preserving DEIM, the paper's), "
-           "deim (classic DEIM of the gradient), sdeim (DEIM with the symplectic basis, m = 2k); empty: rom if "
-           "pipeline.rom");
+           "gp-adeim (its adaptive variant, section adeim), deim (classic DEIM of the gradient), sdeim (DEIM with the "
+           "symplectic basis, m = 2k); empty: rom if pipeline.rom");
   pipe.set("k", Teuchos::Array<int>(), "reduced half-sizes k to evaluate (2k = reducedDim); empty: reduction.k");
-  pipe.set("m", Teuchos::Array<int>(), "DEIM sizes m to evaluate for gp-deim and deim (each at most d)");
+  pipe.set("m", Teuchos::Array<int>(), "DEIM sizes m to evaluate for gp-deim, gp-adeim and deim (each at most d)");
   auto& hyp = pl.sublist("hyper");
   setIntParameter(hyp, "snapshotEvery", 1, 1, 1000000,
                   "reduced-Jacobian snapshot at every N-th stored training state (the paper: 20)");
@@ -56,6 +57,7 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
   setIntParameter(hyp, "powerIterations", 1, 0, 10, "randomized: power iterations (one streamed pass each)");
   setIntParameter(hyp, "blockSnapshots", 0, 0, 100000,
                   "reduced-Jacobian snapshots per incremental POD step; 0: about maxRank columns per step");
+  pl.sublist("adeim") = adeimValidParameters();
   auto& out = pl.sublist("output");
   setIntParameter(out, "saveEvery", 10, 1, 1000000000, "keep every N-th state of the trajectory in artifacts.h5");
   setDoubleParameter(out, "progressSeconds", 2.0, 0.0, 1e9, "seconds between progress lines on stderr (0: none)");
@@ -114,7 +116,7 @@ Teuchos::ParameterList defaultConfig() {
   pl.sublist("scene").set("name", "nls1d").set("n", 256);
   pl.sublist("time").set("T", 5.0).set("dt", 0.01);
   pl.sublist("pipeline").set("rom", true);
-  pl.sublist("pipeline").set("methods", Teuchos::Array<std::string>(Teuchos::tuple<std::string>("rom", "gp-deim")));
+  pl.sublist("pipeline").set("methods", Teuchos::Array<std::string>(Teuchos::tuple<std::string>("rom", "gp-deim", "gp-adeim")));
   pl.sublist("pipeline").set("m", Teuchos::Array<int>(Teuchos::tuple<int>(10, 20, 40)));
   pl.sublist("hyper").set("snapshotEvery", 5);
   pl.sublist("training").set("points", Teuchos::Array<int>(1, 3));
@@ -176,8 +178,8 @@ std::vector<std::string> pipelineMethods(const Teuchos::ParameterList& cfg) {
   const auto& pipe = cfg.sublist("pipeline");
   std::vector<std::string> out;
   for (const auto& m : pipe.get<Teuchos::Array<std::string>>("methods")) {
-    GPHR_REQUIRE(m == "rom" || m == "gp-deim" || m == "deim" || m == "sdeim" || m == "fom", InputError,
-                 "key 'pipeline.methods' has entry '", m, "'; allowed: fom, rom, gp-deim, deim, sdeim");
+    GPHR_REQUIRE(m == "rom" || m == "gp-deim" || m == "gp-adeim" || m == "deim" || m == "sdeim" || m == "fom",
+                 InputError, "key 'pipeline.methods' has entry '", m, "'; allowed: fom, rom, gp-deim, gp-adeim, deim, sdeim");
     if (m != "fom" && std::find(out.begin(), out.end(), m) == out.end()) out.push_back(m);
   }
   if (pipe.get<bool>("rom") && std::find(out.begin(), out.end(), "rom") == out.end()) out.insert(out.begin(), "rom");
@@ -185,10 +187,14 @@ std::vector<std::string> pipelineMethods(const Teuchos::ParameterList& cfg) {
     GPHR_REQUIRE(k >= 1, InputError, "key 'pipeline.k' has entry ", k, "; allowed: integers >= 1");
   const auto& ms = pipe.get<Teuchos::Array<int>>("m");
   for (int m : ms) GPHR_REQUIRE(m >= 1, InputError, "key 'pipeline.m' has entry ", m, "; allowed: integers >= 1");
-  const bool wantsM = std::find(out.begin(), out.end(), "gp-deim") != out.end() ||
+  const bool adaptive = std::find(out.begin(), out.end(), "gp-adeim") != out.end();
+  const bool wantsM = adaptive || std::find(out.begin(), out.end(), "gp-deim") != out.end() ||
                       std::find(out.begin(), out.end(), "deim") != out.end();
   GPHR_REQUIRE(!wantsM || !ms.empty(), InputError,
-               "key 'pipeline.m' is empty but pipeline.methods asks for gp-deim or deim; allowed: a list of DEIM sizes");
+               "key 'pipeline.m' is empty but pipeline.methods asks for gp-deim, gp-adeim or deim; allowed: a list of "
+               "DEIM sizes");
+  if (adaptive)
+    for (int m : ms) adeimOptionsFrom(cfg.sublist("adeim"), m);  // the adeim constraints that involve m
   return out;
 }
 

@@ -33,13 +33,14 @@ std::string fmt(double x, const char* f = "%.3g") {
 void writeRunsCsv(const RomStages& st, double fomOnline, const std::string& path) {
   std::ofstream os(path);
   os.precision(10);
-  os << "method,k,m,status,E_L2,t_online_s,speedup_vs_fom,E_L2_rom\n";
+  os << "method,k,m,status,E_L2,t_online_s,speedup_vs_fom,E_L2_rom,t_total_s\n";
   for (const auto& r : st.runs) {
     double eRom = NAN;
     for (const auto& q : st.runs)
       if (q.method == "rom" && q.k == r.k) eRom = q.eL2;
     os << r.method << "," << r.k << "," << r.m << "," << (r.ok ? "ok" : "diverged") << "," << r.eL2 << ","
-       << r.tOnline << "," << (r.tOnline > 0 ? fomOnline / r.tOnline : NAN) << "," << eRom << "\n";
+       << r.tOnline << "," << (r.tOnline > 0 ? fomOnline / r.tOnline : NAN) << "," << eRom << ","
+       << r.run.number("t_total_s") << "\n";
   }
 }
 
@@ -55,6 +56,43 @@ void writeHamiltonianTerms(const FomResult& fom, const ModelRun& r, double dt, c
     os << j * dt << "," << std::abs(fom.hamiltonian[j] - H0) << "," << std::abs(r.modelHamiltonian[j] - Hhr0) << ","
        << std::abs(r.hamiltonian[j] - r.modelHamiltonian[j]) << "," << std::abs(fom.hamiltonian[j] - r.hamiltonian[j])
        << "\n";
+}
+
+// One row per GP-ADEIM adaptation: what it did (rank, m_s, residuals: fig:schro_samplingstrats,
+// fig:rj_and_msj) and the terms of eq:Hambound at that time ell_{j+1} (prop:ham_cons_adapt):
+//   dH_total  = |H(y^l) - H(A z^l)|            eps_fom  = |H(y^l) - H(y^0)|
+//   eps_hr    = |H_hr^j(z^l) - H_hr^j(z^{l_j})| (the local model's conservation on its interval)
+//   deim_end  = |H_hr^j(z^l) - H(A z^l)|        (the paper's |c^T (I - P_j) G(A z^l)|)
+//   deim_start= |H(A z^l) - H_hr^{j+1}(z^l)|    (zero under the proposition's assumption
+//                                                 G(A z^l) in col U_{j+1}; reported, not dropped)
+//   bound     = eps_fom + |H(y^0) - H(A z^0)| + |H(A z^0) - H_hr^0(z^0)| + sum over the intervals so far
+//               of eps_hr + deim_end (+ deim_start of the earlier updates): dH_total <= bound.
+void writeAdeimUpdates(const FomResult& fom, const std::vector<ModelRun>& runs, double dt, const std::string& csv) {
+  std::ofstream os(csv);
+  os.precision(10);
+  os << "run,k,m,update,step,t,rank,coefficient_rank,m_s,resampled,sampled_residual_before,sampled_residual_after,"
+        "full_residual,update_s,dH_total,eps_fom,eps_hr,deim_end,deim_start,bound\n";
+  for (const auto& r : runs) {
+    if (r.method != "gp-adeim" || r.modelHamiltonian.empty()) continue;
+    const double H0 = fom.hamiltonian.front();
+    double segStart = r.modelHamiltonian.front();
+    double sum = std::abs(H0 - r.hamiltonian.front()) + std::abs(r.hamiltonian.front() - segStart);
+    int j = 0;
+    for (const auto& u : r.adeimUpdates) {
+      const size_t l = static_cast<size_t>(u.step);
+      if (l >= r.hamiltonian.size() || l >= fom.hamiltonian.size()) break;
+      const double Hlift = r.hamiltonian[l], epsHr = std::abs(u.hrBefore - segStart), end = std::abs(u.hrBefore - Hlift);
+      sum += epsHr + end;
+      const double start = std::abs(Hlift - u.hrAfter);
+      os << "\"" << r.label() << "\"," << r.k << "," << r.m << "," << ++j << "," << u.step << "," << u.step * dt << ","
+         << u.rank << "," << u.coefficientRank << "," << u.numSamples << "," << (u.resampled ? 1 : 0) << ","
+         << u.sampledBefore << "," << u.sampledAfter << "," << u.fullResidual << "," << u.seconds << ","
+         << std::abs(fom.hamiltonian[l] - Hlift) << "," << std::abs(fom.hamiltonian[l] - H0) << "," << epsHr << ","
+         << end << "," << start << "," << std::abs(fom.hamiltonian[l] - H0) + sum << "\n";
+      sum += start;
+      segStart = u.hrAfter;
+    }
+  }
 }
 
 std::string reportMd(const RunContext& ctx, const FomResult& fom, const RomStages& st) {
@@ -84,6 +122,27 @@ std::string reportMd(const RunContext& ctx, const FomResult& fom, const RomStage
       if (r.ok && r.eL2 <= level && (!best || r.tOnline < best->tOnline)) best = &r;
     if (best) md << "| " << fmt(level, "%.0e") << " | " << best->label() << " | " << fmt(best->eL2) << " | "
                  << fmt(best->tOnline, "%.3f") << " |\n";
+  }
+  bool adaptive = false;
+  for (const auto& r : st.runs) adaptive |= r.method == "gp-adeim";
+  if (adaptive) {
+    md << "\n## GP-DEIM vs GP-ADEIM: total cost of the hyper-reduction\n\n"
+          "t_total = hyper-reduction offline (DEIM basis + pair; GP-ADEIM: the first delta0 full-model steps and "
+          "their POD) + online (GP-ADEIM: updates included), as the paper's tab:taur. A DEIM basis read from the cache "
+          "counts the time it took to compute (stored with it).\n\n"
+          "| method | k | m | status | E_L2 | offline s | online s | total s | updates | mean rank | max local H_hr drift |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|\n";
+    for (const auto& r : st.runs) {
+      if (r.method != "gp-deim" && r.method != "gp-adeim") continue;
+      const auto num = [&](const char* key) { return r.run.number(key); };
+      md << "| " << r.method << " | " << r.k << " | " << r.m << " | " << (r.ok ? "ok" : "**diverged**") << " | "
+         << fmt(r.eL2) << " | " << fmt(num("t_hyper_offline_s"), "%.3f") << " | " << fmt(r.tOnline, "%.3f") << " | "
+         << fmt(num("t_total_s"), "%.3f") << " | " << (r.method == "gp-adeim" ? fmt(num("updates"), "%.0f") : "-")
+         << " | " << (r.method == "gp-adeim" ? fmt(num("update_rank_mean"), "%.1f") : "-") << " | "
+         << fmt(num("H_model_err_max")) << " |\n";
+    }
+    md << "\nPer update (rank, m_s, residuals, the terms of eq:Hambound): adeim_updates.csv and adeim_updates.png; "
+          "error vs total time: error_vs_total_time.png.\n";
   }
   md << "\nDiagnostics of each GP-DEIM run (cond(P^T U), the smallest eigenvalue of Hess H_hr(z0) next to "
         "the reduced model's, and whether convexity was lost) are in summary.json; a (k, m) with "
@@ -149,6 +208,12 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
     writeHamiltonianTerms(fom, *terms, dt, p.at("hamiltonian_terms.csv"));
     written.push_back("hamiltonian_terms.csv");
   }
+  bool adeim = false;
+  for (const auto& r : st.runs) adeim |= r.method == "gp-adeim";
+  if (adeim) {
+    writeAdeimUpdates(fom, st.runs, dt, p.at("adeim_updates.csv"));
+    written.push_back("adeim_updates.csv");
+  }
   if (!plots || !haveGnuplot()) return written;
   const std::string runs = p.at("runs.csv");
   // error vs m, one curve per (method, k), the ROM's error as a horizontal line per k
@@ -196,6 +261,43 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
       << "plot for [c=2:5] '" << csv << "' every ::1 using 1:(column(c) > 0 ? column(c) : 1e-17) with lines lw 2 "
       << "title columnhead(c)\n";
     if (gnuplot(p.at("hamiltonian_terms.png"), b.str())) written.push_back("hamiltonian_terms.png");
+  }
+  if (adeim) {
+    const std::string csv = p.at("adeim_updates.csv");
+    std::ostringstream b;
+    b << "set multiplot layout 1,2\nset key below\nset xlabel 'update j'\nset logscale y\n"
+      << "set format y '%.0e'\nset title '||U_{j+1} C_j - F_j||_F (fig:schro_samplingstrats)'\nplot ";
+    std::ostringstream ranks;
+    ranks << "unset logscale y\nset format y '%g'\nset title 'rank r_j and m_s (fig:rj_and_msj)'\nplot ";
+    bool first = true;
+    for (const auto& r : st.runs) {
+      if (r.method != "gp-adeim" || r.adeimUpdates.empty()) continue;
+      const std::string sel = "(strcol(1) eq '" + r.label() + "' ? ";
+      b << (first ? "" : ", ") << "'" << csv << "' every ::1 using " << sel << "$4 : 1/0):($13 > 0 ? $13 : 1/0) "
+        << "with lines lw 2 title '" << r.label() << "'";
+      ranks << (first ? "" : ", ") << "'" << csv << "' every ::1 using " << sel << "$4 : 1/0):7 with lines lw 2 "
+            << "title 'r " << r.label() << "', '" << csv << "' every ::1 using " << sel
+            << "$4 : 1/0):9 with lines dt 2 title 'm_s " << r.label() << "'";
+      first = false;
+    }
+    b << "\n" << ranks.str() << "\nunset multiplot\n";
+    if (!first && gnuplot(p.at("adeim_updates.png"), b.str())) written.push_back("adeim_updates.png");
+    std::ostringstream t;  // fig:error_vs_ctime_2k400: error vs total hyper-reduction time
+    t << "set logscale xy\nset format y '%.0e'\nset xlabel 't_total = hyper-reduction offline + online [s]'\n"
+      << "set ylabel 'E_L2'\nset key outside\nset title 'Error vs total time (fig:error_vs_ctime_2k400)'\nplot ";
+    std::vector<int> ks;
+    for (const auto& r : st.runs)
+      if ((r.method == "gp-deim" || r.method == "gp-adeim") && std::find(ks.begin(), ks.end(), r.k) == ks.end())
+        ks.push_back(r.k);
+    first = true;
+    for (int k : ks)
+      for (const char* m : {"gp-deim", "gp-adeim"}) {
+        t << (first ? "" : ", ") << "'" << runs << "' every ::1 using ((strcol(1) eq '" << m << "' && $2 == " << k
+          << " && strcol(4) eq 'ok') ? $9 : 1/0):5 with linespoints lw 2 pt 7 title '" << m << " 2k=" << 2 * k << "'";
+        first = false;
+      }
+    t << "\n";
+    if (gnuplot(p.at("error_vs_total_time.png"), t.str())) written.push_back("error_vs_total_time.png");
   }
   if (!spaceTime.empty()) {
     const std::string dat = p.at("spacetime.png") + ".dat";

@@ -4,12 +4,14 @@
 // reduced model. Offline time is split by stage in each run's summary entry.
 #include <Teuchos_Time.hpp>
 #include <algorithm>
+#include <cmath>
 
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/Config.hpp"
 #include "gphr/driver/ModelEvaluation.hpp"
 #include "gphr/driver/Pipeline.hpp"
 #include "gphr/hyper/DeimBasis.hpp"
+#include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/hyper/GpDeimModel.hpp"
 #include "gphr/hyper/GradientDeimModel.hpp"
 #include "gphr/io/Hdf5File.hpp"
@@ -40,7 +42,8 @@ std::vector<RCP<const HamiltonianSystem>> trainingSystems(const RunContext& ctx,
 struct CachedDeimBasis {
   DeimBasis basis;
   bool cached = false;
-  double seconds = 0.0;
+  double seconds = 0.0;         // this run: computing it, or reading the cache
+  double computeSeconds = 0.0;  // computing it (stored with the cache): the offline cost it stands for
 };
 
 CachedDeimBasis deimBasisFor(const RunContext& ctx, const RomStages& st, const MultiVector& A, int k,
@@ -58,6 +61,7 @@ CachedDeimBasis deimBasisFor(const RunContext& ctx, const RomStages& st, const M
     out.basis.U = f.readColumns(name, test.nonlinearTerm().rowMap());
     out.basis.singularValues = f.doubleAttribute(name, "singularValues");
     out.basis.snapshots = static_cast<long>(f.doubleAttribute(name, "snapshots")[0]);
+    out.computeSeconds = f.hasAttribute(name, "seconds") ? f.doubleAttribute(name, "seconds")[0] : NAN;
     out.cached = true;
   } else {
     DeimBasisOptions opt;
@@ -69,11 +73,13 @@ CachedDeimBasis deimBasisFor(const RunContext& ctx, const RomStages& st, const M
     opt.maxRank = hyp.get<int>("maxRank") > 0 ? hyp.get<int>("maxRank")
                                               : *std::max_element(ms.begin(), ms.end()) + 32;
     out.basis = computeDeimBasis(trainingSystems(ctx, st.training), st.training.snapshots, A, opt);
+    out.computeSeconds = clock.totalElapsedTime(true);
     if (!f.exists("/deim")) f.createGroup("/deim");
     f.remove(name);
     f.writeColumns(name, *out.basis.U);
     f.setAttribute(name, "singularValues", out.basis.singularValues);
     f.setAttribute(name, "snapshots", std::vector<double>{double(out.basis.snapshots)});
+    f.setAttribute(name, "seconds", std::vector<double>{out.computeSeconds});
     f.setAttribute(name, "layout", std::string("rows are the DEIM basis vectors U (d entries each, row-of-G order)"));
     f.flush();
     f.setAttribute(name, "config", key);  // last: marks the dataset complete
@@ -131,7 +137,85 @@ void runGpDeim(const RunContext& ctx, const FomResult& fom, RomStages& st, const
         .set("t_basis_s", st.basisSeconds)
         .set("t_deim_basis_s", db.seconds)
         .set("t_deim_pair_s", tPair)
-        .set("t_offline_s", st.training.seconds + st.basisSeconds + db.seconds + tPair);
+        .set("t_offline_s", st.training.seconds + st.basisSeconds + db.seconds + tPair)
+        .set("t_deim_basis_compute_s", db.computeSeconds)
+        .set("t_hyper_offline_s", db.computeSeconds + tPair)
+        .set("t_total_s", db.computeSeconds + tPair + run.tOnline);
+    st.runs.push_back(std::move(run));
+  }
+}
+
+// The largest drift of a local H_hr^j over its interval [ell_j, ell_{j+1}] (prop:ham_cons_adapt):
+// modelHamiltonian[tau] is H_hr^j(z^tau) of the model that produced step tau; each interval
+// starts from the record's H_hr^{j+1}(z^{ell_{j+1}}).
+double localHamiltonianDrift(const ModelRun& run) {
+  const auto& H = run.modelHamiltonian;
+  double start = H.empty() ? 0.0 : H.front(), worst = 0.0;
+  size_t next = 0;
+  for (size_t tau = 1; tau < H.size(); ++tau) {
+    worst = std::max(worst, std::abs(H[tau] - start));
+    if (next < run.adeimUpdates.size() && run.adeimUpdates[next].step == static_cast<long>(tau))
+      start = run.adeimUpdates[next++].hrAfter;
+  }
+  return worst;
+}
+
+void setAdeimSummary(ModelRun& run, const AdeimOptions& o, double tInitial, double tPair) {
+  double tUpdates = 0.0, rankSum = 0.0, samples = 0.0;
+  for (const auto& u : run.adeimUpdates) tUpdates += u.seconds, rankSum += u.rank, samples += u.numSamples;
+  const double n = std::max<size_t>(1, run.adeimUpdates.size());
+  run.run.set("updates", static_cast<long>(run.adeimUpdates.size()))
+      .set("update_rank_mean", rankSum / n)
+      .set("num_samples_mean", samples / n)
+      .set("t_updates_s", tUpdates)
+      .set("initial_basis", o.initialBasis)
+      .set("sampling", o.sampling)
+      .set("delta0", static_cast<long>(o.initialWindow))
+      .set("delta", static_cast<long>(o.updateEvery))
+      .set("window", static_cast<long>(o.window))
+      .set("gamma", static_cast<long>(o.resampleEvery))
+      .set("t_initial_basis_s", tInitial)
+      .set("t_deim_pair_s", tPair)
+      .set("t_hyper_offline_s", tInitial + tPair)
+      .set("t_total_s", tInitial + tPair + run.tOnline);
+  if (run.ok) run.run.set("H_model_err_max", localHamiltonianDrift(run));
+}
+
+// GP-ADEIM (alg:SP-ADEIM) for every m: (U_0, P_0) from the first delta0 full-model steps at the
+// test parameter (or the training DEIM basis), then the adaptive model evaluated like the others,
+// its update records kept for adeim_updates.csv.
+void runGpAdeim(const RunContext& ctx, const FomResult& fom, RomStages& st, const SceneInstance& inst,
+                const RCP<const MultiVector>& A, int k, const ReducedLinearPart& linear) {
+  const double dt = ctx.config.sublist("time").get<double>("dt");
+  for (int m : mList(ctx.config)) {
+    const AdeimOptions o = adeimOptionsFrom(ctx.config.sublist("adeim"), m);
+    Teuchos::Time clock("adeim offline");
+    clock.start();
+    RCP<const MultiVector> U0;
+    if (o.initialBasis == "fom") {
+      U0 = initialAdeimBasis(inst.system, *inst.y0, *A, ctx.config.sublist("integrator"), dt, o.initialWindow, m);
+    } else {
+      U0 = deimBasisFor(ctx, st, *A, k, *inst.system).basis.U;
+      if (m > static_cast<int>(U0->getNumVectors())) {
+        st.runs.push_back(unavailable("gp-adeim", k, m, "the training DEIM basis has " +
+                                                            std::to_string(U0->getNumVectors()) + " vectors"));
+        continue;
+      }
+    }
+    const double tInitial = clock.stop();
+    clock.start(true);
+    GpAdeimModel model(inst.system, A, *U0, m, linear, o);
+    const double tPair = clock.stop();
+    const AfterStepHook hook = [&](long j, const DenseVector& z) {
+      try {
+        return model.afterStep(j, z);
+      } catch (const InputError& e) {  // a degenerate update mid-run is a result, not a crash
+        throw SolverError(detail::concat("GP-ADEIM update after step ", j, ": ", e.what()));
+      }
+    };
+    ModelRun run = evaluateReducedModel(ctx, fom, *inst.system, *A, model, true, "gp-adeim", k, m, false, hook);
+    run.adeimUpdates = model.updates();
+    setAdeimSummary(run, o, tInitial, tPair);
     st.runs.push_back(std::move(run));
   }
 }
@@ -176,13 +260,15 @@ void runGradientDeim(const RunContext& ctx, const FomResult& fom, RomStages& st,
 
 void runHyperReduction(const RunContext& ctx, const FomResult& fom, RomStages& st) {
   const auto methods = pipelineMethods(ctx.config);
-  const bool gp = wants(methods, "gp-deim"), classic = wants(methods, "deim"), sd = wants(methods, "sdeim");
-  if (!gp && !classic && !sd) return;
+  const bool gp = wants(methods, "gp-deim"), classic = wants(methods, "deim"), sd = wants(methods, "sdeim"),
+             adaptive = wants(methods, "gp-adeim");
+  if (!gp && !classic && !sd && !adaptive) return;
   auto inst = ctx.scene->instantiate(ctx.comm, ctx.mu, true);
   for (int k : stageK(ctx.config, st.basis)) {
     auto A = leadingBasis(st.basis, k);
     const ReducedLinearPart linear = reduceLinearPart(*inst.system, *A);
     if (gp) runGpDeim(ctx, fom, st, inst, *A, k, linear);
+    if (adaptive) runGpAdeim(ctx, fom, st, inst, A, k, linear);
     if (classic || sd) runGradientDeim(ctx, fom, st, inst, *A, k, linear, classic, sd);
   }
 }

@@ -1,5 +1,8 @@
 #include "gphr/driver/Json.hpp"
 
+#include <cstdlib>
+#include <limits>
+
 #include <cmath>
 #include <sstream>
 
@@ -49,6 +52,16 @@ std::string JsonObject::str(int indent) const {
   for (size_t i = 0; i < entries_.size(); ++i)
     s += (i ? ",\n" : "\n") + pad + "  " + jsonString(entries_[i].first) + ": " + entries_[i].second;
   return s + "\n" + pad + "}";
+}
+
+double JsonObject::number(const std::string& key) const {
+  for (const auto& [k, v] : entries_)
+    if (k == key) {
+      char* end = nullptr;
+      const double x = std::strtod(v.c_str(), &end);
+      return end != v.c_str() ? x : std::numeric_limits<double>::quiet_NaN();
+    }
+  return std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace gphr

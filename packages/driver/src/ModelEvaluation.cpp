@@ -55,7 +55,8 @@ class Lift {
 
 ModelRun evaluateReducedModel(const RunContext& ctx, const FomResult& fom, const HamiltonianSystem& sys,
                               const MultiVector& A, DenseHamiltonian& model, bool hasHamiltonian,
-                              const std::string& method, int k, int m, bool keepStates) {
+                              const std::string& method, int k, int m, bool keepStates,
+                              const AfterStepHook& afterStep) {
   const long steps = numSteps(ctx.config), saveEvery = ctx.config.sublist("output").get<int>("saveEvery");
   const double dt = ctx.config.sublist("time").get<double>("dt");
   ModelRun run;
@@ -92,6 +93,7 @@ ModelRun evaluateReducedModel(const RunContext& ctx, const FomResult& fom, const
         run.errors.push_back(e);
       }
       obsSeconds += obs.stop();
+      if (afterStep && afterStep(j, zj)) integ.scheme().resetJacobian();
     });
   } catch (const SolverError& e) {
     status = "diverged";
@@ -110,6 +112,7 @@ ModelRun evaluateReducedModel(const RunContext& ctx, const FomResult& fom, const
       .set("E_L2", run.eL2)
       .set("E_fin", run.ok ? fin : nan)
       .set("H_err_max", herr)
+      .set("H_err_final", run.ok && !run.hamiltonian.empty() ? std::abs(fom.hamiltonian.back() - run.hamiltonian.back()) : nan)
       .set("H_err_max_rel", H0 != 0.0 ? herr / std::abs(H0) : herr)
       .set("t_online_s", run.tOnline)
       .set("newton_iters_avg", run.ok ? double(stats.newtonIterations) / steps : nan)

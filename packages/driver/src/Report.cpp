@@ -168,7 +168,8 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
   std::map<std::string, std::unique_ptr<RenameOnCommit>> hyper;
   std::map<std::string, std::string> hyperPaths;
   for (const char* name : {"runs.csv", "report.md", "error_vs_m.png", "pareto.png", "hamiltonian_terms.png",
-                           "hamiltonian_terms.csv", "deim_singular_values.csv", "spacetime.png"}) {
+                           "hamiltonian_terms.csv", "deim_singular_values.csv", "spacetime.png", "adeim_updates.csv",
+                           "adeim_updates.png", "error_vs_total_time.png"}) {
     hyper[name] = std::make_unique<RenameOnCommit>(ctx.outputDir + "/" + name, ctx.comm);
     hyperPaths[name] = hyper[name]->tempPath();
   }

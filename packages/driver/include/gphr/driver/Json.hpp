@@ -18,6 +18,8 @@ class JsonObject {
   JsonObject& set(const std::string& key, const JsonObject& value);
   JsonObject& set(const std::string& key, const std::vector<JsonObject>& values);
   std::string str(int indent = 0) const;
+  // Read back a number set earlier (the report's tables): NaN when absent, null or not a number.
+  double number(const std::string& key) const;
 
  private:
   JsonObject& raw(const std::string& key, std::string json);

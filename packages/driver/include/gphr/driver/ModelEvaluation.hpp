@@ -5,6 +5,8 @@
 // saved steps, the Hamiltonian of the lift and the model's own Hamiltonian at every step.
 // A Newton failure or a non-finite state ends the run with status "diverged" and its step:
 // a result of the report, not a failure of `gphr`.
+#include <functional>
+
 #include "gphr/driver/FomStage.hpp"
 #include "gphr/driver/Pipeline.hpp"
 #include "gphr/timeint/DenseBackend.hpp"
@@ -17,9 +19,14 @@ std::vector<int> stageK(const Teuchos::ParameterList& cfg, const ReducedBasis& b
 // [kb, kb + k) (still orthonormal and symplectic).
 RCP<MultiVector> leadingBasis(const ReducedBasis& basis, int k);
 
-// hasHamiltonian: the model has one (rom, gp-deim); the classic DEIM baselines do not.
+// Called after every step (and at step 0) with the state, after it was measured; returns true when
+// it changed the model (GP-ADEIM's update: the lagged Newton matrix is reset). Online time.
+using AfterStepHook = std::function<bool(long, const DenseVector&)>;
+
+// hasHamiltonian: the model has one (rom, gp-deim, gp-adeim); the classic DEIM baselines do not.
 ModelRun evaluateReducedModel(const RunContext& ctx, const FomResult& fom, const HamiltonianSystem& system,
                               const MultiVector& A, DenseHamiltonian& model, bool hasHamiltonian,
-                              const std::string& method, int k, int m, bool keepStates = false);
+                              const std::string& method, int k, int m, bool keepStates = false,
+                              const AfterStepHook& afterStep = {});
 
 }  // namespace gphr

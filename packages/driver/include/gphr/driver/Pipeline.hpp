@@ -9,6 +9,7 @@
 
 #include "gphr/driver/FomStage.hpp"
 #include "gphr/driver/RunContext.hpp"
+#include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/reduction/SymplecticBasis.hpp"
 
 namespace gphr {
@@ -22,12 +23,13 @@ struct TrainingResult {
 
 // One evaluated reduced or hyper-reduced model (a "runs" entry of summary.json and its histories).
 struct ModelRun {
-  std::string method;  // rom | gp-deim | deim | sdeim
+  std::string method;  // rom | gp-deim | gp-adeim | deim | sdeim
   int k = 0, m = 0;    // m = 0 for rom
   std::vector<double> hamiltonian;       // H(y0 + A z^j) per step: the true Hamiltonian of the lift
   std::vector<double> modelHamiltonian;  // the model's own H_r / H_hr per step (empty without one)
   std::vector<double> errors;            // ||y^j - (y0 + A z^j)|| at the saved steps
   std::vector<RCP<Vector>> states;       // lifted physical states at the saved steps (space-time plots)
+  std::vector<AdeimUpdateRecord> adeimUpdates;  // gp-adeim: one record per adaptation
   double eL2 = 0.0, tOnline = 0.0;
   bool ok = true;
   JsonObject run;

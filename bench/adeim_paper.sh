@@ -1,0 +1,87 @@
+#!/usr/bin/env bash
+# GP-ADEIM benchmarks at the paper's NLS settings (Sec. 5.2: n = 2048, T = 30, dt = 0.01, AVF,
+# eps = 1.0932, 2k = 400, m = 100, 11 training parameters for the non-adaptive DEIM basis):
+#   nls        one run: GP-DEIM (non-adaptive) and GP-ADEIM (m_s = 250, delta0 = delta = gamma = 5,
+#              w = 1, r by tau_r = 1e-8) side by side, with the ROM: tab:taur's first rows
+#   taur       one run per tau_r in 1e-4 .. 1e-12                          (tab:taur)
+#   taus       m_s chosen by tau_s (relative to the largest row score)     (tab:taus)
+#   w          window w in 1, 2, 3 (delta0 = 5 > w)                        (tab:w)
+#   delta      delta = delta0 in 5, 10, 20                                 (tab:delta)
+#   gamma      gamma in 5, 10, 20, 50                                      (tab:gamma)
+#   sampling   random / residual / projected rules, m_s in 150, 300, r = r-bar (fig:schro_samplingstrats)
+#   ctime      E_L2 vs m and vs total time, 2k in 160, 280, 400, adaptive and not (fig:error_vs_ctime_2k400)
+# Training, basis and the non-adaptive DEIM basis are computed once into bench-out/adeim_base_np<R>
+# (reused by every run: copied into each run's directory). Each run prints one line per GP-DEIM /
+# GP-ADEIM model: E_L2, Delta H at the final time, t_off, t_on, t_tot (the paper's columns).
+# usage: bash bench/adeim_paper.sh CASE [RANKS] [BUILD_DIR]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+case=$1; np=${2:-2}; build=${3:-build}
+gphr=$build/packages/driver/gphr
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=1
+echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores; $(date -u +%F); ranks $np; case $case"
+base=bench-out/adeim_base_np$np
+mkdir -p "$base"
+
+# config BODY_YAML_LINES -> stdout: the paper's NLS set-up plus the given lines (under gphr:)
+config() {
+  sed -e "s|^  integrator:.*|  integrator: {scheme: avf, jacobianLag: true}|" bench/configs/nls_paper.yaml
+  cat <<YAML
+  training: {points: [11], snapshotEvery: 10}
+  reduction: {k: 200}
+  hyper: {snapshotEvery: 2, svd: randomized, maxRank: 110, powerIterations: 0}
+YAML
+  printf '%s\n' "$@"
+}
+
+run() {  # run NAME YAML_LINES...: one gphr run in bench-out/adeim_<case>_np<R>/NAME, artifacts from base
+  local name=$1; shift
+  local out=bench-out/adeim_${case}_np$np/$name
+  mkdir -p "$out"
+  config "$@" > "$out/config.yaml"
+  [ -s "$base/artifacts.h5" ] && cp "$base/artifacts.h5" "$out/artifacts.h5"
+  if [ "$np" -eq 1 ]; then "$gphr" run "$out/config.yaml" --output "$out" > "$out/run.log" 2>&1
+  else mpirun --oversubscribe -np "$np" "$gphr" run "$out/config.yaml" --output "$out" > "$out/run.log" 2>&1; fi
+  [ -s "$base/artifacts.h5" ] || cp "$out/artifacts.h5" "$base/artifacts.h5"
+  python3 - "$out/summary.json" "$name" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1])); name = sys.argv[2]
+fom = s["runs"][0]
+for r in s["runs"][1:]:
+    if r["method"] not in ("gp-deim", "gp-adeim", "rom"):
+        continue
+    g = lambda k: r.get(k) if r.get(k) is not None else float("nan")
+    extra = ""
+    if r["method"] == "gp-adeim":
+        extra = " updates %d rank %.1f m_s %.0f t_upd %.2f" % (g("updates"), g("update_rank_mean"), g("num_samples_mean"), g("t_updates_s"))
+    print("%-14s %-8s 2k=%3d m=%3s %-9s E_L2 %.3e dH_T %.3e t_off %7.2f t_on %7.2f t_tot %7.2f (FOM %.2f)%s"
+          % (name, r["method"], 2 * r["k"], r.get("m", "-"), r["status"], g("E_L2"), g("H_err_final"),
+             g("t_hyper_offline_s"), g("t_online_s"), g("t_total_s"), fom["t_online_s"], extra))
+PY
+}
+
+adeim() {  # adeim "KEY: VALUE, ..." -> the adeim section: the paper's settings, the given keys instead
+  local d="initialWindow: 5, updateEvery: 5, window: 1, resampleEvery: 5, numSamples: 250, rankTol: 1.0e-8" k
+  for k in $(echo "$1" | grep -o '[A-Za-z]*:' | tr -d :); do d=$(echo "$d" | sed -E "s/(^|, )$k: [^,]*//; s/^, //"); done
+  echo "  adeim: {$d, $1}"
+}
+
+case $case in
+  nls) run main "  pipeline: {rom: true, methods: [rom, gp-deim, gp-adeim], m: [100]}" "$(adeim "sampling: projected")" ;;
+  taur) for t in 1.0e-4 1.0e-6 1.0e-8 1.0e-10 1.0e-12; do
+          run "taur_$t" "  pipeline: {methods: [gp-adeim], m: [100]}" "$(adeim "rankTol: $t")"; done ;;
+  taus) for t in 1.0e-1 1.0e-2 1.0e-3 1.0e-4; do
+          run "taus_$t" "  pipeline: {methods: [gp-adeim], m: [100]}" \
+            "$(adeim "numSamples: 0, sampleTol: $t, maxSamples: 2048")"; done ;;
+  w) for w in 1 2 3; do run "w_$w" "  pipeline: {methods: [gp-adeim], m: [100]}" "$(adeim "window: $w")"; done ;;
+  delta) for d in 5 10 20; do
+           run "delta_$d" "  pipeline: {methods: [gp-adeim], m: [100]}" \
+             "$(adeim "initialWindow: $d, updateEvery: $d, resampleEvery: $d")"; done ;;
+  gamma) for g in 5 10 20 50; do run "gamma_$g" "  pipeline: {methods: [gp-adeim], m: [100]}" "$(adeim "resampleEvery: $g")"; done ;;
+  sampling) for ms in 150 300; do for rule in random residual projected; do
+              run "${rule}_$ms" "  pipeline: {methods: [gp-adeim], m: [100]}" \
+                "$(adeim "numSamples: $ms, rankTol: 0.0, sampling: $rule")"; done; done ;;
+  ctime) run ctime "  pipeline: {methods: [gp-deim, gp-adeim], k: [80, 140, 200], m: [${M_CTIME:-25, 50, 100}]}" \
+           "$(adeim "sampling: projected")" ;;
+  *) echo "unknown case $case"; exit 2 ;;
+esac
