@@ -71,7 +71,7 @@ void writeAdeimUpdates(const FomResult& fom, const std::vector<ModelRun>& runs, 
   std::ofstream os(csv);
   os.precision(10);
   os << "run,k,m,update,step,t,rank,coefficient_rank,m_s,resampled,sampled_residual_before,sampled_residual_after,"
-        "full_residual,update_s,dH_total,eps_fom,eps_hr,deim_end,deim_start,bound\n";
+        "full_residual,cond_PtU,update_s,dH_total,eps_fom,eps_hr,deim_end,deim_start,bound\n";
   for (const auto& r : runs) {
     if (r.method != "gp-adeim" || r.modelHamiltonian.empty()) continue;
     const double H0 = fom.hamiltonian.front();
@@ -86,7 +86,7 @@ void writeAdeimUpdates(const FomResult& fom, const std::vector<ModelRun>& runs, 
       const double start = std::abs(Hlift - u.hrAfter);
       os << "\"" << r.label() << "\"," << r.k << "," << r.m << "," << ++j << "," << u.step << "," << u.step * dt << ","
          << u.rank << "," << u.coefficientRank << "," << u.numSamples << "," << (u.resampled ? 1 : 0) << ","
-         << u.sampledBefore << "," << u.sampledAfter << "," << u.fullResidual << "," << u.seconds << ","
+         << u.sampledBefore << "," << u.sampledAfter << "," << u.fullResidual << "," << u.condPtU << "," << u.seconds << ","
          << std::abs(fom.hamiltonian[l] - Hlift) << "," << std::abs(fom.hamiltonian[l] - H0) << "," << epsHr << ","
          << end << "," << start << "," << std::abs(fom.hamiltonian[l] - H0) + sum << "\n";
       sum += start;

@@ -12,7 +12,8 @@
 namespace gphr {
 
 // Row-major rows x cols arrays are column-major cols x rows: R^T = C^T U_l^T - F_l^T is one GEMM
-// (wbar x rows, row i of R contiguous), the projection V^T R^T another.
+// (wbar x rows, row i of R contiguous). Projected: (R V)^T = (C V)^T U_l^T - V^T F_l^T, two GEMMs
+// of r_C rows, without forming R.
 std::vector<double> residualRowNorms(const std::vector<double>& Ul, const std::vector<double>& Fl, int rows,
                                      const DenseMatrix& C, const DenseMatrix* V) {
   const int m = C.numRows(), wbar = C.numCols();
@@ -22,21 +23,23 @@ std::vector<double> residualRowNorms(const std::vector<double>& Ul, const std::v
   std::vector<double> out(rows, 0.0);
   if (rows == 0) return out;
   Teuchos::BLAS<int, double> blas;
-  std::vector<double> Rt(Fl);
-  blas.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, wbar, rows, m, 1.0, C.values(), C.stride(), Ul.data(), m, -1.0,
-            Rt.data(), wbar);
-  const double* X = Rt.data();
-  int len = wbar;
-  std::vector<double> Pt;
+  const int len = V ? V->numCols() : wbar;
+  if (len == 0) return out;
+  std::vector<double> Xt;
   if (V) {
-    len = V->numCols();
-    Pt.assign(static_cast<size_t>(len) * rows, 0.0);
-    if (len > 0)
-      blas.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, len, rows, wbar, 1.0, V->values(), V->stride(), Rt.data(), wbar,
-                0.0, Pt.data(), len);
-    X = Pt.data();
+    DenseMatrix CV(m, len);
+    CV.multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, C, *V, 0.0);
+    Xt.assign(static_cast<size_t>(len) * rows, 0.0);
+    blas.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, len, rows, m, 1.0, CV.values(), CV.stride(), Ul.data(), m, 0.0,
+              Xt.data(), len);
+    blas.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, len, rows, wbar, -1.0, V->values(), V->stride(), Fl.data(), wbar, 1.0,
+              Xt.data(), len);
+  } else {
+    Xt = Fl;
+    blas.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, wbar, rows, m, 1.0, C.values(), C.stride(), Ul.data(), m, -1.0,
+              Xt.data(), wbar);
   }
-  for (int i = 0; i < rows; ++i) out[i] = len > 0 ? blas.NRM2(len, X + static_cast<size_t>(i) * len, 1) : 0.0;
+  for (int i = 0; i < rows; ++i) out[i] = blas.NRM2(len, Xt.data() + static_cast<size_t>(i) * len, 1);
   return out;
 }
 

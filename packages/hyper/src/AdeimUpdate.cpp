@@ -77,13 +77,20 @@ DenseMatrix deimCoefficients(const DenseMatrix& PtU, const DenseMatrix& PtF) {
   return C;
 }
 
-DenseMatrix coefficientRowSpace(const DenseMatrix& C, double tol) {
-  const ThinSvd svd = thinSvd(C);
-  const int rc = countAbove(svd.s, tol);
-  DenseMatrix V(C.numCols(), rc);
-  for (int l = 0; l < rc; ++l)
-    for (int i = 0; i < C.numCols(); ++i) V(i, l) = svd.Vt(l, i);
-  return V;
+CoefficientFactor factorCoefficients(const DenseMatrix& PtU, const DenseMatrix& PtF, double tol) {
+  GPHR_REQUIRE(tol >= 0.0, InputError, "GP-ADEIM: coefficientTol = ", tol, " (need >= 0)");
+  CoefficientFactor f;
+  f.C = deimCoefficients(PtU, PtF);
+  const ThinSvd svd = thinSvd(f.C);
+  const int rc = countAbove(svd.s, tol), m = f.C.numRows(), wbar = f.C.numCols();
+  f.s.assign(svd.s.begin(), svd.s.begin() + rc);
+  f.Uc.shape(m, rc);
+  f.Vc.shape(wbar, rc);
+  for (int l = 0; l < rc; ++l) {
+    for (int i = 0; i < m; ++i) f.Uc(i, l) = svd.U(i, l);
+    for (int i = 0; i < wbar; ++i) f.Vc(i, l) = svd.Vt(l, i);
+  }
+  return f;
 }
 
 // eq:gen_eval is solved through two SVDs instead of LAPACK's SYGV on the pencil: with
@@ -95,17 +102,21 @@ DenseMatrix coefficientRowSpace(const DenseMatrix& C, double tol) {
 // (The tests check the result against SYGV on well-conditioned data.)
 AdeimUpdate computeAdeimUpdate(const DenseMatrix& PtU, const DenseMatrix& PtF, const DenseMatrix& StU,
                                const DenseMatrix& StF, const AdeimUpdateOptions& opt) {
-  const int m = PtU.numRows(), ms = StU.numRows(), wbar = PtF.numCols();
+  return computeAdeimUpdate(factorCoefficients(PtU, PtF, opt.coefficientTol), StU, StF, opt);
+}
+
+AdeimUpdate computeAdeimUpdate(const CoefficientFactor& cf, const DenseMatrix& StU, const DenseMatrix& StF,
+                               const AdeimUpdateOptions& opt) {
+  const int m = cf.C.numRows(), ms = StU.numRows(), wbar = cf.C.numCols();
   GPHR_REQUIRE(StU.numCols() == m && StF.numRows() == ms && StF.numCols() == wbar, InputError,
                "GP-ADEIM update: S^T U is ", ms, " x ", StU.numCols(), ", S^T F ", StF.numRows(), " x ", StF.numCols(),
                " (need m_s x m and m_s x wbar with m = ", m, ", wbar = ", wbar, ")");
-  GPHR_REQUIRE(opt.rank >= 0 && opt.rankTol >= 0.0 && opt.coefficientTol >= 0.0, InputError,
-               "GP-ADEIM update: rank ", opt.rank, ", rankTol ", opt.rankTol, ", coefficientTol ", opt.coefficientTol,
-               " (need non-negative values)");
-  GPHR_REQUIRE(allFinite(PtF) && allFinite(StF) && allFinite(StU), InputError,
+  GPHR_REQUIRE(opt.rank >= 0 && opt.rankTol >= 0.0, InputError, "GP-ADEIM update: rank ", opt.rank, ", rankTol ",
+               opt.rankTol, " (need non-negative values)");
+  GPHR_REQUIRE(allFinite(StF) && allFinite(StU), InputError,
                "GP-ADEIM update: non-finite entries in the snapshot window or the DEIM basis rows");
   AdeimUpdate up;
-  up.C = deimCoefficients(PtU, PtF);
+  up.C = cf.C;
   DenseMatrix X = product(NO_TRANS, NO_TRANS, StU, up.C);  // S^T R = S^T U C - S^T F
   const double fitted = X.normFrobenius();
   X -= StF;
@@ -115,15 +126,10 @@ AdeimUpdate computeAdeimUpdate(const DenseMatrix& PtU, const DenseMatrix& PtF, c
   // A residual at the round-off level of its own subtraction is zero: no update (U unchanged).
   const double roundoff = 100.0 * std::numeric_limits<double>::epsilon() * (fitted + StF.normFrobenius());
   if (up.residualBefore <= roundoff) return up;
-
-  const ThinSvd cs = thinSvd(up.C);
-  up.coefficientRank = countAbove(cs.s, opt.coefficientTol);
-  const int rc = up.coefficientRank;
+  up.coefficientRank = cf.rank();
+  const int rc = cf.rank();
   if (rc == 0) return up;
-  DenseMatrix Vc(wbar, rc);
-  for (int l = 0; l < rc; ++l)
-    for (int i = 0; i < wbar; ++i) Vc(i, l) = cs.Vt(l, i);
-  const ThinSvd ms_ = thinSvd(product(NO_TRANS, NO_TRANS, X, Vc));  // M = X V_c
+  const ThinSvd ms_ = thinSvd(product(NO_TRANS, NO_TRANS, X, cf.Vc));  // M = X V_c
   const int rbar = countAbove(ms_.s, std::max(ms, rc) * std::numeric_limits<double>::epsilon());
   for (int i = 0; i < rbar; ++i) up.eigenvalues.push_back(ms_.s[i] * ms_.s[i]);
   int r = rbar;
@@ -136,10 +142,9 @@ AdeimUpdate computeAdeimUpdate(const DenseMatrix& PtU, const DenseMatrix& PtF, c
   up.rank = r;
   up.a.shape(ms, r);
   up.b.shape(m, r);
-  for (int i = 0; i < r; ++i) {
+  for (int i = 0; i < r; ++i)
     for (int l = 0; l < rc; ++l)  // b_i = U_c diag(1/s_c) w_i
-      for (int row = 0; row < m; ++row) up.b(row, i) += cs.U(row, l) * ms_.Vt(i, l) / cs.s[l];
-  }
+      for (int row = 0; row < m; ++row) up.b(row, i) += cf.Uc(row, l) * ms_.Vt(i, l) / cf.s[l];
   // a_i = -S^T R C^T b_i / ||C^T b_i||^2 (eq:ai_from_bi)
   const DenseMatrix g = product(TRANS, NO_TRANS, up.C, up.b);  // wbar x r: C^T b_i
   const DenseMatrix Xg = product(NO_TRANS, NO_TRANS, X, g);

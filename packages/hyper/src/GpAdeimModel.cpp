@@ -1,8 +1,10 @@
 #include "gphr/hyper/GpAdeimModel.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_LAPACK.hpp>
 #include <Teuchos_OrdinalTraits.hpp>
 #include <Teuchos_Time.hpp>
+#include <Teuchos_TimeMonitor.hpp>
 
 #include "gphr/core/Error.hpp"
 #include "gphr/core/ParameterValidation.hpp"
@@ -34,6 +36,9 @@ Teuchos::ParameterList adeimValidParameters() {
                      "interpolation rows P_{j+1} from U_{j+1}: greedy DEIM or QDEIM");
   setChoiceParameter(pl, "initialBasis", "fom", Teuchos::tuple<std::string>("fom", "training"),
                      "(U_0, P_0) from the first initialWindow full-model steps at the test parameter, or the training DEIM basis");
+  pl.set("orthonormalize", true,
+         "replace U_{j+1} by an orthonormal basis of its span (Gram eigenvectors, by energy) before choosing P_{j+1}; "
+         "the DEIM projection depends only on span(U) and P");
   pl.set("monitorResidual", true, "record ||U_{j+1} C_j - F_j||_F over all d rows at every update (O(d) each)");
   setIntParameter(pl, "seed", 20240601, 0, 2147483647, "seed of the random sampling rule");
   return pl;
@@ -56,6 +61,7 @@ AdeimOptions adeimOptionsFrom(Teuchos::ParameterList pl, int m) {
   o.indices = pl.get<std::string>("indices");
   o.initialBasis = pl.get<std::string>("initialBasis");
   o.monitorResidual = pl.get<bool>("monitorResidual");
+  o.orthonormalize = pl.get<bool>("orthonormalize");
   o.seed = static_cast<unsigned long long>(pl.get<int>("seed"));
   GPHR_REQUIRE(o.window < o.initialWindow, InputError, "adeim.window = ", o.window, " must be smaller than adeim.initialWindow = ",
                o.initialWindow, " (the window of the first update lies in the first delta0 steps)");
@@ -71,6 +77,11 @@ AdeimOptions adeimOptionsFrom(Teuchos::ParameterList pl, int m) {
 }
 
 namespace {
+// Timers of the adaptation's phases (printed in the run's timer table).
+Teuchos::Time& phase(const char* name) {
+  return *Teuchos::TimeMonitor::getNewCounter(std::string("gphr: gp-adeim ") + name);
+}
+
 DenseMatrix toDense(const std::vector<double>& rowMajor, int rows, int cols) {
   DenseMatrix M(rows, cols);
   for (int i = 0; i < rows; ++i)
@@ -80,9 +91,19 @@ DenseMatrix toDense(const std::vector<double>& rowMajor, int rows, int cols) {
 
 // The GP-DEIM row kernel of (U, m): interpolation rows and weights. Collective.
 RCP<ReducedRowKernel> interpolationKernel(const HamiltonianSystem& system, const MultiVector& A, const MultiVector& U,
-                                          int m, const std::string& indices) {
-  const auto P = selectDeimIndices(U, m, indices);
-  const auto w = computeDeimWeights(U, P, *system.nonlinearTerm().weights());
+                                          int m, const std::string& indices, double* cond = nullptr) {
+  std::vector<GO> P;
+  DeimWeights w;
+  {
+    Teuchos::TimeMonitor tm(phase("indices: selection"));
+    P = selectDeimIndices(U, m, indices);
+  }
+  {
+    Teuchos::TimeMonitor tm(phase("indices: weights"));
+    w = computeDeimWeights(U, P, *system.nonlinearTerm().weights());
+  }
+  if (cond) *cond = w.conditionNumber;
+  Teuchos::TimeMonitor tm(phase("indices: sample mesh of P"));
   return rcp(new ReducedRowKernel(system.nonlinearTermPtr(), gatherRowSample(system, A, P, w.weights), Teuchos::null));
 }
 
@@ -111,16 +132,16 @@ bool GpAdeimModel::isUpdateStep(long step) const {
 
 // Reduced-Jacobian rows J_G(y0 + A z_s) A of the kernel's rows for the window states, side by
 // side: row-major rows x (2k w).
-void GpAdeimModel::windowSnapshots(ReducedRowKernel& kernel, DenseMatrix& F) {
+void GpAdeimModel::windowSnapshots(ReducedRowKernel& kernel, std::vector<double>& F) {
   const int r = kernel.reducedDim(), rows = kernel.numRows(), cols = r * static_cast<int>(window_.size());
-  std::vector<double> buf(static_cast<size_t>(rows) * r);
-  F.shape(rows, cols);
+  buffer_.resize(static_cast<size_t>(rows) * r);
+  F.resize(static_cast<size_t>(rows) * cols);
   int s = 0;
   for (const DenseVector& z : window_) {
     kernel.evaluate(z, true, false);
-    kernel.reducedJacobian(buf.data());
+    kernel.reducedJacobian(buffer_.data());
     for (int i = 0; i < rows; ++i)
-      for (int c = 0; c < r; ++c) F(i, s * r + c) = buf[static_cast<size_t>(i) * r + c];
+      std::copy_n(buffer_.data() + static_cast<size_t>(i) * r, r, F.data() + static_cast<size_t>(i) * cols + s * r);
     ++s;
   }
 }
@@ -134,15 +155,20 @@ bool GpAdeimModel::afterStep(long step, const DenseVector& z) {
   AdeimUpdateRecord rec;
   rec.step = step;
   rec.hrBefore = hamiltonian(z);
-  DenseMatrix PtF, StF;
-  windowSnapshots(rows(), PtF);
-  forgetEvaluation();
-  const DenseMatrix PtU = toDense(gatherRows(*U_, P_), m_, m_);
-  const DenseMatrix C = deimCoefficients(PtU, PtF);
+  const int wbar = rows().reducedDim() * static_cast<int>(window_.size());
+  std::vector<double> F;
+  CoefficientFactor cf;
+  {
+    Teuchos::TimeMonitor tm(phase("window at P"));
+    windowSnapshots(rows(), F);
+    forgetEvaluation();
+    cf = factorCoefficients(toDense(gatherRows(*U_, P_), m_, m_), toDense(F, m_, wbar), opt_.update.coefficientTol);
+  }
   ownedFValid_ = false;
   const long updateNo = (step - opt_.initialWindow) / opt_.updateEvery;
   if ((step - opt_.initialWindow) % opt_.resampleEvery == 0 || S_.empty()) {
-    resample(C, updateNo);
+    Teuchos::TimeMonitor tm(phase("resampling"));
+    resample(cf, updateNo);
     rec.resampled = true;
   }
   if (S_.empty()) {  // m = d: no row outside P, and the DEIM projection is the identity
@@ -151,9 +177,16 @@ bool GpAdeimModel::afterStep(long step, const DenseVector& z) {
     records_.push_back(rec);
     return false;
   }
-  windowSnapshots(*sampling_, StF);
+  Teuchos::Time& updateTimer = phase("rank-r update");  // up to the new U (monitor excluded)
+  updateTimer.start();
+  windowSnapshots(*sampling_, F);
+  const DenseMatrix StF = toDense(F, static_cast<int>(S_.size()), wbar);
   DenseMatrix StU = toDense(gatherRows(*U_, S_), static_cast<int>(S_.size()), m_);
-  const AdeimUpdate up = computeAdeimUpdate(PtU, PtF, StU, StF, opt_.update);
+  AdeimUpdate up;
+  {
+    Teuchos::TimeMonitor tm(phase("rank-r update: dense algebra"));
+    up = computeAdeimUpdate(cf, StU, StF, opt_.update);
+  }
   rec.rank = up.rank;
   rec.coefficientRank = up.coefficientRank;
   rec.numSamples = static_cast<int>(S_.size());
@@ -163,8 +196,18 @@ bool GpAdeimModel::afterStep(long step, const DenseVector& z) {
     applyAdeimUpdate(up, StU);
     writeSampledRows(StU);
   }
-  if (opt_.monitorResidual) rec.fullResidual = fullResidual(up.C);
-  if (up.rank > 0) moveInterpolationRows();
+  updateTimer.stop();
+  if (opt_.monitorResidual) {
+    Teuchos::TimeMonitor tm(phase("residual monitor"));
+    rec.fullResidual = fullResidual(up.C);
+  }
+  if (up.rank > 0) {
+    if (opt_.orthonormalize) {
+      Teuchos::TimeMonitor tm(phase("orthonormalization"));
+      orthonormalizeBasis();
+    }
+    rec.condPtU = moveInterpolationRows();
+  }
   rec.hrAfter = hamiltonian(z);
   rec.seconds = timer.stop();
   records_.push_back(rec);
@@ -173,12 +216,6 @@ bool GpAdeimModel::afterStep(long step, const DenseVector& z) {
 
 // F_j on this rank's rows (computed once per update, shared by resampling and monitoring).
 namespace {
-std::vector<double> rowMajor(const DenseMatrix& M) {
-  std::vector<double> out(static_cast<size_t>(M.numRows()) * M.numCols());
-  for (int i = 0; i < M.numRows(); ++i)
-    for (int j = 0; j < M.numCols(); ++j) out[static_cast<size_t>(i) * M.numCols() + j] = M(i, j);
-  return out;
-}
 std::vector<double> ownedRows(const MultiVector& U) {
   auto u = U.getLocalViewHost(Tpetra::Access::ReadOnly);
   const size_t rows = u.extent(0), m = u.extent(1);
@@ -189,28 +226,32 @@ std::vector<double> ownedRows(const MultiVector& U) {
 }
 }  // namespace
 
-void GpAdeimModel::resample(const DenseMatrix& C, long updateNo) {
+void GpAdeimModel::resample(const CoefficientFactor& cf, long updateNo) {
   const Map& rowMap = *system_->nonlinearTerm().rowMap();
   if (opt_.sampling == "random") {
     S_ = randomRows(rowMap, P_, opt_.numSamples, opt_.seed, updateNo);
   } else {
     if (!ownedFValid_) {
-      DenseMatrix F;
-      windowSnapshots(*owned_, F);
-      ownedF_ = rowMajor(F);
+      Teuchos::TimeMonitor tm(phase("resampling: F_j on own rows"));
+      windowSnapshots(*owned_, ownedF_);
       ownedFValid_ = true;
     }
-    const DenseMatrix V = coefficientRowSpace(C, opt_.update.coefficientTol);
-    const auto scores = residualRowNorms(ownedRows(*U_), ownedF_, owned_->numRows(), C,
-                                         opt_.sampling == "projected" ? &V : nullptr);
+    std::vector<double> scores;
+    {
+      Teuchos::TimeMonitor tm(phase("resampling: row scores"));
+      scores = residualRowNorms(ownedRows(*U_), ownedF_, owned_->numRows(), cf.C,
+                                opt_.sampling == "projected" ? &cf.Vc : nullptr);
+    }
     SampleCount count;
     count.fixed = opt_.numSamples;
     count.relTol = opt_.sampleTol;
     count.atLeast = m_;
     count.atMost = opt_.maxSamples;
+    Teuchos::TimeMonitor tm(phase("resampling: select"));
     S_ = largestScoreRows(rowMap, scores, P_, count);
   }
   if (S_.empty()) return;
+  Teuchos::TimeMonitor tm(phase("resampling: sample mesh of S"));
   sampling_ = rcp(new ReducedRowKernel(system_->nonlinearTermPtr(),
                                        gatherRowSample(*system_, *A_, S_, std::vector<double>(S_.size(), 1.0)),
                                        Teuchos::null));
@@ -218,9 +259,7 @@ void GpAdeimModel::resample(const DenseMatrix& C, long updateNo) {
 
 double GpAdeimModel::fullResidual(const DenseMatrix& C) {
   if (!ownedFValid_) {
-    DenseMatrix F;
-    windowSnapshots(*owned_, F);
-    ownedF_ = rowMajor(F);
+    windowSnapshots(*owned_, ownedF_);
     ownedFValid_ = true;
   }
   const auto norms = residualRowNorms(ownedRows(*U_), ownedF_, owned_->numRows(), C, nullptr);
@@ -240,9 +279,42 @@ void GpAdeimModel::writeSampledRows(const DenseMatrix& StU) {
   }
 }
 
-void GpAdeimModel::moveInterpolationRows() {
-  replaceRows(interpolationKernel(*system_, *A_, *U_, m_, opt_.indices));
+double GpAdeimModel::moveInterpolationRows() {
+  double cond = 0.0;
+  replaceRows(interpolationKernel(*system_, *A_, *U_, m_, opt_.indices, &cond));
   P_ = rows().sample().rows;
+  return cond;
+}
+
+// U <- U V diag(lambda)^{-1/2} with U^T U = V diag(lambda) V^T (eigenvalues descending): an
+// orthonormal basis of the same span (so the same DEIM projection for a given P), its columns
+// ordered by energy for the greedy index selection. The Gram matrix is m x m (LAPACK SYEV).
+void GpAdeimModel::orthonormalizeBasis() {
+  auto local = rcp(new Map(m_, 0, U_->getMap()->getComm(), Tpetra::LocallyReplicated));
+  MultiVector G(local, m_), T(local, m_);
+  G.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, *U_, *U_, 0.0);
+  DenseMatrix Gd(m_, m_);
+  {
+    auto g = G.getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (int j = 0; j < m_; ++j)
+      for (int i = 0; i < m_; ++i) Gd(i, j) = 0.5 * (g(i, j) + g(j, i));
+  }
+  std::vector<double> lambda(m_), work(1);
+  Teuchos::LAPACK<int, double> lapack;
+  int info = 0;
+  lapack.SYEV('V', 'U', m_, Gd.values(), Gd.stride(), lambda.data(), work.data(), -1, &info);
+  work.resize(std::max(1, static_cast<int>(work[0])));
+  lapack.SYEV('V', 'U', m_, Gd.values(), Gd.stride(), lambda.data(), work.data(), static_cast<int>(work.size()), &info);
+  GPHR_REQUIRE(info == 0 && lambda[0] > 0.0, SolverError, "GP-ADEIM: the updated DEIM basis is rank-deficient (Gram "
+               "eigenvalues down to ", lambda[0], ")");
+  {
+    auto t = T.getLocalViewHost(Tpetra::Access::OverwriteAll);
+    for (int j = 0; j < m_; ++j)  // column j: the eigenvector of the j-th largest eigenvalue, scaled
+      for (int i = 0; i < m_; ++i) t(i, j) = Gd(i, m_ - 1 - j) / std::sqrt(lambda[m_ - 1 - j]);
+  }
+  MultiVector Q(U_->getMap(), m_);
+  Q.multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, *U_, T, 0.0);
+  Tpetra::deep_copy(*U_, Q);
 }
 
 RCP<MultiVector> initialAdeimBasis(RCP<const HamiltonianSystem> system, const Vector& y0, const MultiVector& A,

@@ -13,25 +13,23 @@ namespace gphr {
 namespace {
 using Lapack = Teuchos::LAPACK<int, double>;
 
-// Global argmax of |x| over the map (ties: smallest gid); returns (gid, |x|).
+// Global argmax of |x| over the map (ties: smallest gid); returns (gid, |x|). One gatherAll of
+// (value, gid) pairs (gids are exact in a double below 2^53).
 std::pair<GO, double> argmaxAbs(const Map& map, const double* x) {
-  double best = -1.0;
-  GO gid = -1;
+  double best[2] = {-1.0, -1.0};  // |x|, gid
   for (LO i = 0; i < static_cast<LO>(map.getNodeNumElements()); ++i) {
-    const double a = std::abs(x[i]);
-    const GO g = map.getGlobalElement(i);
-    if (a > best || (a == best && g < gid)) best = a, gid = g;
+    const double a = std::abs(x[i]), g = static_cast<double>(map.getGlobalElement(i));
+    if (a > best[0] || (a == best[0] && g < best[1])) best[0] = a, best[1] = g;
   }
   const int np = map.getComm()->getSize();
-  std::vector<double> vals(np), allVals(np);
-  std::vector<long long> gids(np), allGids(np);
-  Teuchos::gatherAll(*map.getComm(), 1, &best, np, allVals.data());
-  const long long mine = gid;
-  Teuchos::gatherAll(*map.getComm(), 1, &mine, np, allGids.data());
+  std::vector<double> all(2 * static_cast<size_t>(np));
+  Teuchos::gatherAll(*map.getComm(), 2, best, 2 * np, all.data());
   std::pair<GO, double> out{-1, -1.0};
-  for (int p = 0; p < np; ++p)
-    if (allVals[p] > out.second || (allVals[p] == out.second && allGids[p] < out.first && allGids[p] >= 0))
-      out = {static_cast<GO>(allGids[p]), allVals[p]};
+  for (int p = 0; p < np; ++p) {
+    const double v = all[2 * p], g = all[2 * p + 1];
+    if (g >= 0.0 && (v > out.second || (v == out.second && static_cast<GO>(g) < out.first)))
+      out = {static_cast<GO>(g), v};
+  }
   return out;
 }
 
@@ -62,11 +60,9 @@ std::vector<GO> greedyDeim(const MultiVector& U, int m) {
       for (int j = 0; j < l; ++j) B[i + static_cast<size_t>(l) * j] = PtU[static_cast<size_t>(i) * nc + j];
     }
     if (l > 0) luSolve(B, l, c, 'N', "greedy DEIM");
-    for (LO i = 0; i < nl; ++i) {
-      double s = u(i, l);
-      for (int j = 0; j < l; ++j) s -= u(i, j) * c[j];
-      res[i] = s;
-    }
+    for (LO i = 0; i < nl; ++i) res[i] = u(i, l);
+    for (int j = 0; j < l; ++j)  // column by column: U is column-major (LayoutLeft)
+      for (LO i = 0; i < nl; ++i) res[i] -= u(i, j) * c[j];
     const auto [gid, val] = argmaxAbs(map, res.data());
     GPHR_REQUIRE(val > 0.0 && std::isfinite(val), InputError, "greedy DEIM: the residual of DEIM basis column ",
                  l + 1, " vanishes (", val, "): the DEIM basis is rank-deficient; use m <= ", l);

@@ -39,11 +39,26 @@ struct AdeimUpdate {
   double residualAfter = 0.0;       // ||S^T R_j + a b^T C_j||_F = sqrt(before^2 - sum_{i<=r} lambda_i)
 };
 
+// C_j and its thin SVD C = U_c diag(s) V_c^T, truncated to its numerical rank r_C (relative
+// tolerance `coefficientTol`): V_c V_c^T = C^T (C C^T)^{-1} C is the projector C_bar of Lemma
+// theo:update_error and alg:indices_adapt, here without forming C C^T. Computed once per update,
+// shared by the resampling and the update.
+struct CoefficientFactor {
+  DenseMatrix C;          // m x wbar
+  DenseMatrix Uc, Vc;     // m x r_C, wbar x r_C
+  std::vector<double> s;  // r_C singular values
+  int rank() const { return static_cast<int>(s.size()); }
+};
+CoefficientFactor factorCoefficients(const DenseMatrix& PtU, const DenseMatrix& PtF, double coefficientTol);
+
 // PtU: P^T U_j (m x m); PtF: P^T F_j (m x wbar); StU: S^T U_j (m_s x m); StF: S^T F_j (m_s x wbar).
 // InputError on mismatched sizes or a singular P^T U; never NaN: a zero residual or a zero C gives
 // rank 0 (no update).
 AdeimUpdate computeAdeimUpdate(const DenseMatrix& PtU, const DenseMatrix& PtF, const DenseMatrix& StU,
                                const DenseMatrix& StF, const AdeimUpdateOptions& options);
+// The same from a factored C_j (options.coefficientTol is the factor's).
+AdeimUpdate computeAdeimUpdate(const CoefficientFactor& factor, const DenseMatrix& StU, const DenseMatrix& StF,
+                               const AdeimUpdateOptions& options);
 
 // StU += a b^T (the rows S of U_{j+1}).
 void applyAdeimUpdate(const AdeimUpdate& update, DenseMatrix& StU);
@@ -51,10 +66,5 @@ void applyAdeimUpdate(const AdeimUpdate& update, DenseMatrix& StU);
 // The DEIM coefficients C = (P^T U)^{-1} P^T F (LAPACK GESV). InputError naming the pivot when
 // P^T U is singular.
 DenseMatrix deimCoefficients(const DenseMatrix& PtU, const DenseMatrix& PtF);
-
-// Orthonormal basis V_r (wbar x r_C) of the row space of C, r_C its numerical rank with the
-// relative tolerance tol: C_bar = V_r V_r^T = C^T (C C^T)^{-1} C, the projector of Lemma
-// theo:update_error and alg:indices_adapt, without forming C C^T.
-DenseMatrix coefficientRowSpace(const DenseMatrix& C, double tol);
 
 }  // namespace gphr

@@ -32,6 +32,7 @@ struct AdeimOptions {
   std::string indices = "deim";        // P_{j+1} from U_{j+1}: deim | qdeim
   std::string initialBasis = "fom";    // (U_0, P_0): fom (delta0 FOM steps) | training
   bool monitorResidual = true;  // ||U_{j+1} C_j - F_j||_F on all d rows at every update (O(d))
+  bool orthonormalize = true;  // U_{j+1} <- an orthonormal basis of its span, ordered by energy (O(d m^2))
   unsigned long long seed = 20240601;
 };
 
@@ -50,6 +51,7 @@ struct AdeimUpdateRecord {
   double sampledBefore = 0.0; // ||S^T R_j||_F
   double sampledAfter = 0.0;  // ||S^T (U_{j+1} C_j - F_j)||_F
   double fullResidual = -1.0; // ||U_{j+1} C_j - F_j||_F over all d rows (fig:schro_samplingstrats); -1: not computed
+  double condPtU = 0.0;       // cond_2(P_{j+1}^T U_{j+1}) of the new pair
   double hrBefore = 0.0;      // H_hr^j(z^{ell_{j+1}})   (the local model ending here)
   double hrAfter = 0.0;       // H_hr^{j+1}(z^{ell_{j+1}})
   double seconds = 0.0;       // wall time of this adaptation
@@ -75,10 +77,11 @@ class GpAdeimModel final : public ReducedHamiltonian {
 
  private:
   bool isUpdateStep(long step) const;
-  void windowSnapshots(ReducedRowKernel& kernel, DenseMatrix& F);  // rows x (2k w)
-  void resample(const DenseMatrix& C, long updateNo);
+  void windowSnapshots(ReducedRowKernel& kernel, std::vector<double>& F);  // row-major rows x (2k w)
+  void resample(const CoefficientFactor& cf, long updateNo);
   double fullResidual(const DenseMatrix& C);
-  void moveInterpolationRows();
+  double moveInterpolationRows();  // returns cond(P^T U)
+  void orthonormalizeBasis();
   void writeSampledRows(const DenseMatrix& StU);
 
   RCP<const HamiltonianSystem> system_;
@@ -91,6 +94,7 @@ class GpAdeimModel final : public ReducedHamiltonian {
   RCP<ReducedRowKernel> owned_;     // this rank's rows of G (resampling, monitoring)
   std::deque<DenseVector> window_;
   std::vector<double> ownedF_;      // F_j on this rank's rows (row-major), when computed
+  std::vector<double> buffer_;      // one state's reduced-Jacobian rows
   bool ownedFValid_ = false;
   std::vector<AdeimUpdateRecord> records_;
 };
