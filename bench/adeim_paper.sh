@@ -26,7 +26,10 @@ mkdir -p "$base"
 
 # config BODY_YAML_LINES -> stdout: the paper's NLS set-up plus the given lines (under gphr:)
 config() {
-  sed -e "s|^  integrator:.*|  integrator: {scheme: avf, jacobianLag: true}|" bench/configs/nls_paper.yaml
+  local plots=false
+  case $case in ctime|sampling) plots=true ;; esac  # their figures: error_vs_total_time.png, adeim_updates.png
+  sed -e "s|^  integrator:.*|  integrator: {scheme: avf, jacobianLag: true}|" -e "s|plots: false|plots: $plots|" \
+    bench/configs/nls_paper.yaml
   cat <<YAML
   training: {points: [11], snapshotEvery: 10}
   reduction: {k: 200}
