@@ -193,7 +193,12 @@ void runGpAdeim(const RunContext& ctx, const FomResult& fom, RomStages& st, cons
     clock.start();
     RCP<const MultiVector> U0;
     if (o.initialBasis == "fom") {
-      U0 = initialAdeimBasis(inst.system, *inst.y0, *A, ctx.config.sublist("integrator"), dt, o.initialWindow, m);
+      try {  // too few directions in the first delta0 steps for this m: that run is unavailable
+        U0 = initialAdeimBasis(inst.system, *inst.y0, *A, ctx.config.sublist("integrator"), dt, o.initialWindow, m);
+      } catch (const InputError& e) {
+        st.runs.push_back(unavailable("gp-adeim", k, m, e.what()));
+        continue;
+      }
     } else {
       U0 = deimBasisFor(ctx, st, *A, k, *inst.system).basis.U;
       if (m > static_cast<int>(U0->getNumVectors())) {

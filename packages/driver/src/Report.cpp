@@ -61,9 +61,11 @@ void writeArtifacts(const RunContext& ctx, const FomResult& fom, const RomStages
     const std::string g = "/runs/" + std::to_string(i);
     f.createGroup(g);
     f.setAttribute(g, "label", r.label());
+    if (r.hamiltonian.empty()) continue;  // an unavailable run (no trajectory): its label says which
     f.writeArray(g + "/hamiltonian", r.hamiltonian, r.hamiltonian.size(), 1);
     if (!r.modelHamiltonian.empty())
       f.writeArray(g + "/model_hamiltonian", r.modelHamiltonian, r.modelHamiltonian.size(), 1);
+    if (r.errors.empty()) continue;  // diverged before the first saved step after step 0
     f.writeArray(g + "/errors", r.errors, r.errors.size(), 1);
     f.setAttribute(g + "/errors", "layout", std::string("||y - (y0 + A z)|| at /fom/times"));
   }
