@@ -177,26 +177,12 @@ bool GpAdeimModel::afterStep(long step, const DenseVector& z) {
     records_.push_back(rec);
     return false;
   }
-  Teuchos::Time& updateTimer = phase("rank-r update");  // up to the new U (monitor excluded)
-  updateTimer.start();
-  windowSnapshots(*sampling_, F);
-  const DenseMatrix StF = toDense(F, static_cast<int>(S_.size()), wbar);
-  DenseMatrix StU = toDense(gatherRows(*U_, S_), static_cast<int>(S_.size()), m_);
-  AdeimUpdate up;
-  {
-    Teuchos::TimeMonitor tm(phase("rank-r update: dense algebra"));
-    up = computeAdeimUpdate(cf, StU, StF, opt_.update);
-  }
+  const AdeimUpdate up = updateSampledRows(cf, wbar, F);
   rec.rank = up.rank;
   rec.coefficientRank = up.coefficientRank;
   rec.numSamples = static_cast<int>(S_.size());
   rec.sampledBefore = up.residualBefore;
   rec.sampledAfter = up.residualAfter;
-  if (up.rank > 0) {
-    applyAdeimUpdate(up, StU);
-    writeSampledRows(StU);
-  }
-  updateTimer.stop();
   if (opt_.monitorResidual) {
     Teuchos::TimeMonitor tm(phase("residual monitor"));
     rec.fullResidual = fullResidual(up.C);
@@ -212,6 +198,25 @@ bool GpAdeimModel::afterStep(long step, const DenseVector& z) {
   rec.seconds = timer.stop();
   records_.push_back(rec);
   return up.rank > 0;
+}
+
+// alg:basis_adapt lines 4-9 at the sampling rows: S^T F_j, S^T U_j, the rank-r update, and
+// S^T U_{j+1} written into each rank's own rows of U.
+AdeimUpdate GpAdeimModel::updateSampledRows(const CoefficientFactor& cf, int wbar, std::vector<double>& F) {
+  Teuchos::TimeMonitor tm(phase("rank-r update"));
+  windowSnapshots(*sampling_, F);
+  const DenseMatrix StF = toDense(F, static_cast<int>(S_.size()), wbar);
+  DenseMatrix StU = toDense(gatherRows(*U_, S_), static_cast<int>(S_.size()), m_);
+  AdeimUpdate up;
+  {
+    Teuchos::TimeMonitor dense(phase("rank-r update: dense algebra"));
+    up = computeAdeimUpdate(cf, StU, StF, opt_.update);
+  }
+  if (up.rank > 0) {
+    applyAdeimUpdate(up, StU);
+    writeSampledRows(StU);
+  }
+  return up;
 }
 
 // F_j on this rank's rows (computed once per update, shared by resampling and monitoring).

@@ -79,6 +79,7 @@ class GpAdeimModel final : public ReducedHamiltonian {
   bool isUpdateStep(long step) const;
   void windowSnapshots(ReducedRowKernel& kernel, std::vector<double>& F);  // row-major rows x (2k w)
   void resample(const CoefficientFactor& cf, long updateNo);
+  AdeimUpdate updateSampledRows(const CoefficientFactor& cf, int wbar, std::vector<double>& F);
   double fullResidual(const DenseMatrix& C);
   double moveInterpolationRows();  // returns cond(P^T U)
   void orthonormalizeBasis();
