@@ -93,7 +93,7 @@ ModelRun evaluateReducedModel(const RunContext& ctx, const FomResult& fom, const
         run.errors.push_back(e);
       }
       obsSeconds += obs.stop();
-      if (afterStep && afterStep(j, zj)) integ.scheme().resetJacobian();
+      if (afterStep) afterStep(j, zj);
     });
   } catch (const SolverError& e) {
     status = "diverged";

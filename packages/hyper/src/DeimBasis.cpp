@@ -10,6 +10,7 @@
 #include "gphr/core/Error.hpp"
 #include "gphr/reduction/ReducedRowKernel.hpp"
 #include "gphr/reduction/StreamingPod.hpp"
+#include "gphr/reduction/SymmetricEigen.hpp"
 
 namespace gphr {
 
@@ -126,13 +127,7 @@ DeimBasis randomizedDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& s
     Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, local, Teuchos::outArg(global));
     energy += global;
   });
-  std::vector<double> lambda(cols), work(1);
-  Teuchos::LAPACK<int, double> lapack;
-  int info = 0;
-  lapack.SYEV('V', 'U', cols, G.data(), cols, lambda.data(), work.data(), -1, &info);
-  work.resize(std::max(1, static_cast<int>(work[0])));
-  lapack.SYEV('V', 'U', cols, G.data(), cols, lambda.data(), work.data(), static_cast<int>(work.size()), &info);
-  GPHR_REQUIRE(info == 0, SolverError, "DEIM basis: LAPACK SYEV failed (info = ", info, ")");
+  const std::vector<double> lambda = symmetricEigen(cols, G.data(), true, "DEIM basis");
   DeimBasis out;
   const double floor = 1e-7 * std::sqrt(std::max(lambda[cols - 1], 0.0));  // Gram: sqrt(eps) resolution
   auto local = rcp(new Map(cols, 0, rowMap->getComm(), Tpetra::LocallyReplicated));

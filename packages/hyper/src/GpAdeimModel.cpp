@@ -1,7 +1,6 @@
 #include "gphr/hyper/GpAdeimModel.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
-#include <Teuchos_LAPACK.hpp>
 #include <Teuchos_OrdinalTraits.hpp>
 #include <Teuchos_Time.hpp>
 #include <Teuchos_TimeMonitor.hpp>
@@ -12,6 +11,7 @@
 #include "gphr/hyper/AdeimSampling.hpp"
 #include "gphr/hyper/DeimBasis.hpp"
 #include "gphr/reduction/Deim.hpp"
+#include "gphr/reduction/SymmetricEigen.hpp"
 #include "gphr/timeint/FullModelIntegrator.hpp"
 
 namespace gphr {
@@ -304,14 +304,9 @@ void GpAdeimModel::orthonormalizeBasis() {
     for (int j = 0; j < m_; ++j)
       for (int i = 0; i < m_; ++i) Gd(i, j) = 0.5 * (g(i, j) + g(j, i));
   }
-  std::vector<double> lambda(m_), work(1);
-  Teuchos::LAPACK<int, double> lapack;
-  int info = 0;
-  lapack.SYEV('V', 'U', m_, Gd.values(), Gd.stride(), lambda.data(), work.data(), -1, &info);
-  work.resize(std::max(1, static_cast<int>(work[0])));
-  lapack.SYEV('V', 'U', m_, Gd.values(), Gd.stride(), lambda.data(), work.data(), static_cast<int>(work.size()), &info);
-  GPHR_REQUIRE(info == 0 && lambda[0] > 0.0, SolverError, "GP-ADEIM: the updated DEIM basis is rank-deficient (Gram "
-               "eigenvalues down to ", lambda[0], ")");
+  const std::vector<double> lambda = symmetricEigen(m_, Gd.values(), true, "GP-ADEIM re-orthonormalization");
+  GPHR_REQUIRE(lambda[0] > 0.0, SolverError, "GP-ADEIM: the updated DEIM basis is rank-deficient (Gram eigenvalues "
+               "down to ", lambda[0], ")");
   {
     auto t = T.getLocalViewHost(Tpetra::Access::OverwriteAll);
     for (int j = 0; j < m_; ++j)  // column j: the eigenvector of the j-th largest eigenvalue, scaled

@@ -1,8 +1,7 @@
 #include "gphr/hyper/GpDeimModel.hpp"
 
-#include <Teuchos_LAPACK.hpp>
 
-#include "gphr/core/Error.hpp"
+#include "gphr/reduction/SymmetricEigen.hpp"
 
 namespace gphr {
 
@@ -22,16 +21,10 @@ RCP<GpDeimModel> buildGpDeimModel(const HamiltonianSystem& system, const MultiVe
 
 double smallestEigenvalue(const DenseMatrix& H) {
   const int n = H.numRows();
-  std::vector<double> a(static_cast<size_t>(n) * n), ev(n), work(1);
+  std::vector<double> a(static_cast<size_t>(n) * n);
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) a[i + static_cast<size_t>(n) * j] = 0.5 * (H(i, j) + H(j, i));
-  Teuchos::LAPACK<int, double> lapack;
-  int info = 0;
-  lapack.SYEV('N', 'U', n, a.data(), n, ev.data(), work.data(), -1, &info);
-  work.resize(std::max(1, static_cast<int>(work[0])));
-  lapack.SYEV('N', 'U', n, a.data(), n, ev.data(), work.data(), static_cast<int>(work.size()), &info);
-  GPHR_REQUIRE(info == 0, SolverError, "LAPACK SYEV failed (info = ", info, ")");
-  return ev[0];
+  return symmetricEigen(n, a.data(), false, "Hessian eigenvalues").front();
 }
 
 }  // namespace gphr

@@ -32,7 +32,7 @@ inline AdaptiveRun adaptiveTrajectory(GpAdeimModel& model, const std::string& sc
     r.z.push_back(zj);
     r.H.push_back(model.hamiltonian(zj));
     r.bound.push_back(j == 0 ? 0.0 : integ.scheme().averageGradient().normFrobenius() * rep.residualNorm);
-    if (model.afterStep(j, zj)) integ.scheme().resetJacobian();
+    model.afterStep(j, zj);  // full Newton here (no lagged matrix to keep or reset)
   });
   return r;
 }

@@ -208,16 +208,26 @@ TEST(GpDeim, LinearProblemHasNothingToHyperReduce) {
   }
 }
 
+// One AVF training run at mu = 1 (dt = 0.05) and its PSD basis of size 2k.
+struct TrainedBasis {
+  SceneInstance tr;
+  RCP<const MultiVector> snaps;
+  ReducedBasis basis;
+};
+TrainedBasis trainedBasis(const Nls1d& scene, long steps, int k) {
+  auto tr = scene.instantiate(test::comm(), {1.0}, true);
+  auto snaps = test::fomSnapshots(tr, "avf", 0.05, steps);
+  BasisOptions opt;
+  opt.k = k;
+  auto basis = computeSymplecticBasis({snaps}, tr.system->space(), opt);
+  return {tr, snaps, basis};
+}
+
 TEST(GpDeim, RandomizedDeimBasisMatchesTheExactOne) {
   // NLS reduced-Jacobian snapshots decay fast: the range finder with 10 extra columns and one
   // power pass resolves the leading singular values to a relative error of order
   // (sigma_{m+11} / sigma_j)^4 (HMT11 Cor. 10.10), here < 1e-6; the leading subspace likewise.
-  Nls1d scene(64, 5.0);
-  auto tr = scene.instantiate(test::comm(), {1.0}, true);
-  auto snaps = test::fomSnapshots(tr, "avf", 0.05, 60);
-  BasisOptions bo;
-  bo.k = 4;
-  auto basis = computeSymplecticBasis({snaps}, tr.system->space(), bo);
+  const auto [tr, snaps, basis] = trainedBasis(Nls1d(64, 5.0), 60, 4);
   DeimBasisOptions opt;
   opt.maxRank = 20;
   const auto exact = computeDeimBasis({tr.system}, {snaps}, *basis.A, opt);
@@ -239,12 +249,7 @@ TEST(GpDeim, RandomizedDeimBasisMatchesTheExactOne) {
 }
 
 TEST(GpDeim, DuplicatedSnapshotsGiveTheSameDeimPair) {
-  Nls1d scene(32);
-  auto tr = scene.instantiate(test::comm(), {1.0}, true);
-  auto snaps = test::fomSnapshots(tr, "avf", 0.05, 40);
-  BasisOptions opt;
-  opt.k = 3;
-  auto basis = computeSymplecticBasis({snaps}, tr.system->space(), opt);
+  const auto [tr, snaps, basis] = trainedBasis(Nls1d(32), 40, 3);
   DeimBasisOptions dopt;
   dopt.maxRank = 32;
   const auto once = computeDeimBasis({tr.system}, {snaps}, *basis.A, dopt);

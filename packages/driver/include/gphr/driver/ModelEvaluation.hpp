@@ -19,9 +19,10 @@ std::vector<int> stageK(const Teuchos::ParameterList& cfg, const ReducedBasis& b
 // [kb, kb + k) (still orthonormal and symplectic).
 RCP<MultiVector> leadingBasis(const ReducedBasis& basis, int k);
 
-// Called after every step (and at step 0) with the state, after it was measured; returns true when
-// it changed the model (GP-ADEIM's update: the lagged Newton matrix is reset). Online time.
-using AfterStepHook = std::function<bool(long, const DenseVector&)>;
+// Called after every step (and at step 0) with the state, after it was measured (GP-ADEIM's
+// update). Online time. A lagged Newton matrix is kept across it: the lag rule refactors when
+// Newton slows.
+using AfterStepHook = std::function<void(long, const DenseVector&)>;
 
 // hasHamiltonian: the model has one (rom, gp-deim, gp-adeim); the classic DEIM baselines do not.
 ModelRun evaluateReducedModel(const RunContext& ctx, const FomResult& fom, const HamiltonianSystem& system,

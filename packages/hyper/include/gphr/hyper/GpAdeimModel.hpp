@@ -64,8 +64,7 @@ class GpAdeimModel final : public ReducedHamiltonian {
                ReducedLinearPart linear, AdeimOptions options);
 
   // Call after every time step with its number and state (step 0: the initial state). Adapts at
-  // the update steps of alg:SP-ADEIM and returns true when the model changed (a lagged Newton
-  // matrix is then stale). Collective.
+  // the update steps of alg:SP-ADEIM and returns true when the model changed. Collective.
   bool afterStep(long step, const DenseVector& z);
 
   int deimSize() const { return m_; }

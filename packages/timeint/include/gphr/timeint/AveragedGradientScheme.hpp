@@ -77,8 +77,6 @@ class AveragedGradientScheme {
 
   const QuadratureRule& rule() const { return rule_; }
   const NewtonOptions& options() const { return opts_; }
-  // The model changed between steps (GP-ADEIM's basis update): a lagged matrix is stale.
-  void resetJacobian() { haveMatrix_ = false; }
 
   // Solve (*) for y1, starting from the guess in y1, with GPHR's own Newton loop (the driver of
   // the reduced models and, by default, of the full model; the full model's alternative driver is
