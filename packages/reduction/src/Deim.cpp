@@ -2,8 +2,10 @@
 
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_LAPACK.hpp>
+#include <Teuchos_OrdinalTraits.hpp>
 
 #include <cmath>
+#include <limits>
 
 #include "gphr/core/Error.hpp"
 #include "gphr/core/ReplicatedGather.hpp"
@@ -12,26 +14,6 @@ namespace gphr {
 
 namespace {
 using Lapack = Teuchos::LAPACK<int, double>;
-
-// Global argmax of |x| over the map (ties: smallest gid); returns (gid, |x|). One gatherAll of
-// (value, gid) pairs (gids are exact in a double below 2^53).
-std::pair<GO, double> argmaxAbs(const Map& map, const double* x) {
-  double best[2] = {-1.0, -1.0};  // |x|, gid
-  for (LO i = 0; i < static_cast<LO>(map.getNodeNumElements()); ++i) {
-    const double a = std::abs(x[i]), g = static_cast<double>(map.getGlobalElement(i));
-    if (a > best[0] || (a == best[0] && g < best[1])) best[0] = a, best[1] = g;
-  }
-  const int np = map.getComm()->getSize();
-  std::vector<double> all(2 * static_cast<size_t>(np));
-  Teuchos::gatherAll(*map.getComm(), 2, best, 2 * np, all.data());
-  std::pair<GO, double> out{-1, -1.0};
-  for (int p = 0; p < np; ++p) {
-    const double v = all[2 * p], g = all[2 * p + 1];
-    if (g >= 0.0 && (v > out.second || (v == out.second && static_cast<GO>(g) < out.first)))
-      out = {static_cast<GO>(g), v};
-  }
-  return out;
-}
 
 // Solve B x = rhs (B m x m column-major, overwritten by its LU) or B^T x = rhs.
 void luSolve(std::vector<double>& B, int m, std::vector<double>& rhs, char trans, const char* what) {
@@ -44,31 +26,73 @@ void luSolve(std::vector<double>& B, int m, std::vector<double>& rhs, char trans
   lapack.GETRS(trans, m, 1, B.data(), m, piv.data(), rhs.data(), m, &info);
 }
 
+// Greedy DEIM (Chaturantabut & Sorensen, Alg. 1) as Gaussian elimination with partial (row)
+// pivoting on U: after l elimination steps, column l of the Schur complement is exactly the DEIM
+// residual u_l - U_l (P^T U_l)^{-1} P^T u_l, and the next index is its largest entry (Sorensen &
+// Embree 2016). Eliminating column by column costs d m^2 / 2 flops and one collective per index
+// (each rank offers its best row with the row itself, so the pivot row arrives with the argmax),
+// instead of an l x l LU, the residual and two collectives per index. Ties go to the smallest
+// gid; each row's arithmetic is the same on any rank count, so the indices are too.
 std::vector<GO> greedyDeim(const MultiVector& U, int m) {
   const Map& map = *U.getMap();
   const LO nl = static_cast<LO>(map.getNodeNumElements());
-  auto u = U.getLocalViewHost(Tpetra::Access::ReadOnly);
+  const int np = map.getComm()->getSize();
+  std::vector<double> W(static_cast<size_t>(nl) * m);  // this rank's rows of U, row-major
+  {
+    auto u = U.getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (LO i = 0; i < nl; ++i)
+      for (int j = 0; j < m; ++j) W[static_cast<size_t>(i) * m + j] = u(i, j);
+  }
+  std::vector<double> colMax(m, 0.0), globalMax(m, 0.0);  // max_i |U(i, l)|: the scale of column l's residual
+  for (LO i = 0; i < nl; ++i)
+    for (int j = 0; j < m; ++j) colMax[j] = std::max(colMax[j], std::abs(W[static_cast<size_t>(i) * m + j]));
+  Teuchos::reduceAll(*map.getComm(), Teuchos::REDUCE_MAX, m, colMax.data(), globalMax.data());
+  std::vector<char> taken(nl, 0);
+  std::vector<double> offer(m + 2), all(static_cast<size_t>(np) * (m + 2));
   std::vector<GO> idx;
-  std::vector<double> PtU;  // rows of U at idx (replicated), row-major with U.cols entries
-  std::vector<double> res(nl);
-  const int nc = static_cast<int>(U.getNumVectors());
   for (int l = 0; l < m; ++l) {
-    // c = (P^T U_l)^{-1} P^T u_l;  res = u_l - U_l c
-    std::vector<double> B(static_cast<size_t>(l) * l), c(l);
-    for (int i = 0; i < l; ++i) {
-      c[i] = PtU[static_cast<size_t>(i) * nc + l];
-      for (int j = 0; j < l; ++j) B[i + static_cast<size_t>(l) * j] = PtU[static_cast<size_t>(i) * nc + j];
+    LO best = -1;
+    double bestAbs = -1.0;
+    GO bestGid = 0;
+    for (LO i = 0; i < nl; ++i) {
+      if (taken[i]) continue;
+      const double a = std::abs(W[static_cast<size_t>(i) * m + l]);
+      const GO g = map.getGlobalElement(i);
+      if (a > bestAbs || (a == bestAbs && g < bestGid)) best = i, bestAbs = a, bestGid = g;
     }
-    if (l > 0) luSolve(B, l, c, 'N', "greedy DEIM");
-    for (LO i = 0; i < nl; ++i) res[i] = u(i, l);
-    for (int j = 0; j < l; ++j)  // column by column: U is column-major (LayoutLeft)
-      for (LO i = 0; i < nl; ++i) res[i] -= u(i, j) * c[j];
-    const auto [gid, val] = argmaxAbs(map, res.data());
-    GPHR_REQUIRE(val > 0.0 && std::isfinite(val), InputError, "greedy DEIM: the residual of DEIM basis column ",
-                 l + 1, " vanishes (", val, "): the DEIM basis is rank-deficient; use m <= ", l);
+    std::fill(offer.begin(), offer.end(), 0.0);
+    offer[0] = -1.0;  // |pivot| (none offered), gid, then the row's entries l..m-1
+    if (best >= 0) {
+      offer[0] = bestAbs;
+      offer[1] = static_cast<double>(bestGid);  // exact below 2^53
+      std::copy_n(&W[static_cast<size_t>(best) * m + l], m - l, offer.begin() + 2);
+    }
+    Teuchos::gatherAll(*map.getComm(), m + 2, offer.data(), static_cast<int>(all.size()), all.data());
+    int win = -1;
+    for (int p = 0; p < np; ++p) {
+      const double* o = &all[static_cast<size_t>(p) * (m + 2)];
+      if (o[0] < 0.0) continue;
+      const double* w = win < 0 ? nullptr : &all[static_cast<size_t>(win) * (m + 2)];
+      if (!w || o[0] > w[0] || (o[0] == w[0] && o[1] < w[1])) win = p;
+    }
+    const double* pivot = &all[static_cast<size_t>(std::max(win, 0)) * (m + 2)];
+    // A residual at the round-off level of its column (d eps relative) is a dependent column.
+    const double floor = 10.0 * static_cast<double>(map.getGlobalNumElements()) *
+                         std::numeric_limits<double>::epsilon() * globalMax[l];
+    GPHR_REQUIRE(win >= 0 && pivot[0] > floor && std::isfinite(pivot[0]), InputError,
+                 "greedy DEIM: the residual of DEIM basis column ", l + 1, " vanishes (", win < 0 ? 0.0 : pivot[0],
+                 " against max |u| = ", globalMax[l], "): the DEIM basis is rank-deficient; use m <= ", l);
+    const GO gid = static_cast<GO>(pivot[1]);
     idx.push_back(gid);
-    const auto row = gatherRows(U, {gid});
-    PtU.insert(PtU.end(), row.begin(), row.end());
+    const LO mine = map.getLocalElement(gid);
+    if (mine != Teuchos::OrdinalTraits<LO>::invalid()) taken[mine] = 1;
+    const double* p = pivot + 2;  // entries l..m-1 of the pivot row
+    for (LO i = 0; i < nl; ++i) {
+      if (taken[i]) continue;
+      double* wi = &W[static_cast<size_t>(i) * m + l];
+      const double f = wi[0] / p[0];
+      for (int j = 1; j < m - l; ++j) wi[j] -= f * p[j];
+    }
   }
   return idx;
 }

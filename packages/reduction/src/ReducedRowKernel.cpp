@@ -32,6 +32,9 @@ ReducedRowKernel::ReducedRowKernel(RCP<const NonlinearTerm> term, RowSample samp
   W_ = Rows2("gphr::W", M, r);
   yref_ = HostView1("gphr::yref", M);
   u_ = HostView1("gphr::u", M);
+  v0_ = HostView1("gphr::v0", M);
+  v1_ = HostView1("gphr::v1", M);
+  uSum_ = HostView1("gphr::uSum", M);
   w_ = HostView1("gphr::w", nr);
   gRef_ = HostView1("gphr::gRef", nr);
   entryRow_ = IndexView("gphr::entryRow", M);
@@ -137,18 +140,62 @@ void ReducedRowKernel::entryHessianRows(const std::vector<int>& entrySlot, int n
       for (int c = 0; c < r; ++c) out[static_cast<size_t>(entrySlot[j]) * r + c] += W_(j, c);
 }
 
-void ReducedRowKernel::addGradient(DenseVector& g, double scale) const {
+void ReducedRowKernel::reduceToGradient(const HostView1& u, DenseVector& g, double scale) const {
   const int r = reducedDim();
   const size_t M = numStencilEntries();
-  weightedGradients();
   // A_S^T u: AS_ row-major (M x r) is A_S^T column-major (r x M).
   std::fill(gradBuf_.begin(), gradBuf_.end(), 0.0);
-  if (M > 0) KokkosBlas::gemv("N", 1.0, basisT(), ConstVec(u_.data(), M), 0.0, Vec(gradBuf_.data(), r));
+  if (M > 0) KokkosBlas::gemv("N", 1.0, basisT(), ConstVec(u.data(), M), 0.0, Vec(gradBuf_.data(), r));
   if (!sumOver_.is_null()) {
     Teuchos::reduceAll(*sumOver_, Teuchos::REDUCE_SUM, r, gradBuf_.data(), sumBuf_.data());
     std::copy(sumBuf_.begin(), sumBuf_.begin() + r, gradBuf_.begin());
   }
   for (int c = 0; c < r; ++c) g(c) += scale * gradBuf_[c];
+}
+
+void ReducedRowKernel::addGradient(DenseVector& g, double scale) const {
+  weightedGradients();
+  reduceToGradient(u_, g, scale);
+}
+
+void ReducedRowKernel::stencilValues(const DenseVector& z, HostView1 out) const {
+  GPHR_REQUIRE(z.length() == reducedDim(), InputError, "reduced row kernel: z has length ", z.length(),
+               ", expected ", reducedDim());
+  if (numStencilEntries() > 0) KokkosBlas::gemv("T", 1.0, basisT(), ConstVec(z.values(), reducedDim()), 0.0, out);
+}
+
+void ReducedRowKernel::addAveragedGradient(const DenseVector& z0, const DenseVector& z1,
+                                           const std::vector<double>& nodes, const std::vector<double>& weights,
+                                           DenseVector& g, double scale) {
+  GPHR_REQUIRE(nodes.size() == weights.size() && !nodes.empty(), InputError, "reduced row kernel: ", nodes.size(),
+               " quadrature nodes and ", weights.size(), " weights");
+  bool sameZ0 = haveZ0_;
+  for (int i = 0; i < z0.length() && sameZ0; ++i) sameZ0 = z0(i) == z0_(i);
+  if (!sameZ0) {
+    stencilValues(z0, v0_);
+    if (z0_.length() != z0.length()) z0_.size(z0.length());
+    z0_.assign(z0);
+    haveZ0_ = true;
+  }
+  stencilValues(z1, v1_);
+  const size_t M = numStencilEntries();
+  const auto v0 = v0_, v1 = v1_, yref = yref_, values = batch_.values, uSum = uSum_, grad = batch_.grad, w = w_;
+  const auto row = entryRow_;
+  RowBatch b = batch_;
+  b.hess = HostView1();
+  for (size_t q = 0; q < nodes.size(); ++q) {
+    const double s = nodes[q], wq = weights[q];
+    Kokkos::parallel_for(
+        "gphr::nodeValues", Kokkos::RangePolicy<ExecSpace>(0, M),
+        KOKKOS_LAMBDA(const size_t j) { values(j) = yref(j) + (1.0 - s) * v0(j) + s * v1(j); });
+    term_->evaluate(b);
+    const bool first = q == 0;
+    Kokkos::parallel_for(
+        "gphr::nodeGradientSum", Kokkos::RangePolicy<ExecSpace>(0, M), KOKKOS_LAMBDA(const size_t j) {
+          uSum(j) = (first ? 0.0 : uSum(j)) + wq * w(row(j)) * grad(j);
+        });
+  }
+  reduceToGradient(uSum_, g, scale);
 }
 
 void ReducedRowKernel::addHessian(DenseMatrix& H, double scale) const {

@@ -229,6 +229,34 @@ TEST_P(RomDerivatives, HessianMatchesFiniteDifferenceOfGradient) {
   }
 }
 
+// The averaged gradient sum_q w_q grad H_r(z_q), z_q = (1 - s_q) z0 + s_q z1, that the time
+// scheme takes from the model at once (the stencil values combined from A_S z0 and A_S z1, one
+// L_r product at the average point) equals the node-by-node sum. Both sum the same terms in
+// another order: the difference is round-off, ~1e-15 relative times the cancellation between
+// L_r z and the nonlinear part (<= ~10, see kFdTol), so 1e-12 relative. The call sequence also
+// moves z1 with z0 fixed (A_S z0 reused) and then z0 (it must be recomputed), so a stale z0
+// would fail (checked: an O(|z1 - z0|) error).
+TEST_P(RomDerivatives, AveragedGradientEqualsNodeByNodeSum) {
+  const int dim = rom_->dim();
+  DenseVector z1 = z_, z0b = z_, gbar(dim), ref(dim), g(dim), zq(dim);
+  z1 += genericDense(dim, 0.05 * z_.normFrobenius(), 7);
+  z0b += genericDense(dim, 0.05 * z_.normFrobenius(), 8);
+  for (int points : {1, 2, 3}) {
+    const QuadratureRule rule = gaussLegendre(points);
+    for (const auto& [z0, zz1] : {std::pair{z_, z1}, std::pair{z_, z0b}, std::pair{z0b, z1}}) {
+      ASSERT_TRUE(rom_->averagedGradient(z0, zz1, rule, gbar));
+      ref.putScalar(0.0);
+      for (int q = 0; q < rule.size(); ++q) {
+        DenseBackend::update(zq, 1.0 - rule.nodes[q], z0, rule.nodes[q], zz1, 0.0);
+        rom_->gradient(zq, g);
+        DenseBackend::update(ref, rule.weights[q], g, 1.0);
+      }
+      ref -= gbar;
+      EXPECT_LE(ref.normFrobenius(), 1e-12 * gbar.normFrobenius()) << c_.name << ", " << points << " nodes";
+    }
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Scenes, RomDerivatives, ::testing::Range(0, 4));
 
 }  // namespace

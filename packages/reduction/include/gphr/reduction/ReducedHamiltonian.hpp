@@ -26,6 +26,10 @@ class ReducedHamiltonian : public DenseHamiltonian {
   double hamiltonian(const DenseVector& z) override;
   void gradient(const DenseVector& z, DenseVector& g) override;
   void addHessian(const DenseVector& z, double scale, DenseMatrix& H) override;
+  // L_r zbar + (sum w_q) f_r with zbar = sum_q w_q z_q (the quadratic part is exact at the
+  // average point: one L_r product per Newton iteration), plus the rows' averaged gradient.
+  bool averagedGradient(const DenseVector& z0, const DenseVector& z1, const QuadratureRule& rule,
+                        DenseVector& gbar) override;
 
   const ReducedLinearPart& linearPart() const { return linear_; }
   const ReducedRowKernel& rows() const { return *rows_; }
@@ -44,7 +48,7 @@ class ReducedHamiltonian : public DenseHamiltonian {
   void evaluateAt(const DenseVector& z);
   ReducedLinearPart linear_;
   RCP<ReducedRowKernel> rows_;
-  DenseVector lastZ_;
+  DenseVector lastZ_, zbar_, lz_;
   bool haveLast_ = false;
   long evaluations_ = 0;
 };

@@ -53,6 +53,13 @@ class ReducedRowKernel {
   // After evaluate(): the sums above (collective when sumOver is set).
   double value() const;
   void addGradient(DenseVector& g, double scale) const;          // g += scale * gradient
+  // g += scale * sum_q w_q gradient((1 - s_q) z0 + s_q z1): the time scheme's averaged gradient
+  // (nodes s_q, weights w_q). The stencil values at every node are combinations of A_S z0 (kept
+  // while z0 is unchanged: the Newton iterations of a step) and A_S z1, and the kernel's weighted
+  // gradients are summed over the nodes before one A_S^T product: per Newton iteration the basis
+  // rows are read twice instead of twice per node. Leaves the kernel evaluated at the last node.
+  void addAveragedGradient(const DenseVector& z0, const DenseVector& z1, const std::vector<double>& nodes,
+                           const std::vector<double>& weights, DenseVector& g, double scale);
   void addHessian(DenseMatrix& H, double scale) const;           // H += scale * Hessian
   // After evaluate(z, true, ...): rows of J_G(y) A of this sample, row-major numRows() x 2k.
   void reducedJacobian(Scalar* out) const;
@@ -68,6 +75,8 @@ class ReducedRowKernel {
   using ConstColMajor = Kokkos::View<const Scalar**, Kokkos::LayoutLeft, Kokkos::HostSpace, Kokkos::MemoryUnmanaged>;
   ConstColMajor basisT() const { return ConstColMajor(AS_.data(), static_cast<size_t>(reducedDim()), AS_.extent(0)); }
   void weightedGradients() const;      // u = w_i grad G_i per stencil entry
+  void stencilValues(const DenseVector& z, HostView1 out) const;  // out = A_S z
+  void reduceToGradient(const HostView1& u, DenseVector& g, double scale) const;  // g += scale A_S^T u (summed)
   void weightedHessianBlocks() const;  // W = w_i Hess G_i A_Si per row
   RCP<const NonlinearTerm> term_;
   RowSample sample_;
@@ -75,6 +84,9 @@ class ReducedRowKernel {
   RowBatch batch_;
   Rows2 AS_, W_;                       // stacked basis rows; w_i Hess G_i A_Si
   HostView1 yref_, u_, w_, gRef_;       // per entry: yref, w_i grad; per row: w_i, G_i(yref)
+  HostView1 v0_, v1_, uSum_;            // per entry: A_S z0, A_S z1, sum_q w_q w_i grad (averaged gradient)
+  DenseVector z0_;                      // the z0 of v0_
+  bool haveZ0_ = false;
   IndexView entryRow_;                 // row of each stencil entry
   mutable std::vector<Scalar> gradBuf_, hessBuf_, sumBuf_;
 };

@@ -18,6 +18,8 @@
 // Backend concept (see FullModelBackend and, for reduced systems, DenseBackend):
 //   using Vector;  Vector create() const;
 //   void gradient(const Vector& y, Vector& g);           // g = grad H(y)
+//   bool averagedGradient(const Vector& y0, const Vector& y1, const QuadratureRule& rule, Vector& gbar);
+//                         // gbar of (*) computed by the model at once; false: the scheme loops over nodes
 //   void applyJ(const Vector& x, Vector& out);
 //   void beginNewtonMatrix();                            // M = I
 //   void addHessian(const Vector& y, double scale);     // M += scale J Hess H(y)
@@ -126,11 +128,12 @@ class AveragedGradientScheme {
 
   // R = y1 - y0 - dt J gbar into R; returns ||R||.
   double residual(const Vector& y0, const Vector& y1, double dt, Vector& R) {
-    for (int q = 0; q < rule_.size(); ++q) {
-      Backend::update(yq_, 1.0 - rule_.nodes[q], y0, rule_.nodes[q], y1, 0.0);
-      be_.gradient(yq_, g_);
-      Backend::update(gsum_, rule_.weights[q], g_, q == 0 ? 0.0 : 1.0);
-    }
+    if (!be_.averagedGradient(y0, y1, rule_, gsum_))
+      for (int q = 0; q < rule_.size(); ++q) {
+        Backend::update(yq_, 1.0 - rule_.nodes[q], y0, rule_.nodes[q], y1, 0.0);
+        be_.gradient(yq_, g_);
+        Backend::update(gsum_, rule_.weights[q], g_, q == 0 ? 0.0 : 1.0);
+      }
     be_.applyJ(gsum_, R);
     Backend::update(R, 1.0, y1, -1.0, y0, -dt);
     return Backend::norm(R);

@@ -7,6 +7,8 @@
 #include <Teuchos_SerialDenseVector.hpp>
 #include <vector>
 
+#include "gphr/timeint/Quadrature.hpp"
+
 namespace gphr {
 
 using DenseVector = Teuchos::SerialDenseVector<int, double>;
@@ -21,6 +23,14 @@ class DenseHamiltonian {
   virtual void gradient(const DenseVector& z, DenseVector& g) = 0;
   // H += scale * Hess H(z).
   virtual void addHessian(const DenseVector& z, double scale, DenseMatrix& H) = 0;
+  // The time scheme's averaged gradient gbar = sum_q w_q grad H((1 - s_q) z0 + s_q z1) at once,
+  // for a model that can do better than node by node (ReducedHamiltonian: its quadratic part and
+  // its stencil values are linear in z). Returns false (the default) to let the scheme loop.
+  virtual bool averagedGradient(const DenseVector& z0, const DenseVector& z1, const QuadratureRule& rule,
+                                DenseVector& gbar) {
+    (void)z0, (void)z1, (void)rule, (void)gbar;
+    return false;
+  }
 };
 
 // out = J_{2k} x: out_q = x_p, out_p = -x_q.
@@ -33,6 +43,9 @@ class DenseBackend {
 
   Vector create() const { return Vector(model_.dim()); }
   void gradient(const Vector& z, Vector& g) { model_.gradient(z, g); }
+  bool averagedGradient(const Vector& z0, const Vector& z1, const QuadratureRule& rule, Vector& gbar) {
+    return model_.averagedGradient(z0, z1, rule, gbar);
+  }
   void applyJ(const Vector& x, Vector& out) { applyCanonicalJ(x, out); }
   void beginNewtonMatrix() { hbar_.putScalar(0.0); }
   void addHessian(const Vector& z, double scale) { model_.addHessian(z, scale, hbar_); }

@@ -9,6 +9,7 @@
 
 #include "gphr/core/HamiltonianSystem.hpp"
 #include "gphr/core/LocalScatter.hpp"
+#include "gphr/timeint/Quadrature.hpp"
 
 namespace gphr {
 
@@ -29,6 +30,7 @@ class FullModelBackend {
 
   Vector create() const { return Vector(system_->map()); }
   void gradient(const Vector& y, Vector& g) { system_->gradient(y, g); }
+  bool averagedGradient(const Vector&, const Vector&, const QuadratureRule&, Vector&) { return false; }  // node by node
   void applyJ(const Vector& x, Vector& out) { system_->space().applyJ(x, out); }
   void beginNewtonMatrix();
   void addHessian(const Vector& y, double scale) { system_->addHessian(y, scale, *newtonMatrix_, true); }
