@@ -1,5 +1,7 @@
 #include "gphr/hyper/GpAdeimModel.hpp"
 
+#include <algorithm>
+
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_OrdinalTraits.hpp>
 #include <Teuchos_Time.hpp>
@@ -32,8 +34,11 @@ Teuchos::ParameterList adeimValidParameters() {
   setIntParameter(pl, "maxSamples", 0, 0, 100000000, "cap on m_s chosen by sampleTol; 0 = 4 m");
   setChoiceParameter(pl, "sampling", "projected", Teuchos::tuple<std::string>("projected", "residual", "random"),
                      "sampling rule: rows of R_j C_bar_j (alg:indices_adapt), of R_j (Peherstorfer 2020), or random");
-  setChoiceParameter(pl, "indices", "deim", Teuchos::tuple<std::string>("deim", "qdeim"),
-                     "interpolation rows P_{j+1} from U_{j+1}: greedy DEIM or QDEIM");
+  setChoiceParameter(pl, "indices", "deim", Teuchos::tuple<std::string>("deim", "qdeim", "partial"),
+                     "interpolation rows P_{j+1} from U_{j+1}: greedy DEIM, QDEIM, or the partial update of "
+                     "Peherstorfer & Willcox 2015 Sec. 4.1 (only the rows of the most rotated columns re-chosen)");
+  setIntParameter(pl, "pointUpdates", 1, 1, 1000000,
+                  "indices = partial: interpolation rows re-chosen per update, those of the most rotated columns (<= m)");
   setChoiceParameter(pl, "initialBasis", "fom", Teuchos::tuple<std::string>("fom", "training"),
                      "(U_0, P_0) from the first initialWindow full-model steps at the test parameter, or the training DEIM basis");
   pl.set("orthonormalize", true,
@@ -59,6 +64,7 @@ AdeimOptions adeimOptionsFrom(Teuchos::ParameterList pl, int m) {
   o.maxSamples = pl.get<int>("maxSamples") > 0 ? pl.get<int>("maxSamples") : 4 * m;
   o.sampling = pl.get<std::string>("sampling");
   o.indices = pl.get<std::string>("indices");
+  o.pointUpdates = pl.get<int>("pointUpdates");
   o.initialBasis = pl.get<std::string>("initialBasis");
   o.monitorResidual = pl.get<bool>("monitorResidual");
   o.orthonormalize = pl.get<bool>("orthonormalize");
@@ -73,6 +79,7 @@ AdeimOptions adeimOptionsFrom(Teuchos::ParameterList pl, int m) {
   GPHR_REQUIRE(o.sampling != "random" || o.numSamples > 0, InputError,
                "adeim.sampling = random needs adeim.numSamples > 0 (sampleTol ranks rows by their residual)");
   GPHR_REQUIRE(o.update.rank <= m, InputError, "adeim.updateRank = ", o.update.rank, " exceeds m = ", m);
+  GPHR_REQUIRE(o.pointUpdates <= m, InputError, "adeim.pointUpdates = ", o.pointUpdates, " exceeds m = ", m);
   return o;
 }
 
@@ -90,21 +97,25 @@ DenseMatrix toDense(const std::vector<double>& rowMajor, int rows, int cols) {
 }
 
 // The GP-DEIM row kernel of (U, m): interpolation rows and weights. Collective.
+std::vector<GO> timedIndices(const MultiVector& U, int m, const std::string& method) {
+  Teuchos::TimeMonitor tm(phase("indices: selection"));
+  return selectDeimIndices(U, m, method);
+}
+
+// The GP-DEIM row kernel of (U, P): the weights and the sample mesh of P (`known`: the previous
+// sample, whose rows need no new gather). Collective.
 RCP<ReducedRowKernel> interpolationKernel(const HamiltonianSystem& system, const MultiVector& A, const MultiVector& U,
-                                          int m, const std::string& indices, double* cond = nullptr) {
-  std::vector<GO> P;
+                                          const std::vector<GO>& P, const RowSample& known = RowSample(),
+                                          double* cond = nullptr) {
   DeimWeights w;
-  {
-    Teuchos::TimeMonitor tm(phase("indices: selection"));
-    P = selectDeimIndices(U, m, indices);
-  }
   {
     Teuchos::TimeMonitor tm(phase("indices: weights"));
     w = computeDeimWeights(U, P, *system.nonlinearTerm().weights());
   }
   if (cond) *cond = w.conditionNumber;
   Teuchos::TimeMonitor tm(phase("indices: sample mesh of P"));
-  return rcp(new ReducedRowKernel(system.nonlinearTermPtr(), gatherRowSample(system, A, P, w.weights), Teuchos::null));
+  return rcp(
+      new ReducedRowKernel(system.nonlinearTermPtr(), gatherRowSample(system, A, P, w.weights, known), Teuchos::null));
 }
 
 RCP<MultiVector> leadingColumns(const MultiVector& U, int m) {
@@ -116,7 +127,10 @@ RCP<MultiVector> leadingColumns(const MultiVector& U, int m) {
 
 GpAdeimModel::GpAdeimModel(RCP<const HamiltonianSystem> system, RCP<const MultiVector> A, const MultiVector& U0, int m,
                            ReducedLinearPart linear, AdeimOptions options)
-    : ReducedHamiltonian(std::move(linear), interpolationKernel(*system, *A, *leadingColumns(U0, m), m, options.indices)),
+    : ReducedHamiltonian(std::move(linear),
+                         interpolationKernel(*system, *A, *leadingColumns(U0, m),
+                                             timedIndices(*leadingColumns(U0, m), m,
+                                                          options.indices == "partial" ? "deim" : options.indices))),
       system_(system),
       A_(A),
       U_(leadingColumns(U0, m)),
@@ -188,11 +202,12 @@ bool GpAdeimModel::afterStep(long step, const DenseVector& z) {
     rec.fullResidual = fullResidual(up.C);
   }
   if (up.rank > 0) {
+    const std::vector<double> rotation = opt_.indices == "partial" ? columnRotations(up) : std::vector<double>();
     if (opt_.orthonormalize) {
       Teuchos::TimeMonitor tm(phase("orthonormalization"));
       orthonormalizeBasis();
     }
-    rec.condPtU = moveInterpolationRows();
+    rec.condPtU = moveInterpolationRows(rotation);
   }
   rec.hrAfter = hamiltonian(z);
   rec.seconds = timer.stop();
@@ -257,9 +272,12 @@ void GpAdeimModel::resample(const CoefficientFactor& cf, long updateNo) {
   }
   if (S_.empty()) return;
   Teuchos::TimeMonitor tm(phase("resampling: sample mesh of S"));
-  sampling_ = rcp(new ReducedRowKernel(system_->nonlinearTermPtr(),
-                                       gatherRowSample(*system_, *A_, S_, std::vector<double>(S_.size(), 1.0)),
-                                       Teuchos::null));
+  const RCP<const ReducedRowKernel> previous = sampling_;
+  const RowSample none;
+  sampling_ = rcp(new ReducedRowKernel(
+      system_->nonlinearTermPtr(),
+      gatherRowSample(*system_, *A_, S_, std::vector<double>(S_.size(), 1.0), previous.is_null() ? none : previous->sample()),
+      Teuchos::null));
 }
 
 double GpAdeimModel::fullResidual(const DenseMatrix& C) {
@@ -284,11 +302,41 @@ void GpAdeimModel::writeSampledRows(const DenseMatrix& StU) {
   }
 }
 
-double GpAdeimModel::moveInterpolationRows() {
+// P_{j+1} (alg:SP-ADEIM line 11): greedy DEIM or QDEIM from U_{j+1}, or Peher15's partial update
+// of the rows of the pointUpdates most rotated columns; then the weights and the sample mesh.
+double GpAdeimModel::moveInterpolationRows(const std::vector<double>& rotation) {
+  std::vector<GO> P;
+  if (opt_.indices == "partial") {
+    Teuchos::TimeMonitor tm(phase("indices: selection"));
+    std::vector<int> order(m_);
+    for (int i = 0; i < m_; ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return rotation[a] > rotation[b]; });
+    order.resize(opt_.pointUpdates);
+    P = replaceDeimIndices(*U_, P_, order);
+  } else {
+    P = timedIndices(*U_, m_, opt_.indices);
+  }
   double cond = 0.0;
-  replaceRows(interpolationKernel(*system_, *A_, *U_, m_, opt_.indices, &cond));
+  replaceRows(interpolationKernel(*system_, *A_, *U_, P, rows().sample(), &cond));
   P_ = rows().sample().rows;
   return cond;
+}
+
+// The update moved column i of U by S a b_i^T (b_i the i-th row of b, only the rows S change):
+// its relative change ||a b_i^T|| / ||u_i^{j+1}||, the "rotation" by which Peher15 picks the
+// interpolation rows to re-choose. One collective (the column norms).
+std::vector<double> GpAdeimModel::columnRotations(const AdeimUpdate& up) const {
+  std::vector<double> norms(m_), out(m_);
+  U_->norm2(Teuchos::ArrayView<double>(norms));
+  DenseMatrix ata(up.rank, up.rank);
+  ata.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, up.a, up.a, 0.0);
+  for (int i = 0; i < m_; ++i) {
+    double q = 0.0;  // b_i^T (a^T a) b_i
+    for (int x = 0; x < up.rank; ++x)
+      for (int y = 0; y < up.rank; ++y) q += up.b(i, x) * ata(x, y) * up.b(i, y);
+    out[i] = norms[i] > 0.0 ? std::sqrt(std::max(q, 0.0)) / norms[i] : 0.0;
+  }
+  return out;
 }
 
 // U <- U V diag(lambda)^{-1/2} with U^T U = V diag(lambda) V^T (eigenvalues descending): an
@@ -309,8 +357,17 @@ void GpAdeimModel::orthonormalizeBasis() {
                "down to ", lambda[0], ")");
   {
     auto t = T.getLocalViewHost(Tpetra::Access::OverwriteAll);
-    for (int j = 0; j < m_; ++j)  // column j: the eigenvector of the j-th largest eigenvalue, scaled
-      for (int i = 0; i < m_; ++i) t(i, j) = Gd(i, m_ - 1 - j) / std::sqrt(lambda[m_ - 1 - j]);
+    if (opt_.indices == "partial") {  // T = V diag(lambda)^{-1/2} V^T: column i stays nearest to u_i (Loewdin)
+      for (int j = 0; j < m_; ++j)
+        for (int i = 0; i < m_; ++i) {
+          double sum = 0.0;
+          for (int l = 0; l < m_; ++l) sum += Gd(i, l) * Gd(j, l) / std::sqrt(lambda[l]);
+          t(i, j) = sum;
+        }
+    } else {
+      for (int j = 0; j < m_; ++j)  // column j: the eigenvector of the j-th largest eigenvalue, scaled
+        for (int i = 0; i < m_; ++i) t(i, j) = Gd(i, m_ - 1 - j) / std::sqrt(lambda[m_ - 1 - j]);
+    }
   }
   MultiVector Q(U_->getMap(), m_);
   Q.multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, *U_, T, 0.0);

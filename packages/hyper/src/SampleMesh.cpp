@@ -27,6 +27,44 @@ RowSample gatherRowSample(const HamiltonianSystem& system, const MultiVector& A,
   return s;
 }
 
+// Rows already in `known` are copied from it; only the others are gathered (collectively: every
+// rank holds the same `known` and `rows`, so they agree on which rows are new, and when none is,
+// no rank communicates). GP-ADEIM moves a few of its m interpolation and m_s sampling rows per
+// update; the basis A and y0 do not change, so the rows it keeps need no new gather.
+RowSample gatherRowSample(const HamiltonianSystem& system, const MultiVector& A, const std::vector<GO>& rows,
+                          const std::vector<double>& weights, const RowSample& known) {
+  GPHR_REQUIRE(rows.size() == weights.size() && !rows.empty(), InputError, "sample mesh: ", rows.size(),
+               " rows and ", weights.size(), " weights (need the same number, at least one)");
+  const int r = static_cast<int>(A.getNumVectors());
+  GPHR_REQUIRE(known.rows.empty() || known.reducedDim == r, InputError, "sample mesh: the known rows have ",
+               known.reducedDim, " reduced coordinates, the basis ", r);
+  std::unordered_map<GO, size_t> at;  // gid -> row index in known
+  for (size_t i = 0; i < known.rows.size(); ++i) at.emplace(known.rows[i], i);
+  std::vector<GO> missing;
+  for (GO g : rows)
+    if (!at.count(g)) missing.push_back(g);
+  RowSample fresh;
+  if (!missing.empty()) fresh = gatherRowSample(system, A, missing, std::vector<double>(missing.size(), 0.0));
+  std::unordered_map<GO, size_t> atFresh;
+  for (size_t i = 0; i < fresh.rows.size(); ++i) atFresh.emplace(fresh.rows[i], i);
+  RowSample s;
+  s.rows = rows;
+  s.weights = weights;
+  s.reducedDim = r;
+  s.shifted = !system.reference().is_null();
+  for (GO g : rows) {
+    const auto k = at.find(g);
+    const RowSample& from = k != at.end() ? known : fresh;
+    const size_t i = k != at.end() ? k->second : atFresh.at(g);
+    const size_t j0 = from.stencil.offsets[i], j1 = from.stencil.offsets[i + 1];
+    s.stencil.gids.insert(s.stencil.gids.end(), from.stencil.gids.begin() + j0, from.stencil.gids.begin() + j1);
+    s.stencil.offsets.push_back(s.stencil.gids.size());
+    s.basisRows.insert(s.basisRows.end(), from.basisRows.begin() + j0 * r, from.basisRows.begin() + j1 * r);
+    s.reference.insert(s.reference.end(), from.reference.begin() + j0, from.reference.begin() + j1);
+  }
+  return s;
+}
+
 SampleMesh buildSampleMesh(const HamiltonianSystem& system, const MultiVector& A, const std::vector<GO>& rows,
                            const std::vector<double>& weights, ReducedLinearPart linear) {
   SampleMesh mesh;

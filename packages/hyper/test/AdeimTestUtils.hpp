@@ -1,4 +1,5 @@
 #pragma once
+#include <functional>
 // GP-ADEIM runs for the tests: the adaptive model integrated with its update hook after every
 // step, recording the states and the model's Hamiltonian before each hook (H_hr^j of the local
 // model that produced the step).
@@ -24,7 +25,9 @@ inline AdeimOptions adeimOptions(int delta0, int delta, int gamma, int numSample
   return o;
 }
 
-inline AdaptiveRun adaptiveTrajectory(GpAdeimModel& model, const std::string& scheme, double dt, long steps) {
+// afterEach(step), if given, runs after the model's afterStep at every step.
+inline AdaptiveRun adaptiveTrajectory(GpAdeimModel& model, const std::string& scheme, double dt, long steps,
+                                      const std::function<void(long)>& afterEach = nullptr) {
   DenseModelIntegrator integ(model, denseIntegrator(scheme), 4);
   DenseVector z(model.dim());
   AdaptiveRun r;
@@ -33,6 +36,7 @@ inline AdaptiveRun adaptiveTrajectory(GpAdeimModel& model, const std::string& sc
     r.H.push_back(model.hamiltonian(zj));
     r.bound.push_back(j == 0 ? 0.0 : integ.scheme().averageGradient().normFrobenius() * rep.residualNorm);
     model.afterStep(j, zj);  // full Newton here (no lagged matrix to keep or reset)
+    if (afterEach) afterEach(j);
   });
   return r;
 }

@@ -97,6 +97,69 @@ std::vector<GO> greedyDeim(const MultiVector& U, int m) {
   return idx;
 }
 
+// Global argmax of |x_l| over this rank's rows l not in `exclude` (ties: the smallest gid, so
+// every rank count agrees); returns (gid, |x|), gid -1 if no row qualifies. One gatherAll.
+std::pair<GO, double> argmaxAbs(const Map& map, const std::vector<double>& x, const std::vector<char>& exclude) {
+  double best[2] = {-1.0, -1.0};  // |x|, gid (exact in a double below 2^53)
+  for (LO i = 0; i < static_cast<LO>(map.getNodeNumElements()); ++i) {
+    if (exclude[i]) continue;
+    const double a = std::abs(x[i]), g = static_cast<double>(map.getGlobalElement(i));
+    if (a > best[0] || (a == best[0] && g < best[1])) best[0] = a, best[1] = g;
+  }
+  const int np = map.getComm()->getSize();
+  std::vector<double> all(2 * static_cast<size_t>(np));
+  Teuchos::gatherAll(*map.getComm(), 2, best, 2 * np, all.data());
+  std::pair<GO, double> out{-1, -1.0};
+  for (int p = 0; p < np; ++p) {
+    const double v = all[2 * p], g = all[2 * p + 1];
+    if (g >= 0.0 && (v > out.second || (v == out.second && static_cast<GO>(g) < out.first))) out = {static_cast<GO>(g), v};
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<GO> replaceDeimIndices(const MultiVector& U, std::vector<GO> P, const std::vector<int>& columns) {
+  const Map& map = *U.getMap();
+  const int m = static_cast<int>(P.size()), nc = static_cast<int>(U.getNumVectors());
+  GPHR_REQUIRE(m >= 1 && m <= nc, InputError, "DEIM point update: ", m, " indices for a basis of ", nc, " columns");
+  const LO nl = static_cast<LO>(map.getNodeNumElements());
+  auto u = U.getLocalViewHost(Tpetra::Access::ReadOnly);
+  std::vector<double> res(nl);
+  for (int i : columns) {
+    GPHR_REQUIRE(i >= 0 && i < m, InputError, "DEIM point update: column ", i, " is not one of 0 to ", m - 1);
+    const std::vector<double> rows = gatherRows(U, P);  // (P^T U)(a, b) = rows[a * nc + b]
+    const int k = m - 1;
+    std::vector<double> B(static_cast<size_t>(k) * k), c(k);
+    for (int a = 0, ra = 0; a < m; ++a) {
+      if (a == i) continue;
+      c[ra] = rows[static_cast<size_t>(a) * nc + i];
+      for (int b = 0, cb = 0; b < m; ++b)
+        if (b != i) B[ra + static_cast<size_t>(k) * cb++] = rows[static_cast<size_t>(a) * nc + b];
+      ++ra;
+    }
+    if (k > 0) luSolve(B, k, c, 'N', "DEIM point update");
+    std::vector<char> exclude(nl, 0);
+    for (int a = 0; a < m; ++a) {
+      const LO l = map.getLocalElement(P[a]);
+      if (a != i && l != Teuchos::OrdinalTraits<LO>::invalid()) exclude[l] = 1;
+    }
+    for (LO l = 0; l < nl; ++l) res[l] = u(l, i);
+    for (int b = 0, cb = 0; b < m; ++b) {  // column by column: U is column-major (LayoutLeft)
+      if (b == i) continue;
+      const double cj = c[cb++];
+      for (LO l = 0; l < nl; ++l) res[l] -= u(l, b) * cj;
+    }
+    const auto [gid, val] = argmaxAbs(map, res, exclude);
+    GPHR_REQUIRE(gid >= 0 && val > 0.0 && std::isfinite(val), InputError, "DEIM point update: the residual of column ",
+                 i + 1, " against the other ", k, " vanishes (", val, ")");
+    P[i] = gid;
+  }
+  return P;
+}
+
+namespace {
+
 std::vector<GO> qdeim(const MultiVector& U, int m) {
   const Map& map = *U.getMap();
   const GO d = static_cast<GO>(map.getGlobalNumElements());

@@ -80,6 +80,52 @@ TEST(GreedyDeim, EqualsTheTextbookAlgorithmOnAnyRankCount) {
   }
 }
 
+// ADEIM's partial point update (Peherstorfer & Willcox 2015, Sec. 4.1): index i is re-chosen as
+// the greedy step for column i with the others fixed. For the last column of a greedy P that step
+// is the greedy algorithm's own last step, so P comes back unchanged; for another column the new
+// index is the argmax of the textbook residual, computed here from the gathered basis.
+TEST(DeimPointUpdate, IsTheGreedyStepForOneColumn) {
+  const int m = 12;
+  const auto U = basis(83, m, 5);
+  const std::vector<GO> P = selectDeimIndices(*U, m, "deim");
+  EXPECT_EQ(replaceDeimIndices(*U, P, {m - 1}), P);
+  for (int i : {0, 4, 9}) {
+    const std::vector<GO> Q = replaceDeimIndices(*U, P, {i});
+    const GO d = static_cast<GO>(U->getGlobalLength());
+    std::vector<GO> all(d);
+    for (GO g = 0; g < d; ++g) all[g] = g;
+    const std::vector<double> rows = gatherRows(*U, all);
+    auto u = [&](GO r, int j) { return rows[static_cast<size_t>(r) * m + j]; };
+    std::vector<int> others;
+    for (int j = 0; j < m; ++j)
+      if (j != i) others.push_back(j);
+    const int k = m - 1;
+    std::vector<double> B(static_cast<size_t>(k) * k), c(k);
+    for (int a = 0; a < k; ++a) {
+      c[a] = u(P[others[a]], i);
+      for (int b = 0; b < k; ++b) B[a + static_cast<size_t>(k) * b] = u(P[others[a]], others[b]);
+    }
+    std::vector<int> piv(k);
+    int info = 0;
+    Teuchos::LAPACK<int, double>().GESV(k, 1, B.data(), k, piv.data(), c.data(), k, &info);
+    ASSERT_EQ(info, 0);
+    GO best = -1;
+    double bestAbs = -1.0;
+    for (GO r = 0; r < d; ++r) {
+      bool fixed = false;
+      for (int a : others) fixed = fixed || P[a] == r;
+      if (fixed) continue;
+      double res = u(r, i);
+      for (int b = 0; b < k; ++b) res -= u(r, others[b]) * c[b];
+      if (std::abs(res) > bestAbs) bestAbs = std::abs(res), best = r;
+    }
+    std::vector<GO> want = P;
+    want[i] = best;
+    EXPECT_EQ(Q, want) << "column " << i;
+  }
+  EXPECT_THROW(replaceDeimIndices(*U, P, {m}), InputError);
+}
+
 TEST(GreedyDeim, RankDeficientBasisIsAClearError) {
   const auto U = basis(50, 6, 4);
   Tpetra::deep_copy(*U->getVectorNonConst(4), *U->getVector(1));  // column 5 repeats column 2

@@ -29,10 +29,12 @@ struct AdeimOptions {
   double sampleTol = 1e-3; // tau_s, relative to the largest row score (when numSamples = 0)
   int maxSamples = 0;      // cap with sampleTol; 0: 4 m
   std::string sampling = "projected";  // projected | residual | random
-  std::string indices = "deim";        // P_{j+1} from U_{j+1}: deim | qdeim
+  std::string indices = "deim";        // P_{j+1} from U_{j+1}: deim | qdeim | partial (Peher15 Sec. 4.1)
+  int pointUpdates = 1;                // partial: indices re-chosen per update (the most rotated columns)
   std::string initialBasis = "fom";    // (U_0, P_0): fom (delta0 FOM steps) | training
   bool monitorResidual = true;  // ||U_{j+1} C_j - F_j||_F on all d rows at every update (O(d))
-  bool orthonormalize = true;  // U_{j+1} <- an orthonormal basis of its span, ordered by energy (O(d m^2))
+  bool orthonormalize = true;  // U_{j+1} <- an orthonormal basis of its span (O(d m^2)): ordered by energy,
+                               // or for indices = partial the nearest one (U G^{-1/2}), column by column
   unsigned long long seed = 20240601;
 };
 
@@ -80,7 +82,8 @@ class GpAdeimModel final : public ReducedHamiltonian {
   void resample(const CoefficientFactor& cf, long updateNo);
   AdeimUpdate updateSampledRows(const CoefficientFactor& cf, int wbar, std::vector<double>& F);
   double fullResidual(const DenseMatrix& C);
-  double moveInterpolationRows();  // returns cond(P^T U)
+  double moveInterpolationRows(const std::vector<double>& rotation);  // returns cond(P^T U)
+  std::vector<double> columnRotations(const AdeimUpdate& up) const;  // ||(U_{j+1} - U_j) e_i|| / ||U_{j+1} e_i||
   void orthonormalizeBasis();
   void writeSampledRows(const DenseMatrix& StU);
 

@@ -18,6 +18,11 @@ struct SampleMesh {
 RowSample gatherRowSample(const HamiltonianSystem& system, const MultiVector& A, const std::vector<GO>& rows,
                           const std::vector<double>& weights);
 
+// The same, reusing the rows already held in `known` (a previous sample of the same system and
+// basis): only rows not in it are gathered. Collective; every rank passes the same arguments.
+RowSample gatherRowSample(const HamiltonianSystem& system, const MultiVector& A, const std::vector<GO>& rows,
+                          const std::vector<double>& weights, const RowSample& known);
+
 // Gathers (collectively) what the rows `rows` of the system's G need; weights one per row.
 SampleMesh buildSampleMesh(const HamiltonianSystem& system, const MultiVector& A, const std::vector<GO>& rows,
                            const std::vector<double>& weights, ReducedLinearPart linear);

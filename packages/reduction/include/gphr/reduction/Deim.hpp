@@ -19,6 +19,15 @@ namespace gphr {
 // at the sampled rows (the greedy residual vanishes) or m exceeds U's columns.
 std::vector<GO> selectDeimIndices(const MultiVector& U, int m, const std::string& method = "deim");
 
+// The partial point update of ADEIM (Peherstorfer & Willcox 2015, Sec. 4.1; the paper's
+// "update only the indices associated with the DEIM basis vectors that have undergone the largest
+// rotations"): for each column i in `columns`, in order, index i of P is chosen again as the
+// greedy DEIM step would for column i with the other m - 1 columns and indices fixed, the global
+// argmax of |u_i - U_{-i} (P_{-i}^T U_{-i})^{-1} P_{-i}^T u_i| over the rows outside P_{-i}. Costs
+// O(d m) and two collectives per column instead of greedy DEIM's O(d m^2). Returns the new P;
+// InputError if that residual vanishes (u_i depends on the other columns at P_{-i}).
+std::vector<GO> replaceDeimIndices(const MultiVector& U, std::vector<GO> P, const std::vector<int>& columns);
+
 struct DeimWeights {
   std::vector<double> weights;    // (U^T P)^{-1} U^T v, one per index
   double conditionNumber = 0.0;   // cond_2(P^T U): the DEIM error amplification
