@@ -51,7 +51,9 @@ CachedDeimBasis deimBasisFor(const RunContext& ctx, const RomStages& st, const M
   const auto& hyp = ctx.config.sublist("hyper");
   const auto ms = mList(ctx.config);
   const std::string name = "/deim/k" + std::to_string(k);
-  const std::string key = basisKey(ctx.config) + toYaml(hyp) + "m <= " +
+  // The algorithm's revision is part of the key: a basis cached by an earlier one is recomputed
+  // (2: the randomized range finder draws random signs instead of Gaussian numbers).
+  const std::string key = basisKey(ctx.config) + toYaml(hyp) + "deim basis revision 2, m <= " +
                           std::to_string(*std::max_element(ms.begin(), ms.end())) + ", k = " + std::to_string(k);
   Teuchos::Time clock("deim basis");
   clock.start();

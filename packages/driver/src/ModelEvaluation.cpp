@@ -36,39 +36,55 @@ RCP<MultiVector> leadingBasis(const ReducedBasis& basis, int k) {
 
 namespace {
 // The report's per-step diagnostics of a reduced trajectory: the true Hamiltonian H(y0 + A z^j)
-// at every step and the error against the FOM at the saved steps. The reduced states are lifted
-// in batches, A [z^j ... z^{j+B-1}] as one GEMM, after the steps: lifting one state per step
-// (a GEMV with the n x 2k basis) streamed the whole basis through the caches between two time
-// steps, which slowed the small model's own stepping (its L_r, LU and basis rows were evicted)
-// and so inflated t_online, and a GEMM lifts faster than B GEMVs. B keeps the batch under
-// ~64 MB of lifted states.
-class BatchedLift {
+// at every step and the error against the FOM at the saved steps. The reduced states are kept
+// (2k numbers a step, up to ~64 MB of them) and lifted after the time loop, A [z^j ...] in
+// batches of B states as one GEMM. Lifting one state per step (a GEMV with the whole n x 2k
+// basis) streamed the basis through the caches between two time steps, which evicted the small
+// model's own data (L_r, its LU, the basis rows of the sample mesh) and so inflated t_online by
+// an amount that grew with n; and a GEMM lifts faster than B GEMVs. B keeps the lifted batch
+// under ~64 MB.
+class DeferredLift {
  public:
-  BatchedLift(const MultiVector& A, const HamiltonianSystem& sys, const FomResult& fom, long steps, long saveEvery,
-              bool keepStates, ModelRun& run)
-      : A_(A), sys_(sys), fom_(fom), steps_(steps), saveEvery_(saveEvery), keepStates_(keepStates), run_(run) {
-    const size_t d = std::max<size_t>(1, A.getGlobalLength());
-    batch_ = static_cast<int>(std::clamp<size_t>((size_t(8) << 20) / d, 1, 64));
-    const auto local = rcp(new Map(A.getNumVectors(), 0, A.getMap()->getComm(), Tpetra::LocallyReplicated));
+  DeferredLift(const MultiVector& A, const HamiltonianSystem& sys, const FomResult& fom, long steps, long saveEvery,
+               bool keepStates, ModelRun& run)
+      : A_(A), sys_(sys), fom_(fom), steps_(steps), saveEvery_(saveEvery), keepStates_(keepStates), run_(run),
+        r_(static_cast<int>(A.getNumVectors())) {
+    const size_t d = std::max<size_t>(1, A.getGlobalLength()), budget = size_t(8) << 20;  // doubles
+    batch_ = static_cast<int>(std::clamp<size_t>(budget / d, 1, 256));
+    maxStored_ = std::max<size_t>(batch_, budget / std::max(1, r_));
+    const auto local = rcp(new Map(r_, 0, A.getMap()->getComm(), Tpetra::LocallyReplicated));
     Z_ = rcp(new MultiVector(local, batch_));
     Y_ = rcp(new MultiVector(A.getMap(), batch_));
   }
   void add(long step, const DenseVector& z) {
-    {
-      auto v = Z_->getLocalViewHost(Tpetra::Access::ReadWrite);
-      for (int i = 0; i < z.length(); ++i) v(i, count_) = z(i);
-    }
-    steps_of_[count_++] = step;
-    if (count_ == batch_) flush();
+    stored_.insert(stored_.end(), z.values(), z.values() + r_);
+    storedSteps_.push_back(step);
+    if (storedSteps_.size() >= maxStored_) flush();
   }
   void flush() {
-    if (count_ == 0) return;
-    Y_->multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, A_, *Z_, 0.0);
+    for (size_t c0 = 0; c0 < storedSteps_.size(); c0 += batch_) liftBatch(c0, std::min(storedSteps_.size(), c0 + batch_));
+    stored_.clear();
+    storedSteps_.clear();
+  }
+  double relativeL2() const { return std::sqrt(num_ / den_); }
+  double finalError() const { return final_; }
+
+ private:
+  void liftBatch(size_t c0, size_t c1) {
+    const int count = static_cast<int>(c1 - c0);
+    {
+      auto v = Z_->getLocalViewHost(Tpetra::Access::OverwriteAll);
+      for (int c = 0; c < count; ++c)
+        for (int i = 0; i < r_; ++i) v(i, c) = stored_[(c0 + c) * r_ + i];
+    }
+    const auto Zc = Z_->subView(Teuchos::Range1D(0, count - 1));
+    auto Yc = Y_->subViewNonConst(Teuchos::Range1D(0, count - 1));
+    Yc->multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, A_, *Zc, 0.0);
     const auto ref = sys_.reference();
-    for (int c = 0; c < count_; ++c) {
-      const RCP<Vector> y = Y_->getVectorNonConst(c);
+    for (int c = 0; c < count; ++c) {
+      const RCP<Vector> y = Yc->getVectorNonConst(c);
       run_.hamiltonian.push_back(sys_.hamiltonian(*y));  // H_s(A z) = H(y0 + A z)
-      if (!isSavedStep(steps_of_[c], steps_, saveEvery_)) continue;
+      if (!isSavedStep(storedSteps_[c0 + c], steps_, saveEvery_)) continue;
       if (!ref.is_null()) y->update(1.0, *ref, 1.0);  // physical state y0 + A z
       if (keepStates_) run_.states.push_back(rcp(new Vector(*y, Teuchos::Copy)));
       const auto yf = fom_.trajectory->getVector(saved_++);
@@ -79,20 +95,17 @@ class BatchedLift {
       final_ = e / nf;
       run_.errors.push_back(e);
     }
-    count_ = 0;
   }
-  double relativeL2() const { return std::sqrt(num_ / den_); }
-  double finalError() const { return final_; }
-
- private:
   const MultiVector& A_;
   const HamiltonianSystem& sys_;
   const FomResult& fom_;
   long steps_, saveEvery_;
   bool keepStates_;
   ModelRun& run_;
-  int batch_ = 1, count_ = 0;
-  long steps_of_[64] = {};
+  int r_, batch_ = 1;
+  size_t maxStored_ = 1;
+  std::vector<double> stored_;
+  std::vector<long> storedSteps_;
   long saved_ = 0;
   double num_ = 0.0, den_ = 0.0, final_ = 0.0;
   RCP<MultiVector> Z_, Y_;
@@ -109,7 +122,7 @@ ModelRun evaluateReducedModel(const RunContext& ctx, const FomResult& fom, const
   run.method = method, run.k = k, run.m = m;
   DenseModelIntegrator integ(model, ctx.config.sublist("integrator"), sys.nonlinearTerm().polynomialDegree());
   DenseVector z(model.dim());
-  BatchedLift lift(A, sys, fom, steps, saveEvery, keepStates, run);
+  DeferredLift lift(A, sys, fom, steps, saveEvery, keepStates, run);
   double obsSeconds = 0.0;
   long lastStep = 0;
   Teuchos::Time wall("model"), obs("obs");
