@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # GP-DEIM online cost against the full size (issue: GP-DEIM, "HR online time per step for SWE
 # 64^2 ... 512^2 at fixed k, m within 1.2x of each other, while the ROM's grows with n"): one short
-# SWE run per grid (IMR, 100 steps of dt = 0.005, training at the box centre, 2k = 40, m = 100),
+# SWE run per grid (IMR, 100 steps of dt = 0.005, training at the box centre with every state kept
+# for the DEIM snapshots, 2k = 40, m = 100),
 # FOM, ROM and GP-DEIM side by side in each run. Prints the time per step of each model and, for
 # the dense models, per Newton iteration (the per-step figure also moves with the iteration count).
 # usage: bash bench/hyper_scaling.sh [RANKS] [BUILD_DIR] [GRIDS]
@@ -20,10 +21,10 @@ gphr:
   parameters: {beta: 1.6435, gamma: 0.7762}
   time: {T: 0.5, dt: 0.005}
   integrator: {scheme: imr, jacobianLag: true}
-  training: {points: [1, 1]}
+  training: {points: [1, 1], snapshotEvery: 1}
   reduction: {k: 20}
   pipeline: {rom: true, methods: [rom, gp-deim], m: [100]}
-  hyper: {svd: randomized, powerIterations: 0}
+  hyper: {snapshotEvery: 1, svd: randomized, powerIterations: 0}
   output: {saveEvery: 10, plots: false, progressSeconds: 60.0}
 YAML
   if [ "$np" -eq 1 ]; then "$gphr" run "$out/config.yaml" --output "$out" > "$out/run.log" 2>&1
