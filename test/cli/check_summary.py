@@ -27,7 +27,8 @@ TOP_KEYS = ("scene", "integrator", "parameters", "machine", "runs")
 FOM_KEYS = ("method", "n", "fullDim", "steps", "dt", "ranks", "t_online_s", "newton_iters_avg",
             "linear_iters_avg", "newton_residual_max", "H0", "H_err_max", "H_err_max_rel", "status")
 ROM_KEYS = ("method", "basis", "k", "reducedDim", "energy_captured", "steps", "E_L2", "E_fin",
-            "H_err_max", "H_err_max_rel", "t_online_s", "t_offline_s", "newton_iters_avg", "status")
+            "H_err_max", "H_err_max_rel", "t_online_s", "t_offline_s", "newton_iters_avg", "status",
+            "pod_route", "pod_steps_tsqr", "pod_steps_replicated")
 
 
 def fail(msg):

@@ -36,6 +36,11 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
   setIntParameter(red, "blockColumns", 128, 1, 100000, "snapshot columns per incremental SVD step");
   setIntParameter(red, "maxRank", 0, 0, 1000000,
                   "singular triplets kept between incremental steps; 0: 2k + 32, or half the dofs per rank if k = 0");
+  const auto routes = Teuchos::tuple<std::string>("auto", "tsqr", "replicated");
+  setChoiceParameter(red, "podRoute", "auto", routes,
+                     "incremental SVD step: auto (TSQR where carried + new columns fit in the rows of every rank, "
+                     "else the replicated route), tsqr (refuse a step that does not fit), replicated (each step's "
+                     "matrix gathered on every rank, one LAPACK SVD: any rank count, no parallel speed-up)");
   auto& pipe = pl.sublist("pipeline");
   pipe.set("rom", false, "train, build the basis and evaluate the Galerkin reduced model beside the full model");
   pipe.set("methods", Teuchos::Array<std::string>(),
@@ -57,6 +62,7 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
   setIntParameter(hyp, "powerIterations", 1, 0, 10, "randomized: power iterations (one streamed pass each)");
   setIntParameter(hyp, "blockSnapshots", 0, 0, 100000,
                   "reduced-Jacobian snapshots per incremental POD step; 0: about maxRank columns per step");
+  setChoiceParameter(hyp, "podRoute", "auto", routes, "svd exact: the incremental SVD's step route, as reduction.podRoute");
   pl.sublist("adeim") = adeimValidParameters();
   auto& out = pl.sublist("output");
   setIntParameter(out, "saveEvery", 10, 1, 1000000000, "keep every N-th state of the trajectory in artifacts.h5");

@@ -72,9 +72,14 @@ CachedDeimBasis deimBasisFor(const RunContext& ctx, const RomStages& st, const M
     opt.svd = hyp.get<std::string>("svd");
     opt.oversampling = hyp.get<int>("oversampling");
     opt.powerIterations = hyp.get<int>("powerIterations");
+    opt.podRoute = hyp.get<std::string>("podRoute");
     opt.maxRank = hyp.get<int>("maxRank") > 0 ? hyp.get<int>("maxRank")
                                               : *std::max_element(ms.begin(), ms.end()) + 32;
-    out.basis = computeDeimBasis(trainingSystems(ctx, st.training), st.training.snapshots, A, opt);
+    try {
+      out.basis = computeDeimBasis(trainingSystems(ctx, st.training), st.training.snapshots, A, opt);
+    } catch (const InputError& e) {  // e.g. hyper.podRoute 'tsqr' on too few rows per rank: name the section
+      throw InputError(detail::concat("hyper: ", e.what()));
+    }
     out.computeSeconds = clock.totalElapsedTime(true);
     if (!f.exists("/deim")) f.createGroup("/deim");
     f.remove(name);
@@ -135,14 +140,13 @@ void runGpDeim(const RunContext& ctx, const FomResult& fom, RomStages& st, const
         .set("kernel_rows_per_evaluation", static_cast<long>(model.kernelRowsPerEvaluation()))
         .set("online_numbers_held", static_cast<long>(model.numbersHeld()))
         .set("deim_basis_cached", db.cached)
-        .set("t_training_s", st.training.seconds)
-        .set("t_basis_s", st.basisSeconds)
         .set("t_deim_basis_s", db.seconds)
         .set("t_deim_pair_s", tPair)
         .set("t_offline_s", st.training.seconds + st.basisSeconds + db.seconds + tPair)
         .set("t_deim_basis_compute_s", db.computeSeconds)
         .set("t_hyper_offline_s", db.computeSeconds + tPair)
         .set("t_total_s", db.computeSeconds + tPair + run.tOnline);
+    setBasisKeys(ctx, st, run.run);
     st.runs.push_back(std::move(run));
   }
 }

@@ -168,6 +168,7 @@ ReducedBasis runReduction(const RunContext& ctx, const TrainingResult& training,
   opt.energyTolerance = red.get<double>("energyTolerance");
   opt.blockColumns = red.get<int>("blockColumns");
   opt.maxRank = red.get<int>("maxRank");
+  opt.podRoute = red.get<std::string>("podRoute");
   b = computeSymplecticBasis(training.snapshots, ps, opt);
   f.remove("/basis");
   f.writeStates("/basis", *b.A, ps);
@@ -186,6 +187,15 @@ ReducedBasis runReduction(const RunContext& ctx, const TrainingResult& training,
   return b;
 }
 
+void setBasisKeys(const RunContext& ctx, const RomStages& st, JsonObject& run) {
+  run.set("t_training_s", st.training.seconds)
+      .set("t_basis_s", st.basisSeconds)
+      .set("t_basis_cpu_s", st.basisCpuSeconds)
+      .set("pod_route", ctx.config.sublist("reduction").get<std::string>("podRoute"))
+      .set("pod_steps_tsqr", static_cast<long>(st.basis.tsqrSteps))
+      .set("pod_steps_replicated", static_cast<long>(st.basis.replicatedSteps));
+}
+
 void runRom(const RunContext& ctx, const FomResult& fom, RomStages& st) {
   auto inst = ctx.scene->instantiate(ctx.comm, ctx.mu, true);
   for (int k : stageK(ctx.config, st.basis)) {
@@ -197,9 +207,8 @@ void runRom(const RunContext& ctx, const FomResult& fom, RomStages& st) {
         .set("training_parameters", static_cast<long>(st.training.parameters.size()))
         .set("training_reused", st.training.reused)
         .set("basis_cached", st.basisCached)
-        .set("t_offline_s", st.training.seconds + st.basisSeconds)
-        .set("t_training_s", st.training.seconds)
-        .set("t_basis_s", st.basisSeconds);
+        .set("t_offline_s", st.training.seconds + st.basisSeconds);
+    setBasisKeys(ctx, st, run.run);
     st.runs.push_back(std::move(run));
   }
 }

@@ -4,6 +4,7 @@
 #include <Tpetra_Core.hpp>
 
 #include <algorithm>
+#include <ctime>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -70,11 +71,15 @@ int runMain(const Args& args, const gphr::RCP<const gphr::Comm>& comm) {
     rom->training = runTraining(ctx);
     Teuchos::Time t("basis");
     t.start();
+    const std::clock_t cpu0 = std::clock();
     rom->basis = runReduction(ctx, rom->training, rom->basisCached);
     rom->basisSeconds = t.stop();
+    rom->basisCpuSeconds = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
     if (root)
-      std::fprintf(stderr, "[gphr] reduce: %s basis, 2k = %d, energy captured %.10f%s\n", rom->basis.method.c_str(),
-                   2 * rom->basis.k, rom->basis.energyCaptured, rom->basisCached ? " (cached)" : "");
+      std::fprintf(stderr, "[gphr] reduce: %s basis, 2k = %d, energy captured %.10f%s, %.1f s (%.1f s CPU; POD steps: "
+                   "%d tsqr, %d replicated)\n", rom->basis.method.c_str(), 2 * rom->basis.k, rom->basis.energyCaptured,
+                   rom->basisCached ? " (cached)" : "", rom->basisSeconds, rom->basisCpuSeconds, rom->basis.tsqrSteps,
+                   rom->basis.replicatedSteps);
   }
   const FomResult fom = runFullModel(ctx.config, *ctx.scene, ctx.mu, comm);
   if (rom && std::find(methods.begin(), methods.end(), "rom") != methods.end()) runRom(ctx, fom, *rom);

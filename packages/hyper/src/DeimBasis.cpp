@@ -173,7 +173,7 @@ DeimBasis computeDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& syst
   // Snapshots per POD step (the same on any rank count): a step costs O(d (rank + columns)^2), so
   // about maxRank new columns per step balances the number of steps against their size.
   const int perBlock = opt.blockSnapshots > 0 ? opt.blockSnapshots : std::max(1, (maxRank + r - 1) / r);
-  StreamingPod pod(rowMap, maxRank, perBlock * r);
+  StreamingPod pod(rowMap, maxRank, perBlock * r, -1.0, podRouteFromName(opt.podRoute));
   MultiVector block(rowMap, static_cast<size_t>(perBlock) * r);
   std::vector<Scalar> jac(static_cast<size_t>(nl) * r);
   int filled = 0;

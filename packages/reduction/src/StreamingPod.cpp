@@ -13,8 +13,16 @@
 
 namespace gphr {
 
-StreamingPod::StreamingPod(RCP<const Map> map, int maxRank, int blockColumns, double rankTolerance)
-    : map_(map), maxRank_(maxRank), blockColumns_(blockColumns), rankTolerance_(rankTolerance) {
+PodRoute podRouteFromName(const std::string& name) {
+  if (name == "auto") return PodRoute::Auto;
+  if (name == "tsqr") return PodRoute::Tsqr;
+  GPHR_REQUIRE(name == "replicated", InputError, "streaming POD: podRoute '", name,
+               "' is not one of 'auto', 'tsqr', 'replicated'");
+  return PodRoute::Replicated;
+}
+
+StreamingPod::StreamingPod(RCP<const Map> map, int maxRank, int blockColumns, double rankTolerance, PodRoute route)
+    : map_(map), maxRank_(maxRank), blockColumns_(blockColumns), rankTolerance_(rankTolerance), route_(route) {
   GPHR_REQUIRE(blockColumns_ >= 1, InputError, "streaming POD: blockColumns = ", blockColumns_, " (allowed: >= 1)");
   const LO nl = static_cast<LO>(map_->getNodeNumElements());
   LO minLocal = 0;
@@ -37,8 +45,8 @@ void StreamingPod::add(const MultiVector& X) {
   }
   columns_ += static_cast<long>(X.getNumVectors());
   // Steps of blockColumns columns whatever the rank count, so that the truncations (and the
-  // result) are the same on any number of ranks; each step takes TSQR when carried + new columns
-  // fit on the smallest rank and the replicated route otherwise (both exact up to round-off).
+  // result) are the same on any number of ranks; each step takes the route of route_ (auto: TSQR
+  // when carried + new columns fit on the smallest rank, the replicated route otherwise).
   for (size_t c0 = 0; c0 < X.getNumVectors();) {
     const size_t c1 = std::min(X.getNumVectors(), c0 + static_cast<size_t>(blockColumns_));
     step(X, c0, c1);
@@ -111,7 +119,21 @@ void StreamingPod::step(const MultiVector& X, size_t c0, size_t c1) {
       for (int j = 0; j < b; ++j) y(i, r + j) = x(i, c0 + j);
     }
   }
-  if (nc > cap_) return replicatedStep(Y);
+  if (nc > cap_) {
+    // cap_ and nc are the same on every rank: all ranks refuse together.
+    const GO d = static_cast<GO>(map_->getGlobalNumElements());
+    GPHR_REQUIRE(route_ != PodRoute::Tsqr, InputError, "streaming POD: podRoute 'tsqr' cannot take a step of ", nc,
+                 " columns (", r, " carried + ", b, " new): TSQR needs at most as many columns as rows on every rank, "
+                 "and on ", map_->getComm()->getSize(), " rank(s) the smallest holds ", cap_, " of the ", d,
+                 " rows; allowed: podRoute 'auto' or 'replicated', ",
+                 d >= nc ? detail::concat("at most ", d / nc, " rank(s) with the rows split evenly, ") : std::string(),
+                 "or fewer columns per step (a smaller maxRank or block size)");
+  }
+  if (route_ == PodRoute::Replicated || nc > cap_) {
+    ++replicatedSteps_;
+    return replicatedStep(Y);
+  }
+  ++tsqrSteps_;
   Teuchos::SerialDenseMatrix<int, double> R(nc, nc);
   Tpetra::TsqrAdaptor<MultiVector> tsqr;
   tsqr.factorExplicit(Y, Q, R);

@@ -132,7 +132,7 @@ ReducedBasis computeSymplecticBasis(const std::vector<RCP<const MultiVector>>& s
   // A = blockdiag(Phi, Phi) holds exactly, round-off directions included).
   // Every nonzero sigma is kept (tolerance 0): k is the user's choice, even into round-off.
   StreamingPod pod(cot ? space.dofMap() : space.map(), static_cast<int>(cot ? maxRank : 2 * maxRank),
-                   2 * opt.blockColumns, 0.0);
+                   2 * opt.blockColumns, 0.0, podRouteFromName(opt.podRoute));
   double energy = 0.0;
   for (const auto& Ys : snapshots) {
     std::vector<double> nrm(Ys->getNumVectors());
@@ -155,7 +155,12 @@ ReducedBasis computeSymplecticBasis(const std::vector<RCP<const MultiVector>>& s
             x(i, 2 * j + 1) = -p, x(nl + i, 2 * j + 1) = q;
           }
         }
-      pod.add(X);
+      try {
+        pod.add(X);
+      } catch (const InputError& e) {  // say how snapshots and triplets count as POD columns
+        throw InputError(detail::concat("symplectic basis (", opt.method, ": 2 POD columns per snapshot",
+                                        cot ? "" : " and per kept complex triplet", "): ", e.what()));
+      }
     }
   }
   MultiVector E(space.map(), 1);
@@ -173,6 +178,8 @@ ReducedBasis computeSymplecticBasis(const std::vector<RCP<const MultiVector>>& s
   ReducedBasis out;
   out.method = opt.method;
   out.singularValues = sigma;
+  out.tsqrSteps = pod.tsqrSteps();
+  out.replicatedSteps = pod.replicatedSteps();
   int k = opt.k;
   if (k <= 0) {  // smallest k whose discarded energy fraction is <= tolerance
     double captured = 0.0;

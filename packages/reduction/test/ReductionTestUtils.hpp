@@ -35,6 +35,22 @@ inline std::vector<double> transposeTimes(const MultiVector& A, const MultiVecto
   return out;
 }
 
+// ||U_a - U_b (U_b^T U_a)||_F = ||sin Theta(U_a, U_b)||_F for orthonormal U_a, U_b with as many
+// columns (collective, the same on every rank). Formed from the residual, not from the cosines,
+// so that angles down to round-off are resolved.
+inline double subspaceDistance(const MultiVector& Ua, const MultiVector& Ub) {
+  auto local = rcp(new Map(Ub.getNumVectors(), 0, Ua.getMap()->getComm(), Tpetra::LocallyReplicated));
+  MultiVector C(local, Ua.getNumVectors());
+  C.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, Ub, Ua, 0.0);
+  MultiVector R(Ua, Teuchos::Copy);
+  R.multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, -1.0, Ub, C, 1.0);
+  std::vector<double> nrm(R.getNumVectors());
+  R.norm2(Teuchos::ArrayView<double>(nrm));
+  double sum = 0.0;
+  for (double x : nrm) sum += x * x;
+  return std::sqrt(sum);
+}
+
 // All columns of X gathered to rank 0 in global-id order (row-major: column j at j*N).
 inline std::vector<double> gatherColumns(const MultiVector& X) {
   const GO N = X.getGlobalLength();

@@ -132,6 +132,44 @@ TEST_P(Bases, SameOnAnyRankCount) {
   EXPECT_LE(worst, 1e-9);
 }
 
+// reduction.podRoute: TSQR and the replicated route give the same basis (the phase is
+// normalised, so entrywise; 1e-9 as above: round-off over gaps >= 1e-3 sigma_1), and each run
+// takes the route it was given. maxRank 8 and blockColumns 4 fit TSQR on up to 3 ranks (psd:
+// 16 + 8 real columns on 32 rows per rank; cotangent: 8 + 8 on 16). A 'tsqr' run whose steps do
+// not fit (62 new columns per step against 96 rows at most) is refused.
+TEST_P(Bases, SameOnEitherPodRoute) {
+  const GO n = 48;
+  PhaseSpace ps(n, test::comm());
+  const auto snaps = nlsSnapshots(test::comm(), n);
+  BasisOptions opt;
+  opt.method = GetParam();
+  opt.k = 4;
+  opt.blockColumns = 4;
+  opt.maxRank = 8;
+  opt.podRoute = "tsqr";
+  const ReducedBasis tsqr = computeSymplecticBasis(snaps, ps, opt);
+  opt.podRoute = "replicated";
+  const ReducedBasis repl = computeSymplecticBasis(snaps, ps, opt);
+  EXPECT_GT(tsqr.tsqrSteps, 0);
+  EXPECT_EQ(tsqr.replicatedSteps, 0);
+  EXPECT_EQ(repl.tsqrSteps, 0);
+  EXPECT_EQ(repl.replicatedSteps, tsqr.tsqrSteps);
+  const auto a = test::gatherColumns(*tsqr.A), b = test::gatherColumns(*repl.A);
+  ASSERT_EQ(a.size(), b.size());
+  double worst = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(a[i] - b[i]));
+  EXPECT_LE(worst, 1e-9);
+  opt.podRoute = "tsqr";
+  opt.blockColumns = 60;
+  opt.maxRank = 0;
+  try {
+    computeSymplecticBasis(snaps, ps, opt);
+    FAIL() << "podRoute tsqr took steps wider than the rows per rank";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("podRoute 'tsqr' cannot take a step"), std::string::npos) << e.what();
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Methods, Bases, ::testing::Values("psd", "cotangent"));
 
 TEST(Bases, RejectsUnknownMethodAndUnavailableSize) {

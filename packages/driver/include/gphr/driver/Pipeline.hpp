@@ -41,6 +41,7 @@ struct RomStages {
   ReducedBasis basis;
   bool basisCached = false;
   double basisSeconds = 0.0;
+  double basisCpuSeconds = 0.0;           // rank 0's process CPU time in the basis stage
   std::vector<ModelRun> runs;             // rom, then the hyper-reduced models
   std::vector<double> deimSingularValues; // of the reduced-Jacobian snapshots (largest k)
 };
@@ -57,6 +58,9 @@ std::string trainingKey(const Teuchos::ParameterList& cfg);
 std::string basisKey(const Teuchos::ParameterList& cfg);
 // The hyper-reduced models of pipeline.methods (gp-deim, deim, sdeim) for every k and m.
 void runHyperReduction(const RunContext& ctx, const FomResult& fom, RomStages& stages);
+// The training and basis keys of a rom / gp-deim entry: t_training_s, t_basis_s, t_basis_cpu_s,
+// pod_route and the basis's POD steps by route.
+void setBasisKeys(const RunContext& ctx, const RomStages& stages, JsonObject& run);
 // Galerkin ROM at the test parameter for every k; errors against the full model's saved states.
 void runRom(const RunContext& ctx, const FomResult& fom, RomStages& stages);
 

@@ -17,6 +17,7 @@ struct DeimBasisOptions {
   // exact: the streaming POD (incremental TSQR + SVD); randomized: the range finder of HMT11
   // (one streamed pass + powerIterations passes + one for B B^T), oversampling extra columns.
   std::string svd = "exact";
+  std::string podRoute = "auto";  // exact: the StreamingPod's step route (auto | tsqr | replicated)
   int oversampling = 10;
   int powerIterations = 1;
   unsigned long long seed = 20231122;

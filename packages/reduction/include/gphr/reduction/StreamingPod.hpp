@@ -6,22 +6,32 @@
 // With every column in one block it is the exact thin SVD; truncating to maxRank between blocks
 // is the incremental SVD of libROM / Brand 2002 (error bounded by the discarded sigma's).
 // Steps take blockColumns columns each, on any rank count, so the truncations and the result are
-// the same on 1, 2 or 3 ranks up to round-off. TSQR needs (carried + new columns) <= rows on
-// every rank; a step where they do not fit (few rows per rank, or a rank close to d) gathers
-// [U diag(sigma), X] on every rank and takes one LAPACK SVD there (d x columns numbers): the
-// redistribution route, exact, for d up to ~1e5 at the paper's ranks.
+// the same on 1, 2 or 3 ranks up to round-off. Each step takes one of two routes, both exact:
+//   tsqr:       TSQR needs (carried + new columns) <= rows on every rank;
+//   replicated: [U diag(sigma), X] gathered on every rank, one LAPACK SVD there (d x columns
+//               numbers per rank, and every rank does the whole SVD: it takes any rank count but
+//               does not get faster with more ranks).
+// PodRoute::Auto (the default) takes TSQR where the step fits and the replicated route otherwise;
+// Tsqr refuses a step that does not fit (InputError naming its columns and the rows per rank);
+// Replicated takes that route for every step.
+#include <string>
 #include <vector>
 
 #include "gphr/core/Types.hpp"
 
 namespace gphr {
 
+enum class PodRoute { Auto, Tsqr, Replicated };
+// "auto" | "tsqr" | "replicated" (the config's podRoute values); anything else: InputError.
+PodRoute podRouteFromName(const std::string& name);
+
 class StreamingPod {
  public:
   // maxRank: singular triplets kept between steps; blockColumns: new columns per step;
   // rankTolerance: sigma_j <= rankTolerance * sigma_1 are dropped (< 0: columns * machine eps,
-  // LAPACK's numerical rank; 0: keep every nonzero one).
-  StreamingPod(RCP<const Map> map, int maxRank, int blockColumns, double rankTolerance = -1.0);
+  // LAPACK's numerical rank; 0: keep every nonzero one); route: see above.
+  StreamingPod(RCP<const Map> map, int maxRank, int blockColumns, double rankTolerance = -1.0,
+               PodRoute route = PodRoute::Auto);
 
   void add(const MultiVector& X);  // collective; X on map()
   const RCP<const Map>& map() const { return map_; }
@@ -32,6 +42,8 @@ class StreamingPod {
   double totalEnergy() const { return energy_; }  // ||all columns added||_F^2
   long columnsAdded() const { return columns_; }
   int blockColumns() const { return blockColumns_; }
+  int tsqrSteps() const { return tsqrSteps_; }              // steps taken by each route so far
+  int replicatedSteps() const { return replicatedSteps_; }
 
  private:
   void step(const MultiVector& X, size_t c0, size_t c1);
@@ -40,7 +52,9 @@ class StreamingPod {
   RCP<const Map> map_;
   int maxRank_, blockColumns_;
   double rankTolerance_;
+  PodRoute route_;
   int cap_;
+  int tsqrSteps_ = 0, replicatedSteps_ = 0;
   RCP<MultiVector> U_;
   std::vector<double> sigma_;
   double energy_ = 0.0;

@@ -23,6 +23,7 @@ struct BasisOptions {
   double energyTolerance = 1e-6;   // discarded fraction of the snapshot energy (when k = 0)
   int blockColumns = 128;          // snapshot columns per incremental step
   int maxRank = 0;                 // complex triplets kept between steps; 0: 2k + 32 (k given) or 512; at most n
+  std::string podRoute = "auto";   // auto | tsqr | replicated: the StreamingPod's step route
 };
 
 struct ReducedBasis {
@@ -31,6 +32,7 @@ struct ReducedBasis {
   double energyCaptured = 0.0;         // sum_{j<=k} sigma_j^2 / ||C||_F^2
   int k = 0;
   std::string method;
+  int tsqrSteps = 0, replicatedSteps = 0;  // streaming POD steps taken by each route
 };
 
 // Snapshots: columns of each MultiVector are states y on space.map() (shifted states when the

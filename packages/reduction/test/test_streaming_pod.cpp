@@ -1,0 +1,174 @@
+// StreamingPod's step routes (podRoute), tested against mathematics on 1 and 2 ranks.
+// The data is X = F diag(s) G^T with F (d x R) and G (N x R) orthonormal DCT-II columns, so its
+// singular values are exactly s and its leading left singular vectors are exactly F's columns.
+// Tolerances (sigma_1 = 1): every step is a backward-stable SVD (Householder/TSQR QR + GESVD, or
+// GESVD of the gathered matrix), so it is the exact SVD of a matrix within ~ nc eps ||Y|| of its
+// input (nc <= 42 columns here: ~1e-14 per step, a dozen steps). Weyl's theorem moves the
+// singular values by at most that: 1e-12 leaves two orders of headroom. Wedin's theorem moves the
+// kept subspace by that over the gap to the dropped singular values (>= 0.25 without truncation:
+// ~1e-13); between the two routes the tolerance is 1e-10, three orders above the measured
+// differences (printed by the tests) and far below any real defect (a wrong vector moves it by ~1).
+// The subspace distance ||U_a - U_b U_b^T U_a||_F = ||sin Theta||_F is formed directly: from the
+// cosines (singular values of U_b^T U_a) it could not resolve angles below sqrt(eps) ~ 1e-8.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "ReductionTestUtils.hpp"
+#include "gphr/core/Error.hpp"
+#include "gphr/reduction/StreamingPod.hpp"
+
+using namespace gphr;
+
+namespace {
+
+// Column j of the orthonormal DCT-II basis of R^size, entry i.
+double dct(GO i, int j, GO size) {
+  const double pi = std::acos(-1.0);
+  return std::sqrt((j == 0 ? 1.0 : 2.0) / static_cast<double>(size)) *
+         std::cos(pi * (static_cast<double>(i) + 0.5) * j / static_cast<double>(size));
+}
+
+// X = F diag(s) G^T on map (d rows), N columns: singular values s, left vectors F(:, j).
+MultiVector knownSvdData(const RCP<const Map>& map, int N, const std::vector<double>& s) {
+  const GO d = static_cast<GO>(map->getGlobalNumElements());
+  MultiVector X(map, N);
+  auto x = X.getLocalViewHost(Tpetra::Access::OverwriteAll);
+  for (LO l = 0; l < static_cast<LO>(map->getNodeNumElements()); ++l) {
+    const GO i = map->getGlobalElement(l);
+    for (int c = 0; c < N; ++c) {
+      double v = 0.0;
+      for (size_t j = 0; j < s.size(); ++j) v += s[j] * dct(i, static_cast<int>(j), d) * dct(c, static_cast<int>(j), N);
+      x(l, c) = v;
+    }
+  }
+  return X;
+}
+
+MultiVector leadingDct(const RCP<const Map>& map, int R) {
+  const GO d = static_cast<GO>(map->getGlobalNumElements());
+  MultiVector F(map, R);
+  auto f = F.getLocalViewHost(Tpetra::Access::OverwriteAll);
+  for (LO l = 0; l < static_cast<LO>(map->getNodeNumElements()); ++l)
+    for (int j = 0; j < R; ++j) f(l, j) = dct(map->getGlobalElement(l), j, d);
+  return F;
+}
+
+std::vector<double> linearSpectrum(int R, double slope) {
+  std::vector<double> s(R);
+  for (int j = 0; j < R; ++j) s[j] = 1.0 - j * slope;
+  return s;
+}
+
+StreamingPod podOf(const MultiVector& X, int maxRank, int blockColumns, PodRoute route, double tol = 1e-8) {
+  StreamingPod pod(X.getMap(), maxRank, blockColumns, tol, route);
+  pod.add(X);
+  return pod;
+}
+
+double maxSigmaDiff(const std::vector<double>& a, const std::vector<double>& b) {
+  double worst = 0.0;
+  for (size_t j = 0; j < std::min(a.size(), b.size()); ++j) worst = std::max(worst, std::abs(a[j] - b[j]));
+  return worst;
+}
+
+class Routes : public ::testing::Test {
+ protected:
+  // 128 rows: 64 per rank on 2 ranks, enough for TSQR at up to 64 columns.
+  RCP<const Map> map_ = rcp(new Map(128, 0, test::comm()));
+};
+
+// Nothing of the data is truncated (maxRank 40 > rank 30): each route must give the exact SVD.
+TEST_F(Routes, EachRouteGivesTheExactSvd) {
+  const auto s = linearSpectrum(30, 1.0 / 40.0);  // 1 .. 0.275
+  const MultiVector X = knownSvdData(map_, 60, s);
+  const MultiVector F = leadingDct(map_, 30);
+  for (PodRoute route : {PodRoute::Tsqr, PodRoute::Replicated}) {
+    const StreamingPod pod = podOf(X, 40, 12, route);  // 5 steps of 12 columns, up to 42 columns
+    const bool tsqr = route == PodRoute::Tsqr;
+    SCOPED_TRACE(tsqr ? "tsqr" : "replicated");
+    EXPECT_EQ(pod.tsqrSteps(), tsqr ? 5 : 0);
+    EXPECT_EQ(pod.replicatedSteps(), tsqr ? 0 : 5);
+    ASSERT_EQ(pod.rank(), 30);
+    EXPECT_LE(maxSigmaDiff(pod.singularValues(), s), 1e-12);
+    const double dist = test::subspaceDistance(pod.leftVectors(), F);
+    EXPECT_LE(dist, 1e-10);
+    if (test::comm()->getRank() == 0) std::printf("  %s: ||sin Theta(U, F)||_F = %.1e\n", tsqr ? "tsqr" : "replicated", dist);
+  }
+}
+
+// Truncation between steps (maxRank 16 < rank 48): the incremental SVD, no longer the exact one,
+// but the same on both routes (they truncate at the same places). Each truncation keeps the best
+// rank-r part of Y, so B B^T <= X X^T for the carried B = U diag(sigma) (Loewner order, by
+// induction over the steps): sigma_j <= s_j on either route.
+TEST_F(Routes, TsqrAndReplicatedAgreeUnderTruncation) {
+  const auto s = linearSpectrum(48, 1.0 / 64.0);
+  const MultiVector X = knownSvdData(map_, 96, s);
+  const StreamingPod tsqr = podOf(X, 16, 8, PodRoute::Tsqr);  // 12 steps, truncating from the 3rd
+  const StreamingPod repl = podOf(X, 16, 8, PodRoute::Replicated);
+  EXPECT_EQ(tsqr.tsqrSteps(), 12);
+  EXPECT_EQ(repl.replicatedSteps(), 12);
+  ASSERT_EQ(tsqr.rank(), 16);
+  ASSERT_EQ(repl.rank(), 16);
+  for (const StreamingPod* pod : {&tsqr, &repl})
+    for (int j = 0; j < 16; ++j) EXPECT_LE(pod->singularValues()[j], s[j] + 1e-12) << "sigma_" << j;
+  const double dSigma = maxSigmaDiff(tsqr.singularValues(), repl.singularValues());
+  const double dU = test::subspaceDistance(tsqr.leftVectors(), repl.leftVectors());
+  EXPECT_LE(dSigma, 1e-10);
+  EXPECT_LE(dU, 1e-10);
+  if (test::comm()->getRank() == 0) std::printf("  tsqr vs replicated: max |d sigma| = %.1e, ||sin Theta||_F = %.1e\n", dSigma, dU);
+}
+
+// 10 rows on every rank; steps of 6 columns: the first (6) fits, the second (6 carried + 6 new)
+// does not. 'tsqr' refuses it naming the numbers; 'auto' takes one step by each route and agrees
+// with 'replicated'.
+class TooFewRows : public ::testing::Test {
+ protected:
+  RCP<const Map> map_ = rcp(new Map(10 * test::comm()->getSize(), 0, test::comm()));
+  std::vector<double> s_ = linearSpectrum(8, 0.1);
+  MultiVector X_ = knownSvdData(map_, 12, s_);
+};
+
+TEST_F(TooFewRows, TsqrRefusesNamingColumnsAndRows) {
+  const int P = test::comm()->getSize();
+  try {
+    podOf(X_, 8, 6, PodRoute::Tsqr);
+    FAIL() << "podRoute tsqr took a step of 12 columns on 10 rows per rank";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    for (const std::string& part : {std::string("podRoute 'tsqr'"), std::string("a step of 12 columns (6 carried + 6 new)"),
+                                    "on " + std::to_string(P) + " rank(s) the smallest holds 10 of the " +
+                                        std::to_string(10 * P) + " rows",
+                                    std::string("'auto' or 'replicated'")})
+      EXPECT_NE(msg.find(part), std::string::npos) << "message lacks '" << part << "': " << msg;
+  }
+}
+
+TEST_F(TooFewRows, AutoTakesTsqrWhereItFitsAndAgreesWithReplicated) {
+  const StreamingPod autoPod = podOf(X_, 8, 6, PodRoute::Auto);
+  const StreamingPod repl = podOf(X_, 8, 6, PodRoute::Replicated);
+  EXPECT_EQ(autoPod.tsqrSteps(), 1);
+  EXPECT_EQ(autoPod.replicatedSteps(), 1);
+  ASSERT_EQ(autoPod.rank(), 8);
+  ASSERT_EQ(repl.rank(), 8);
+  // 12 columns of rank 8 in two steps, maxRank 8: nothing truncated, the exact SVD on both.
+  EXPECT_LE(maxSigmaDiff(autoPod.singularValues(), s_), 1e-12);
+  EXPECT_LE(maxSigmaDiff(repl.singularValues(), s_), 1e-12);
+  EXPECT_LE(test::subspaceDistance(autoPod.leftVectors(), repl.leftVectors()), 1e-10);
+}
+
+TEST(PodRoute, NamesAndUnknownName) {
+  EXPECT_EQ(podRouteFromName("auto"), PodRoute::Auto);
+  EXPECT_EQ(podRouteFromName("tsqr"), PodRoute::Tsqr);
+  EXPECT_EQ(podRouteFromName("replicated"), PodRoute::Replicated);
+  try {
+    podRouteFromName("anasazi");
+    FAIL() << "an unknown route was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("'anasazi' is not one of 'auto', 'tsqr', 'replicated'"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace

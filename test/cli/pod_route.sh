@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# reduction.podRoute and hyper.podRoute reach the symplectic basis and the exact DEIM basis:
+# 'tsqr' where a POD step has more columns than the rows per rank (n = 64: 128 state rows, 64
+# rows of G; steps of 2 x 51 snapshot columns and of 3 x 2k = 60 Jacobian columns) exits 2 with one
+# line naming the section, the step's columns and the rows; 'replicated' runs and reports its steps.
+# usage: pod_route.sh GPHR
+set -u
+gphr=$1
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+config() {  # config REDUCTION_ROUTE HYPER_ROUTE
+  cat > "$work/c.yaml" <<YAML
+gphr:
+  scene: {name: nls1d, n: 64}
+  time: {T: 0.5, dt: 0.01}
+  training: {points: [3]}
+  reduction: {k: 10, blockColumns: 51, podRoute: $1}
+  pipeline: {rom: true, methods: [rom, gp-deim], m: [10]}
+  hyper: {svd: exact, podRoute: $2}
+  output: {plots: false}
+YAML
+}
+fail() { echo "FAIL: $*"; echo "--- stderr:"; cat "$work/err"; exit 1; }
+refused() {  # refused EXPECTED_TEXT...: the run exits 2 with one error line holding each text
+  "$gphr" run "$work/c.yaml" --output "$work/out" > /dev/null 2> "$work/err"
+  local rc=$?
+  [ $rc -eq 2 ] || fail "exit code $rc, expected 2"
+  [ "$(grep -c '^gphr: error' "$work/err")" -eq 1 ] || fail "not one error line"
+  for text in "$@"; do grep '^gphr: error' "$work/err" | grep -qF -- "$text" || fail "error line lacks: $text"; done
+}
+config tsqr auto
+refused "symplectic basis (psd" "podRoute 'tsqr' cannot take a step of" "+ 102 new)" "holds 128 of the 128 rows"
+config replicated tsqr
+refused "hyper: streaming POD: podRoute 'tsqr' cannot take a step of" "holds 64 of the 64 rows"
+config replicated replicated
+"$gphr" run "$work/c.yaml" --output "$work/fresh" > /dev/null 2> "$work/err" || fail "replicated routes: exit code $?"
+python3 - "$work/fresh/summary.json" <<'PY' || fail "summary"
+import json, sys
+rom = [r for r in json.load(open(sys.argv[1]))["runs"] if r["method"] == "rom"][0]
+# 3 training runs of 51 states: one POD step each, all replicated (a fresh directory: computed here)
+assert (rom["basis_cached"], rom["pod_route"], rom["pod_steps_tsqr"], rom["pod_steps_replicated"]) == (False, "replicated", 0, 3), rom
+PY
+echo ok
