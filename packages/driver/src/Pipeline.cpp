@@ -24,7 +24,11 @@ std::string trainingKey(const Teuchos::ParameterList& cfg) {
 }
 
 std::string basisKey(const Teuchos::ParameterList& cfg) {
-  return trainingKey(cfg) + toYaml(cfg.sublist("reduction")) + "k = " + std::to_string(basisK(cfg));
+  // podRoute's default (auto) is what every basis cached before the key existed was computed with:
+  // it stays out of the key, so those caches remain valid; another route is a different key.
+  Teuchos::ParameterList red = cfg.sublist("reduction");
+  if (red.isParameter("podRoute") && red.get<std::string>("podRoute") == "auto") red.remove("podRoute");
+  return trainingKey(cfg) + toYaml(red) + "k = " + std::to_string(basisK(cfg));
 }
 
 namespace {
