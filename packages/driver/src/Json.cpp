@@ -36,6 +36,18 @@ JsonObject& JsonObject::set(const std::string& key, double value) {
   os << value;
   return raw(key, os.str());
 }
+JsonObject& JsonObject::set(const std::string& key, const std::vector<double>& values) {
+  std::ostringstream os;
+  os.precision(17);
+  os << "[";
+  for (size_t i = 0; i < values.size(); ++i) {
+    if (i) os << ", ";
+    if (std::isfinite(values[i])) os << values[i];
+    else os << "null";
+  }
+  os << "]";
+  return raw(key, os.str());
+}
 JsonObject& JsonObject::set(const std::string& key, long value) { return raw(key, std::to_string(value)); }
 JsonObject& JsonObject::set(const std::string& key, const std::string& value) { return raw(key, jsonString(value)); }
 JsonObject& JsonObject::set(const std::string& key, bool value) { return raw(key, value ? "true" : "false"); }

@@ -17,6 +17,7 @@ class JsonObject {
   JsonObject& set(const std::string& key, bool value);
   JsonObject& set(const std::string& key, const JsonObject& value);
   JsonObject& set(const std::string& key, const std::vector<JsonObject>& values);
+  JsonObject& set(const std::string& key, const std::vector<double>& values);  // an array of numbers
   std::string str(int indent = 0) const;
   // Read back a number set earlier (the report's tables): NaN when absent, null or not a number.
   double number(const std::string& key) const;
