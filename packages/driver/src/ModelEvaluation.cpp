@@ -155,7 +155,7 @@ ModelRun evaluateReducedModel(const RunContext& ctx, const FomResult& fom, const
   std::vector<double> times{run.tOnline};
   for (int r = 1; r < repeats && run.ok; ++r) {
     DenseModelIntegrator again(model, ctx.config.sublist("integrator"), sys.nonlinearTerm().polynomialDegree());
-    DenseVector z0(model.dim());
+    DenseVector z0(model.dim());  // the first run's start: z = 0, the (shifted) initial state
     Teuchos::Time t("repeat");
     t.start();
     again.run(z0, dt, steps, nullptr);

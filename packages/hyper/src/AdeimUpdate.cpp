@@ -21,7 +21,8 @@ using Teuchos::TRANS;
 // saves at these sizes): LAPACK GESDD, divide and conquer, which Teuchos::LAPACK (Trilinos 13.2)
 // does not wrap. It is twice as fast as GESVD with vectors on the 100 x 400 and 250 x 100
 // matrices of an NLS update (measured: 4.9 vs 8.3 ms and 3.6 vs 7.4 ms), as accurate (backward
-// stable), and the update needs three of them per step. withVectors = false: the values only.
+// stable); an update takes two with vectors (C, M) and one of values only (the tau_r test).
+// withVectors = false: the values only.
 struct ThinSvd {
   DenseMatrix U, Vt;
   std::vector<double> s;

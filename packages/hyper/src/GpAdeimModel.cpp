@@ -42,8 +42,8 @@ Teuchos::ParameterList adeimValidParameters() {
   setChoiceParameter(pl, "initialBasis", "fom", Teuchos::tuple<std::string>("fom", "training"),
                      "(U_0, P_0) from the first initialWindow full-model steps at the test parameter, or the training DEIM basis");
   pl.set("orthonormalize", true,
-         "replace U_{j+1} by an orthonormal basis of its span (Gram eigenvectors, by energy) before choosing P_{j+1}; "
-         "the DEIM projection depends only on span(U) and P");
+         "replace U_{j+1} by an orthonormal basis of its span before choosing P_{j+1} (Gram eigenvectors by energy; "
+         "with indices = partial the nearest one, U G^{-1/2}); the DEIM projection depends only on span(U) and P");
   pl.set("monitorResidual", true, "record ||U_{j+1} C_j - F_j||_F over all d rows at every update (O(d) each)");
   setIntParameter(pl, "seed", 20240601, 0, 2147483647, "seed of the random sampling rule");
   return pl;
@@ -96,7 +96,7 @@ DenseMatrix toDense(const std::vector<double>& rowMajor, int rows, int cols) {
   return M;
 }
 
-// The GP-DEIM row kernel of (U, m): interpolation rows and weights. Collective.
+// Interpolation rows of U's first m columns (greedy DEIM or QDEIM), under the phase timer. Collective.
 std::vector<GO> timedIndices(const MultiVector& U, int m, const std::string& method) {
   Teuchos::TimeMonitor tm(phase("indices: selection"));
   return selectDeimIndices(U, m, method);
@@ -339,9 +339,11 @@ std::vector<double> GpAdeimModel::columnRotations(const AdeimUpdate& up) const {
   return out;
 }
 
-// U <- U V diag(lambda)^{-1/2} with U^T U = V diag(lambda) V^T (eigenvalues descending): an
-// orthonormal basis of the same span (so the same DEIM projection for a given P), its columns
-// ordered by energy for the greedy index selection. The Gram matrix is m x m (LAPACK SYEV).
+// U <- U T with U^T U = V diag(lambda) V^T: an orthonormal basis of the same span (so the same
+// DEIM projection for a given P). T = V diag(lambda)^{-1/2}, eigenvalues descending, orders the
+// columns by energy for the greedy and QDEIM index selections; for the partial point update,
+// whose index i belongs to column i, T = V diag(lambda)^{-1/2} V^T (Loewdin) keeps each column
+// nearest to its former self. The Gram matrix is m x m (LAPACK SYEV).
 void GpAdeimModel::orthonormalizeBasis() {
   auto local = rcp(new Map(m_, 0, U_->getMap()->getComm(), Tpetra::LocallyReplicated));
   MultiVector G(local, m_), T(local, m_);
@@ -357,7 +359,7 @@ void GpAdeimModel::orthonormalizeBasis() {
                "down to ", lambda[0], ")");
   {
     auto t = T.getLocalViewHost(Tpetra::Access::OverwriteAll);
-    if (opt_.indices == "partial") {  // T = V diag(lambda)^{-1/2} V^T: column i stays nearest to u_i (Loewdin)
+    if (opt_.indices == "partial") {
       for (int j = 0; j < m_; ++j)
         for (int i = 0; i < m_; ++i) {
           double sum = 0.0;

@@ -1,6 +1,5 @@
 #include "gphr/hyper/GpDeimModel.hpp"
 
-
 #include "gphr/reduction/SymmetricEigen.hpp"
 
 namespace gphr {
