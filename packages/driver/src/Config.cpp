@@ -53,6 +53,10 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
                   "time each rom / gp-deim / deim / sdeim online run this many times and report the fastest as "
                   "t_online_s (short runs are at the mercy of scheduler and cache noise); the first run gives the "
                   "results; gp-adeim, whose model changes as it runs, runs once");
+  setDoubleParameter(pipe, "onlineRepeatSeconds", 60.0, 1e-9, 1e9,
+                     "time budget of the repeats of one run: a further repeat starts only while the repeats so far "
+                     "took less (a run of milliseconds can then be repeated hundreds of times, to sample past the "
+                     "machine's slow spells, while a minutes-long one is not repeated at all)");
   auto& hyp = pl.sublist("hyper");
   setIntParameter(hyp, "snapshotEvery", 1, 1, 1000000,
                   "reduced-Jacobian snapshot at every N-th stored training state (the paper: 20)");
