@@ -143,30 +143,38 @@ AdeimUpdate computeAdeimUpdate(const CoefficientFactor& cf, const DenseMatrix& S
   up.coefficientRank = cf.rank();
   const int rc = cf.rank();
   if (rc == 0) return up;
-  const ThinSvd ms_ = thinSvd(product(NO_TRANS, NO_TRANS, X, cf.Vc));  // M = X V_c
+  const DenseMatrix M = product(NO_TRANS, NO_TRANS, X, cf.Vc);
+  const ThinSvd ms_ = thinSvd(M);
   const int rbar = countAbove(ms_.s, std::max(ms, rc) * std::numeric_limits<double>::epsilon());
   for (int i = 0; i < rbar; ++i) up.eigenvalues.push_back(ms_.s[i] * ms_.s[i]);
+  // The tau_r test on S^T R C^T: with nothing cut, C = U_c S_c V_c^T, so S^T R C^T = M S_c U_c^T has
+  // the singular values of M S_c (m_s x r_C, no product over wbar); after a cut, the product itself.
   int r = rbar;
   if (opt.rank > 0) {
     r = std::min(opt.rank, rbar);
   } else {
-    const ThinSvd ts = thinSvd(product(NO_TRANS, TRANS, X, up.C), false);  // S^T R C^T, the paper's tau_r test
-    r = std::min(countAbove(ts.s, opt.rankTol), rbar);
+    DenseMatrix XCt;
+    if (rc == std::min(m, wbar)) {
+      XCt = M;
+      for (int l = 0; l < rc; ++l)
+        for (int row = 0; row < ms; ++row) XCt(row, l) *= cf.s[l];
+    } else {
+      XCt = product(NO_TRANS, TRANS, X, up.C);
+    }
+    r = std::min(countAbove(thinSvd(XCt, false).s, opt.rankTol), rbar);
   }
   up.rank = r;
-  up.a.shape(ms, r);
-  up.b.shape(m, r);
+  // b_i = U_c diag(1/s_c) w_i, w_i the right singular vectors of M. Then C^T b_i = V_c w_i (b lies
+  // in span U_c, which the cut part of C annihilates), so ||C^T b_i|| = 1 and eq:ai_from_bi,
+  // a_i = -S^T R C^T b_i / ||C^T b_i||^2, is -M w_i = -sigma_i(M) u_i(M): no product over wbar.
+  DenseMatrix Ws(rc, r);
   for (int i = 0; i < r; ++i)
-    for (int l = 0; l < rc; ++l)  // b_i = U_c diag(1/s_c) w_i
-      for (int row = 0; row < m; ++row) up.b(row, i) += cf.Uc(row, l) * ms_.Vt(i, l) / cf.s[l];
-  // a_i = -S^T R C^T b_i / ||C^T b_i||^2 (eq:ai_from_bi)
-  const DenseMatrix g = product(TRANS, NO_TRANS, up.C, up.b);  // wbar x r: C^T b_i
-  const DenseMatrix Xg = product(NO_TRANS, NO_TRANS, X, g);
-  for (int i = 0; i < r; ++i) {
-    double gg = 0.0;
-    for (int l = 0; l < wbar; ++l) gg += g(l, i) * g(l, i);
-    for (int row = 0; row < ms; ++row) up.a(row, i) = -Xg(row, i) / gg;
-  }
+    for (int l = 0; l < rc; ++l) Ws(l, i) = ms_.Vt(i, l) / cf.s[l];
+  up.b = product(NO_TRANS, NO_TRANS, cf.Uc, Ws);
+  up.a.shape(ms, r);
+  for (int i = 0; i < r; ++i)
+    for (int row = 0; row < ms; ++row) up.a(row, i) = -ms_.s[i] * ms_.U(row, i);
+  const DenseMatrix g = product(TRANS, NO_TRANS, up.C, up.b);  // wbar x r: C^T b_i, formed for the check
   // ||S^T R + a b^T C||_F, evaluated (eq:update_error states it equals before^2 - sum lambda_i).
   X.multiply(NO_TRANS, TRANS, 1.0, up.a, g, 1.0);
   up.residualAfter = X.normFrobenius();

@@ -208,6 +208,42 @@ TEST(AdeimUpdate, ScaleOfFChangesNothingButTheScale) {
   }
 }
 
+// The rank by tau_r is the paper's test, the number of singular values of S^T R C^T above
+// tau_r sigma_1, here computed from the product in the test (LAPACK GESVD). Random data have
+// singular values apart by far more than round-off, so the counts must agree exactly; tau_r runs
+// through every gap. Also with C numerically rank-deficient (a cut), where the rank is capped at
+// rank(C) = 5.
+TEST(AdeimUpdate, RankTolCountsSingularValuesOfProjectedResidual) {
+  for (bool cut : {false, true}) {
+    Window w = randomWindow(kM, kMs, kW, cut ? 12 : 11);
+    if (cut)  // P^T F's last row a combination of the others: C = (P^T U)^{-1} P^T F has rank 5
+      for (int j = 0; j < kW; ++j) w.PtF(kM - 1, j) = 0.5 * w.PtF(0, j) - 0.25 * w.PtF(1, j);
+    DenseMatrix C(w.PtF), lu(w.PtU);
+    std::vector<int> piv(kM);
+    int info = 0;
+    Teuchos::LAPACK<int, double> lapack;
+    lapack.GESV(kM, kW, lu.values(), lu.stride(), piv.data(), C.values(), C.stride(), &info);
+    ASSERT_EQ(info, 0);
+    DenseMatrix X = mul(NO_TRANS, NO_TRANS, w.StU, C);
+    X -= w.StF;
+    DenseMatrix XC = mul(NO_TRANS, TRANS, X, C);
+    std::vector<double> sv(kM), work(5 * kMs * kM + 100);
+    double dummy = 0.0;
+    lapack.GESVD('N', 'N', kMs, kM, XC.values(), XC.stride(), sv.data(), &dummy, 1, &dummy, 1, work.data(),
+                 static_cast<int>(work.size()), nullptr, &info);
+    ASSERT_EQ(info, 0);
+    const int rankC = cut ? kM - 1 : kM;
+    for (int i = 1; i < kM; ++i) {
+      const double tol = std::sqrt(sv[i - 1] * sv[i]) / sv[0];  // between sigma_i and sigma_{i+1}
+      AdeimUpdateOptions o;
+      o.rankTol = tol;
+      const AdeimUpdate up = computeAdeimUpdate(w.PtU, w.PtF, w.StU, w.StF, o);
+      EXPECT_EQ(up.coefficientRank, rankC) << "cut " << cut;
+      EXPECT_EQ(up.rank, std::min(i, rankC)) << "cut " << cut << ", tau_r " << tol;
+    }
+  }
+}
+
 // Window columns fewer than m (wbar = 4 < m = 6) and repeated columns: C is rank-deficient; the
 // update runs in C's row space (rank r_C), finite, and still lowers the residual.
 TEST(AdeimUpdate, RankDeficientCoefficients) {
