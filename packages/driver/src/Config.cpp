@@ -49,7 +49,7 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
            "symplectic basis, m = 2k); empty: rom if pipeline.rom");
   pipe.set("k", Teuchos::Array<int>(), "reduced half-sizes k to evaluate (2k = reducedDim); empty: reduction.k");
   pipe.set("m", Teuchos::Array<int>(), "DEIM sizes m to evaluate for gp-deim, gp-adeim and deim (each at most d)");
-  setIntParameter(pipe, "onlineRepeats", 1, 1, 1000,
+  setIntParameter(pipe, "onlineRepeats", 1, 1, 100000,
                   "time each rom / gp-deim / deim / sdeim online run this many times and report the fastest as "
                   "t_online_s (short runs are at the mercy of scheduler and cache noise); the first run gives the "
                   "results; gp-adeim, whose model changes as it runs, runs once");

@@ -48,7 +48,7 @@ std::vector<GO> greedyDeim(const MultiVector& U, int m) {
     for (int j = 0; j < m; ++j) colMax[j] = std::max(colMax[j], std::abs(W[static_cast<size_t>(i) * m + j]));
   Teuchos::reduceAll(*map.getComm(), Teuchos::REDUCE_MAX, m, colMax.data(), globalMax.data());
   std::vector<char> taken(nl, 0);
-  std::vector<double> offer(m + 2), all(static_cast<size_t>(np) * (m + 2));
+  std::vector<double> offer(m + 2), all(static_cast<size_t>(np) * (m + 2)), pivotRow(m);
   std::vector<GO> idx;
   for (int l = 0; l < m; ++l) {
     LO best = -1;
@@ -86,10 +86,13 @@ std::vector<GO> greedyDeim(const MultiVector& U, int m) {
     idx.push_back(gid);
     const LO mine = map.getLocalElement(gid);
     if (mine != Teuchos::OrdinalTraits<LO>::invalid()) taken[mine] = 1;
-    const double* p = pivot + 2;  // entries l..m-1 of the pivot row
+    // The pivot row, copied out of the gather buffer so that the compiler sees it cannot alias W
+    // (the row update then vectorizes; it is the d m^2 / 2 part of the cost).
+    std::copy_n(pivot + 2, m - l, pivotRow.begin());
+    const double* __restrict p = pivotRow.data();  // entries l..m-1 of the pivot row
     for (LO i = 0; i < nl; ++i) {
       if (taken[i]) continue;
-      double* wi = &W[static_cast<size_t>(i) * m + l];
+      double* __restrict wi = &W[static_cast<size_t>(i) * m + l];
       const double f = wi[0] / p[0];
       for (int j = 1; j < m - l; ++j) wi[j] -= f * p[j];
     }
