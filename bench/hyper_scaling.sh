@@ -8,7 +8,8 @@
 # FOM, ROM and GP-DEIM side by side in each run; each reduced online run is repeated for up to
 # 3 s (at most 1000 times) and the fastest kept (pipeline.onlineRepeats / onlineRepeatSeconds): a
 # GP-DEIM run is 1.3-2.5 ms here, and this VM's speed swings 2x over spells of tens of ms, so five
-# repeats inside one spell gave per-grid times 1.8x apart; the ROM at 512^2 is not repeated.
+# repeats inside one spell gave per-grid times 1.8x apart; the ROM at 512^2 is run twice (one repeat
+# starts while 0 s are spent).
 # Prints the time per step of each model and, for the dense models, per Newton iteration (the
 # per-step figure also moves with the iteration count).
 # usage: [M_SCALING=m] [K_SCALING=k] bash bench/hyper_scaling.sh [RANKS] [BUILD_DIR] [GRIDS]
