@@ -127,14 +127,19 @@ RCP<MultiVector> leadingColumns(const MultiVector& U, int m) {
 
 GpAdeimModel::GpAdeimModel(RCP<const HamiltonianSystem> system, RCP<const MultiVector> A, const MultiVector& U0, int m,
                            ReducedLinearPart linear, AdeimOptions options)
+    : GpAdeimModel(std::move(system), std::move(A), leadingColumns(U0, m), std::move(linear), std::move(options)) {}
+
+// U: the initial basis's first m columns, one copy serving the initial kernel and U_.
+GpAdeimModel::GpAdeimModel(RCP<const HamiltonianSystem> system, RCP<const MultiVector> A, RCP<MultiVector> U,
+                           ReducedLinearPart linear, AdeimOptions options)
     : ReducedHamiltonian(std::move(linear),
-                         interpolationKernel(*system, *A, *leadingColumns(U0, m),
-                                             timedIndices(*leadingColumns(U0, m), m,
+                         interpolationKernel(*system, *A, *U,
+                                             timedIndices(*U, static_cast<int>(U->getNumVectors()),
                                                           options.indices == "partial" ? "deim" : options.indices))),
       system_(system),
       A_(A),
-      U_(leadingColumns(U0, m)),
-      m_(m),
+      U_(U),
+      m_(static_cast<int>(U->getNumVectors())),
       opt_(std::move(options)) {
   P_ = rows().sample().rows;
   owned_ = rcp(new ReducedRowKernel(system_->nonlinearTermPtr(), ownedRowSample(*system_, *A_), Teuchos::null));

@@ -1,8 +1,9 @@
 #pragma once
-#include <functional>
 // GP-ADEIM runs for the tests: the adaptive model integrated with its update hook after every
 // step, recording the states and the model's Hamiltonian before each hook (H_hr^j of the local
 // model that produced the step).
+#include <functional>
+
 #include "HyperTestUtils.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
 

@@ -77,6 +77,8 @@ class GpAdeimModel final : public ReducedHamiltonian {
   const MultiVector& deimBasis() const { return *U_; }
 
  private:
+  GpAdeimModel(RCP<const HamiltonianSystem> system, RCP<const MultiVector> A, RCP<MultiVector> U,
+               ReducedLinearPart linear, AdeimOptions options);
   bool isUpdateStep(long step) const;
   void windowSnapshots(ReducedRowKernel& kernel, std::vector<double>& F);  // row-major rows x (2k w)
   void resample(const CoefficientFactor& cf, long updateNo);
