@@ -28,7 +28,7 @@ FOM_KEYS = ("method", "n", "fullDim", "steps", "dt", "ranks", "t_online_s", "new
             "linear_iters_avg", "newton_residual_max", "H0", "H_err_max", "H_err_max_rel", "status")
 ROM_KEYS = ("method", "basis", "k", "reducedDim", "energy_captured", "steps", "E_L2", "E_fin",
             "H_err_max", "H_err_max_rel", "t_online_s", "t_offline_s", "newton_iters_avg", "status",
-            "pod_route", "pod_steps_tsqr", "pod_steps_replicated")
+            "pod_route", "pod_steps_tsqr", "pod_steps_stacked", "pod_steps_replicated")
 
 
 def fail(msg):

@@ -2,7 +2,8 @@
 # reduction.podRoute and hyper.podRoute reach the symplectic basis and the exact DEIM basis:
 # 'tsqr' where a POD step has more columns than the rows per rank (n = 64: 128 state rows, 64
 # rows of G; steps of 2 x 51 snapshot columns and of 3 x 2k = 60 Jacobian columns) exits 2 with one
-# line naming the section, the step's columns and the rows; 'replicated' runs and reports its steps.
+# line naming the section, the step's columns and the rows; 'replicated' and 'stacked' run and
+# report their steps, and give the same errors (both routes are exact SVDs).
 # usage: pod_route.sh GPHR
 set -u
 gphr=$1
@@ -38,5 +39,18 @@ import json, sys
 rom = [r for r in json.load(open(sys.argv[1]))["runs"] if r["method"] == "rom"][0]
 # 3 training runs of 51 states: one POD step each, all replicated (a fresh directory: computed here)
 assert (rom["basis_cached"], rom["pod_route"], rom["pod_steps_tsqr"], rom["pod_steps_replicated"]) == (False, "replicated", 0, 3), rom
+PY
+config stacked stacked
+"$gphr" run "$work/c.yaml" --output "$work/stacked" > /dev/null 2> "$work/err" || fail "stacked routes: exit code $?"
+python3 - "$work/fresh/summary.json" "$work/stacked/summary.json" <<'PY' || fail "stacked summary"
+import json, sys
+runs = [json.load(open(f))["runs"] for f in sys.argv[1:]]
+rom = [r for r in runs[1] if r["method"] == "rom"][0]
+assert (rom["pod_route"], rom["pod_steps_tsqr"], rom["pod_steps_stacked"], rom["pod_steps_replicated"]) == ("stacked", 0, 3, 0), rom
+# The same bases up to round-off, so the same errors: 1e-8 relative is far above the round-off
+# carried through 50 steps and far below what a wrong basis vector does (errors change by O(1)).
+for a, b in zip(runs[0][1:], runs[1][1:]):
+    assert a["method"] == b["method"], (a["method"], b["method"])
+    assert abs(a["E_L2"] - b["E_L2"]) <= 1e-8 * abs(b["E_L2"]), (a["method"], a["E_L2"], b["E_L2"])
 PY
 echo ok

@@ -24,8 +24,9 @@ std::string trainingKey(const Teuchos::ParameterList& cfg) {
 }
 
 std::string basisKey(const Teuchos::ParameterList& cfg) {
-  // podRoute's default (auto) is what every basis cached before the key existed was computed with:
-  // it stays out of the key, so those caches remain valid; another route is a different key.
+  // podRoute's default (auto) is what every basis cached before the key existed was computed with
+  // (then TSQR where it fit, now the stacked route: both exact SVDs, equal to round-off): it stays
+  // out of the key, so those caches remain valid; another route is a different key.
   Teuchos::ParameterList red = cfg.sublist("reduction");
   if (red.isParameter("podRoute") && red.get<std::string>("podRoute") == "auto") red.remove("podRoute");
   return trainingKey(cfg) + toYaml(red) + "k = " + std::to_string(basisK(cfg));
@@ -197,7 +198,8 @@ void setBasisKeys(const RunContext& ctx, const RomStages& st, JsonObject& run) {
       .set("t_basis_cpu_s", st.basisCpuSeconds)
       .set("pod_route", ctx.config.sublist("reduction").get<std::string>("podRoute"))
       .set("pod_steps_tsqr", static_cast<long>(st.basis.tsqrSteps))
-      .set("pod_steps_replicated", static_cast<long>(st.basis.replicatedSteps));
+      .set("pod_steps_replicated", static_cast<long>(st.basis.replicatedSteps))
+      .set("pod_steps_stacked", static_cast<long>(st.basis.stackedSteps));
 }
 
 void runRom(const RunContext& ctx, const FomResult& fom, RomStages& st) {

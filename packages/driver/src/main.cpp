@@ -77,9 +77,9 @@ int runMain(const Args& args, const gphr::RCP<const gphr::Comm>& comm) {
     rom->basisCpuSeconds = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
     if (root)
       std::fprintf(stderr, "[gphr] reduce: %s basis, 2k = %d, energy captured %.10f%s, %.1f s (%.1f s CPU; POD steps: "
-                   "%d tsqr, %d replicated)\n", rom->basis.method.c_str(), 2 * rom->basis.k, rom->basis.energyCaptured,
+                   "%d tsqr, %d stacked, %d replicated)\n", rom->basis.method.c_str(), 2 * rom->basis.k, rom->basis.energyCaptured,
                    rom->basisCached ? " (cached)" : "", rom->basisSeconds, rom->basisCpuSeconds, rom->basis.tsqrSteps,
-                   rom->basis.replicatedSteps);
+                   rom->basis.stackedSteps, rom->basis.replicatedSteps);
   }
   const FomResult fom = runFullModel(ctx.config, *ctx.scene, ctx.mu, comm);
   if (rom && std::find(methods.begin(), methods.end(), "rom") != methods.end()) runRom(ctx, fom, *rom);

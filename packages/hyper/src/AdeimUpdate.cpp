@@ -6,10 +6,7 @@
 #include <limits>
 
 #include "gphr/core/Error.hpp"
-
-extern "C" void dgesdd_(const char* jobz, const int* m, const int* n, double* a, const int* lda, double* s, double* u,
-                        const int* ldu, double* vt, const int* ldvt, double* work, const int* lwork, int* iwork,
-                        int* info);
+#include "gphr/reduction/DenseSvd.hpp"
 
 namespace gphr {
 namespace {
@@ -17,12 +14,8 @@ namespace {
 using Teuchos::NO_TRANS;
 using Teuchos::TRANS;
 
-// Thin SVD A = U diag(s) Vt of a small dense matrix (an Anasazi solve would cost more than it
-// saves at these sizes): LAPACK GESDD, divide and conquer, which Teuchos::LAPACK (Trilinos 13.2)
-// does not wrap. It is twice as fast as GESVD with vectors on the 100 x 400 and 250 x 100
-// matrices of an NLS update (measured: 4.9 vs 8.3 ms and 3.6 vs 7.4 ms), as accurate (backward
-// stable); an update takes two with vectors (C, M) and one of values only (the tau_r test).
-// withVectors = false: the values only.
+// Thin SVD A = U diag(s) Vt of a small dense matrix by GESDD (denseThinSvd); an update takes two
+// with vectors (C, M) and one of values only (the tau_r test). withVectors = false: the values only.
 struct ThinSvd {
   DenseMatrix U, Vt;
   std::vector<double> s;
@@ -38,20 +31,8 @@ ThinSvd thinSvd(const DenseMatrix& A, bool withVectors = true) {
   }
   if (mn == 0) return r;
   DenseMatrix a(A);
-  const char jobz = withVectors ? 'S' : 'N';
-  const int lda = a.stride(), ldu = std::max(1, r.U.stride()), ldvt = std::max(1, r.Vt.stride());
-  double dummy = 0.0;
-  double* u = withVectors ? r.U.values() : &dummy;
-  double* vt = withVectors ? r.Vt.values() : &dummy;
-  std::vector<double> work(1);
-  std::vector<int> iwork(8 * static_cast<size_t>(mn));
-  int info = 0, lwork = -1;
-  dgesdd_(&jobz, &m, &n, a.values(), &lda, r.s.data(), u, &ldu, vt, &ldvt, work.data(), &lwork, iwork.data(), &info);
-  lwork = std::max(1, static_cast<int>(work[0]));
-  work.resize(lwork);
-  dgesdd_(&jobz, &m, &n, a.values(), &lda, r.s.data(), u, &ldu, vt, &ldvt, work.data(), &lwork, iwork.data(), &info);
-  GPHR_REQUIRE(info == 0, SolverError, "GP-ADEIM: LAPACK GESDD failed (info = ", info, ") on a ", m, " x ", n,
-               " matrix");
+  denseThinSvd(m, n, a.values(), a.stride(), r.s.data(), withVectors ? r.U.values() : nullptr, r.U.stride(),
+               withVectors ? r.Vt.values() : nullptr, r.Vt.stride(), withVectors, "GP-ADEIM");
   return r;
 }
 

@@ -97,7 +97,7 @@ DeimBasis randomizedDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& s
     }
     if (nl > 0) blas.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, nl, ell, r, 1.0, J.data(), r, omega.data(), r, 1.0, yData(), nl);
   });
-  // Q = orth(Y) (StreamingPod: TSQR, or the replicated route when ell > rows per rank).
+  // Q = orth(Y) (StreamingPod, its default route: GEQRF per rank and one SVD of the stacked R's).
   auto orth = [&] {
     StreamingPod q(rowMap, ell, ell, -1.0);
     q.add(Y);

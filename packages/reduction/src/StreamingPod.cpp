@@ -10,14 +10,16 @@
 
 #include "gphr/core/Error.hpp"
 #include "gphr/core/ReplicatedGather.hpp"
+#include "gphr/reduction/DenseSvd.hpp"
 
 namespace gphr {
 
 PodRoute podRouteFromName(const std::string& name) {
   if (name == "auto") return PodRoute::Auto;
   if (name == "tsqr") return PodRoute::Tsqr;
+  if (name == "stacked") return PodRoute::Stacked;
   GPHR_REQUIRE(name == "replicated", InputError, "streaming POD: podRoute '", name,
-               "' is not one of 'auto', 'tsqr', 'replicated'");
+               "' is not one of 'auto', 'tsqr', 'stacked', 'replicated'");
   return PodRoute::Replicated;
 }
 
@@ -45,8 +47,8 @@ void StreamingPod::add(const MultiVector& X) {
   }
   columns_ += static_cast<long>(X.getNumVectors());
   // Steps of blockColumns columns whatever the rank count, so that the truncations (and the
-  // result) are the same on any number of ranks; each step takes the route of route_ (auto: TSQR
-  // when carried + new columns fit on the smallest rank, the replicated route otherwise).
+  // result) are the same on any number of ranks; each step takes the route of route_ (auto: the
+  // stacked route, the fastest measured on 1, 2 and 4 ranks).
   for (size_t c0 = 0; c0 < X.getNumVectors();) {
     const size_t c1 = std::min(X.getNumVectors(), c0 + static_cast<size_t>(blockColumns_));
     step(X, c0, c1);
@@ -107,9 +109,66 @@ void StreamingPod::replicatedStep(const MultiVector& Y) {
   }
 }
 
+// The stacked-QR route (a TSQR with LAPACK kernels and a flat reduction): each rank factors its
+// own rows Y_p = Q_p R_p by GEQRF (R_p is min(rows_p, nc) x nc: a rank may hold fewer rows than
+// columns), every rank holds the stack of all R_p (a sum-reduction of disjoint blocks, so exact)
+// and takes its thin SVD by GESDD, stack = W S Z^T; then Y = blockdiag(Q_p) W S Z^T, and each rank
+// forms its rows of U = Q_p W_p(:, 1:keep) by ORMQR. Work per rank: rows_p nc^2 for the local QR
+// and the ORMQR (these divide with the ranks) plus the stack's SVD, min(d, p nc) nc^2 (replicated):
+// it scales while every rank holds several times nc rows, and where none does it costs about what
+// the replicated route costs, with stack rows instead of d.
+void StreamingPod::stackedStep(const MultiVector& Y) {
+  const int nc = static_cast<int>(Y.getNumVectors());
+  const int rows = static_cast<int>(map_->getNodeNumElements()), kp = std::min(rows, nc);
+  const auto& comm = *map_->getComm();
+  const int p = comm.getSize(), me = comm.getRank();
+  std::vector<double> a(static_cast<size_t>(std::max(rows, 1)) * nc), tau(std::max(kp, 1)), work(1);
+  {
+    auto y = Y.getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (int j = 0; j < nc; ++j)
+      for (int i = 0; i < rows; ++i) a[i + static_cast<size_t>(rows) * j] = y(i, j);
+  }
+  Teuchos::LAPACK<int, double> lapack;
+  const int lda = std::max(rows, 1);
+  int info = 0;
+  if (kp > 0) {
+    lapack.GEQRF(rows, nc, a.data(), lda, tau.data(), work.data(), -1, &info);
+    work.resize(std::max(1, static_cast<int>(work[0])));
+    lapack.GEQRF(rows, nc, a.data(), lda, tau.data(), work.data(), static_cast<int>(work.size()), &info);
+    GPHR_REQUIRE(info == 0, SolverError, "streaming POD: LAPACK GEQRF failed (info = ", info, ")");
+  }
+  // The stack: rank q's R factor at rows off[q] .. off[q] + k[q].
+  std::vector<int> k(p, 0), off(p + 1, 0);
+  Teuchos::gatherAll(comm, 1, &kp, p, k.data());
+  for (int q = 0; q < p; ++q) off[q + 1] = off[q] + k[q];
+  const int K = off[p];
+  std::vector<double> mine(static_cast<size_t>(K) * nc, 0.0), stack(mine.size());
+  for (int j = 0; j < nc; ++j)
+    for (int i = 0; i < std::min(kp, j + 1); ++i) mine[off[me] + i + static_cast<size_t>(K) * j] = a[i + static_cast<size_t>(lda) * j];
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, static_cast<int>(mine.size()), mine.data(), stack.data());
+  const int mn = std::min(K, nc);
+  std::vector<double> S(mn), W(static_cast<size_t>(K) * mn), Zt(static_cast<size_t>(mn) * nc);
+  denseThinSvd(K, nc, stack.data(), K, S.data(), W.data(), K, Zt.data(), mn, true, "streaming POD (stacked route)");
+  const int keep = truncate(S, nc);
+  U_ = rcp(new MultiVector(map_, std::max(keep, 1)));
+  if (keep == 0 || rows == 0) return;
+  // U_p = Q_p [W_p(:, 1:keep); 0]: ORMQR applies the kp reflectors of GEQRF to a rows x keep block.
+  std::vector<double> c(static_cast<size_t>(rows) * keep, 0.0);
+  for (int j = 0; j < keep; ++j)
+    for (int i = 0; i < kp; ++i) c[i + static_cast<size_t>(rows) * j] = W[off[me] + i + static_cast<size_t>(K) * j];
+  lapack.ORMQR('L', 'N', rows, keep, kp, a.data(), lda, tau.data(), c.data(), rows, work.data(), -1, &info);
+  work.resize(std::max(1, static_cast<int>(work[0])));
+  lapack.ORMQR('L', 'N', rows, keep, kp, a.data(), lda, tau.data(), c.data(), rows, work.data(),
+               static_cast<int>(work.size()), &info);
+  GPHR_REQUIRE(info == 0, SolverError, "streaming POD: LAPACK ORMQR failed (info = ", info, ")");
+  auto u = U_->getLocalViewHost(Tpetra::Access::OverwriteAll);
+  for (int j = 0; j < keep; ++j)
+    for (int i = 0; i < rows; ++i) u(i, j) = c[i + static_cast<size_t>(rows) * j];
+}
+
 void StreamingPod::step(const MultiVector& X, size_t c0, size_t c1) {
   const int r = rank(), b = static_cast<int>(c1 - c0), nc = r + b;
-  MultiVector Y(map_, nc), Q(map_, nc);
+  MultiVector Y(map_, nc);
   {
     auto y = Y.getLocalViewHost(Tpetra::Access::OverwriteAll);
     auto u = U_->getLocalViewHost(Tpetra::Access::ReadOnly);
@@ -125,9 +184,13 @@ void StreamingPod::step(const MultiVector& X, size_t c0, size_t c1) {
     GPHR_REQUIRE(route_ != PodRoute::Tsqr, InputError, "streaming POD: podRoute 'tsqr' cannot take a step of ", nc,
                  " columns (", r, " carried + ", b, " new): TSQR needs at most as many columns as rows on every rank, "
                  "and on ", map_->getComm()->getSize(), " rank(s) the smallest holds ", cap_, " of the ", d,
-                 " rows; allowed: podRoute 'auto' or 'replicated', ",
+                 " rows; allowed: podRoute 'auto', 'stacked' or 'replicated', ",
                  d >= nc ? detail::concat("at most ", d / nc, " rank(s) with the rows split evenly, ") : std::string(),
                  "or fewer columns per step (a smaller maxRank or block size)");
+  }
+  if (route_ == PodRoute::Stacked || route_ == PodRoute::Auto) {
+    ++stackedSteps_;
+    return stackedStep(Y);
   }
   if (route_ == PodRoute::Replicated || nc > cap_) {
     ++replicatedSteps_;
@@ -135,6 +198,7 @@ void StreamingPod::step(const MultiVector& X, size_t c0, size_t c1) {
   }
   ++tsqrSteps_;
   Teuchos::SerialDenseMatrix<int, double> R(nc, nc);
+  MultiVector Q(map_, nc);
   Tpetra::TsqrAdaptor<MultiVector> tsqr;
   tsqr.factorExplicit(Y, Q, R);
   // R = W S Z^T: only W and S are needed (LAPACK, replicated: R is the same on every rank).

@@ -180,6 +180,7 @@ ReducedBasis computeSymplecticBasis(const std::vector<RCP<const MultiVector>>& s
   out.singularValues = sigma;
   out.tsqrSteps = pod.tsqrSteps();
   out.replicatedSteps = pod.replicatedSteps();
+  out.stackedSteps = pod.stackedSteps();
   int k = opt.k;
   if (k <= 0) {  // smallest k whose discarded energy fraction is <= tolerance
     double captured = 0.0;

@@ -132,7 +132,7 @@ TEST_P(Bases, SameOnAnyRankCount) {
   EXPECT_LE(worst, 1e-9);
 }
 
-// reduction.podRoute: TSQR and the replicated route give the same basis (the phase is
+// reduction.podRoute: TSQR, the stacked and the replicated route give the same basis (the phase is
 // normalised, so entrywise; 1e-9 as above: round-off over gaps >= 1e-3 sigma_1), and each run
 // takes the route it was given. maxRank 8 and blockColumns 4 fit TSQR on up to 3 ranks (psd:
 // 16 + 8 real columns on 32 rows per rank; cotangent: 8 + 8 on 16). A 'tsqr' run whose steps do
@@ -150,15 +150,22 @@ TEST_P(Bases, SameOnEitherPodRoute) {
   const ReducedBasis tsqr = computeSymplecticBasis(snaps, ps, opt);
   opt.podRoute = "replicated";
   const ReducedBasis repl = computeSymplecticBasis(snaps, ps, opt);
+  opt.podRoute = "stacked";
+  const ReducedBasis stacked = computeSymplecticBasis(snaps, ps, opt);
   EXPECT_GT(tsqr.tsqrSteps, 0);
-  EXPECT_EQ(tsqr.replicatedSteps, 0);
-  EXPECT_EQ(repl.tsqrSteps, 0);
+  EXPECT_EQ(tsqr.replicatedSteps + tsqr.stackedSteps, 0);
+  EXPECT_EQ(repl.tsqrSteps + repl.stackedSteps, 0);
   EXPECT_EQ(repl.replicatedSteps, tsqr.tsqrSteps);
-  const auto a = test::gatherColumns(*tsqr.A), b = test::gatherColumns(*repl.A);
-  ASSERT_EQ(a.size(), b.size());
-  double worst = 0.0;
-  for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(a[i] - b[i]));
-  EXPECT_LE(worst, 1e-9);
+  EXPECT_EQ(stacked.tsqrSteps + stacked.replicatedSteps, 0);
+  EXPECT_EQ(stacked.stackedSteps, tsqr.tsqrSteps);
+  const auto b = test::gatherColumns(*repl.A);
+  for (const ReducedBasis* other : {&tsqr, &stacked}) {
+    const auto a = test::gatherColumns(*other->A);
+    ASSERT_EQ(a.size(), b.size());
+    double worst = 0.0;
+    for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(a[i] - b[i]));
+    EXPECT_LE(worst, 1e-9) << (other == &tsqr ? "tsqr" : "stacked") << " against replicated";
+  }
   opt.podRoute = "tsqr";
   opt.blockColumns = 60;
   opt.maxRank = 0;

@@ -1,12 +1,12 @@
-// StreamingPod's step routes (podRoute), tested against mathematics on 1 and 2 ranks.
+// StreamingPod's step routes (podRoute), tested against mathematics on 1, 2 and 3 ranks.
 // The data is X = F diag(s) G^T with F (d x R) and G (N x R) orthonormal DCT-II columns, so its
 // singular values are exactly s and its leading left singular vectors are exactly F's columns.
-// Tolerances (sigma_1 = 1): every step is a backward-stable SVD (Householder/TSQR QR + GESVD, or
-// GESVD of the gathered matrix), so it is the exact SVD of a matrix within ~ nc eps ||Y|| of its
+// Tolerances (sigma_1 = 1): every step is a backward-stable SVD (Householder/TSQR QR + GESVD,
+// GEQRF per rank + GESDD of the stacked R factors + ORMQR, or GESVD of the gathered matrix), so it is the exact SVD of a matrix within ~ nc eps ||Y|| of its
 // input (nc <= 42 columns here: ~1e-14 per step, a dozen steps). Weyl's theorem moves the
 // singular values by at most that: 1e-12 leaves two orders of headroom. Wedin's theorem moves the
 // kept subspace by that over the gap to the dropped singular values (>= 0.25 without truncation:
-// ~1e-13); between the two routes the tolerance is 1e-10, three orders above the measured
+// ~1e-13); between routes the tolerance is 1e-10, three orders above the measured
 // differences (printed by the tests) and far below any real defect (a wrong vector moves it by ~1).
 // The subspace distance ||U_a - U_b U_b^T U_a||_F = ||sin Theta||_F is formed directly: from the
 // cosines (singular values of U_b^T U_a) it could not resolve angles below sqrt(eps) ~ 1e-8.
@@ -85,17 +85,18 @@ TEST_F(Routes, EachRouteGivesTheExactSvd) {
   const auto s = linearSpectrum(30, 1.0 / 40.0);  // 1 .. 0.275
   const MultiVector X = knownSvdData(map_, 60, s);
   const MultiVector F = leadingDct(map_, 30);
-  for (PodRoute route : {PodRoute::Tsqr, PodRoute::Replicated}) {
+  for (PodRoute route : {PodRoute::Tsqr, PodRoute::Stacked, PodRoute::Replicated}) {
     const StreamingPod pod = podOf(X, 40, 12, route);  // 5 steps of 12 columns, up to 42 columns
-    const bool tsqr = route == PodRoute::Tsqr;
-    SCOPED_TRACE(tsqr ? "tsqr" : "replicated");
-    EXPECT_EQ(pod.tsqrSteps(), tsqr ? 5 : 0);
-    EXPECT_EQ(pod.replicatedSteps(), tsqr ? 0 : 5);
+    const char* name = route == PodRoute::Tsqr ? "tsqr" : route == PodRoute::Stacked ? "stacked" : "replicated";
+    SCOPED_TRACE(name);
+    EXPECT_EQ(pod.tsqrSteps(), route == PodRoute::Tsqr ? 5 : 0);
+    EXPECT_EQ(pod.stackedSteps(), route == PodRoute::Stacked ? 5 : 0);
+    EXPECT_EQ(pod.replicatedSteps(), route == PodRoute::Replicated ? 5 : 0);
     ASSERT_EQ(pod.rank(), 30);
     EXPECT_LE(maxSigmaDiff(pod.singularValues(), s), 1e-12);
     const double dist = test::subspaceDistance(pod.leftVectors(), F);
     EXPECT_LE(dist, 1e-10);
-    if (test::comm()->getRank() == 0) std::printf("  %s: ||sin Theta(U, F)||_F = %.1e\n", tsqr ? "tsqr" : "replicated", dist);
+    if (test::comm()->getRank() == 0) std::printf("  %s: ||sin Theta(U, F)||_F = %.1e\n", name, dist);
   }
 }
 
@@ -103,27 +104,37 @@ TEST_F(Routes, EachRouteGivesTheExactSvd) {
 // but the same on both routes (they truncate at the same places). Each truncation keeps the best
 // rank-r part of Y, so B B^T <= X X^T for the carried B = U diag(sigma) (Loewner order, by
 // induction over the steps): sigma_j <= s_j on either route.
-TEST_F(Routes, TsqrAndReplicatedAgreeUnderTruncation) {
+TEST_F(Routes, AllRoutesAgreeUnderTruncation) {
   const auto s = linearSpectrum(48, 1.0 / 64.0);
   const MultiVector X = knownSvdData(map_, 96, s);
   const StreamingPod tsqr = podOf(X, 16, 8, PodRoute::Tsqr);  // 12 steps, truncating from the 3rd
   const StreamingPod repl = podOf(X, 16, 8, PodRoute::Replicated);
+  const StreamingPod stacked = podOf(X, 16, 8, PodRoute::Stacked);
   EXPECT_EQ(tsqr.tsqrSteps(), 12);
   EXPECT_EQ(repl.replicatedSteps(), 12);
+  EXPECT_EQ(stacked.stackedSteps(), 12);
   ASSERT_EQ(tsqr.rank(), 16);
   ASSERT_EQ(repl.rank(), 16);
-  for (const StreamingPod* pod : {&tsqr, &repl})
+  ASSERT_EQ(stacked.rank(), 16);
+  for (const StreamingPod* pod : {&tsqr, &repl, &stacked})
     for (int j = 0; j < 16; ++j) EXPECT_LE(pod->singularValues()[j], s[j] + 1e-12) << "sigma_" << j;
   const double dSigma = maxSigmaDiff(tsqr.singularValues(), repl.singularValues());
   const double dU = test::subspaceDistance(tsqr.leftVectors(), repl.leftVectors());
   EXPECT_LE(dSigma, 1e-10);
   EXPECT_LE(dU, 1e-10);
-  if (test::comm()->getRank() == 0) std::printf("  tsqr vs replicated: max |d sigma| = %.1e, ||sin Theta||_F = %.1e\n", dSigma, dU);
+  const double dSigmaStacked = maxSigmaDiff(stacked.singularValues(), repl.singularValues());
+  const double dUStacked = test::subspaceDistance(stacked.leftVectors(), repl.leftVectors());
+  EXPECT_LE(dSigmaStacked, 1e-10);
+  EXPECT_LE(dUStacked, 1e-10);
+  if (test::comm()->getRank() == 0) {
+    std::printf("  tsqr vs replicated: max |d sigma| = %.1e, ||sin Theta||_F = %.1e\n", dSigma, dU);
+    std::printf("  stacked vs replicated: max |d sigma| = %.1e, ||sin Theta||_F = %.1e\n", dSigmaStacked, dUStacked);
+  }
 }
 
 // 10 rows on every rank; steps of 6 columns: the first (6) fits, the second (6 carried + 6 new)
-// does not. 'tsqr' refuses it naming the numbers; 'auto' takes one step by each route and agrees
-// with 'replicated'.
+// does not. 'tsqr' refuses it naming the numbers; 'auto' takes both by the stacked route and
+// agrees with 'replicated'.
 class TooFewRows : public ::testing::Test {
  protected:
   RCP<const Map> map_ = rcp(new Map(10 * test::comm()->getSize(), 0, test::comm()));
@@ -141,16 +152,16 @@ TEST_F(TooFewRows, TsqrRefusesNamingColumnsAndRows) {
     for (const std::string& part : {std::string("podRoute 'tsqr'"), std::string("a step of 12 columns (6 carried + 6 new)"),
                                     "on " + std::to_string(P) + " rank(s) the smallest holds 10 of the " +
                                         std::to_string(10 * P) + " rows",
-                                    std::string("'auto' or 'replicated'")})
+                                    std::string("'auto', 'stacked' or 'replicated'")})
       EXPECT_NE(msg.find(part), std::string::npos) << "message lacks '" << part << "': " << msg;
   }
 }
 
-TEST_F(TooFewRows, AutoTakesTsqrWhereItFitsAndAgreesWithReplicated) {
+TEST_F(TooFewRows, AutoTakesTheStackedRouteAndAgreesWithReplicated) {
   const StreamingPod autoPod = podOf(X_, 8, 6, PodRoute::Auto);
   const StreamingPod repl = podOf(X_, 8, 6, PodRoute::Replicated);
-  EXPECT_EQ(autoPod.tsqrSteps(), 1);
-  EXPECT_EQ(autoPod.replicatedSteps(), 1);
+  EXPECT_EQ(autoPod.stackedSteps(), 2);
+  EXPECT_EQ(autoPod.tsqrSteps() + autoPod.replicatedSteps(), 0);
   ASSERT_EQ(autoPod.rank(), 8);
   ASSERT_EQ(repl.rank(), 8);
   // 12 columns of rank 8 in two steps, maxRank 8: nothing truncated, the exact SVD on both.
@@ -159,15 +170,34 @@ TEST_F(TooFewRows, AutoTakesTsqrWhereItFitsAndAgreesWithReplicated) {
   EXPECT_LE(test::subspaceDistance(autoPod.leftVectors(), repl.leftVectors()), 1e-10);
 }
 
+// Uneven rows: rank 0 holds 40, every other rank 3, fewer than a step's 12 columns (the case
+// TSQR refuses). The stacked route takes every step there: rank q's R factor is 3 x 12
+// (trapezoidal) and the stack has 40 + 3 (P - 1) rows. 12 columns of rank 8 in two steps, maxRank
+// 8: nothing truncated, so it must give the exact SVD (tolerances as above).
+TEST(StackedRoute, TakesRanksWithFewerRowsThanColumns) {
+  const auto comm = test::comm();
+  const size_t mine = comm->getRank() == 0 ? 40 : 3;
+  const GO d = 40 + 3 * (comm->getSize() - 1);
+  const RCP<const Map> map = rcp(new Map(d, mine, 0, comm));
+  const auto s = linearSpectrum(8, 0.1);
+  const MultiVector X = knownSvdData(map, 12, s);
+  const StreamingPod stacked = podOf(X, 8, 6, PodRoute::Stacked);
+  EXPECT_EQ(stacked.stackedSteps(), 2);
+  ASSERT_EQ(stacked.rank(), 8);
+  EXPECT_LE(maxSigmaDiff(stacked.singularValues(), s), 1e-12);
+  EXPECT_LE(test::subspaceDistance(stacked.leftVectors(), leadingDct(map, 8)), 1e-10);
+}
+
 TEST(PodRoute, NamesAndUnknownName) {
   EXPECT_EQ(podRouteFromName("auto"), PodRoute::Auto);
   EXPECT_EQ(podRouteFromName("tsqr"), PodRoute::Tsqr);
+  EXPECT_EQ(podRouteFromName("stacked"), PodRoute::Stacked);
   EXPECT_EQ(podRouteFromName("replicated"), PodRoute::Replicated);
   try {
     podRouteFromName("anasazi");
     FAIL() << "an unknown route was accepted";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("'anasazi' is not one of 'auto', 'tsqr', 'replicated'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'anasazi' is not one of 'auto', 'tsqr', 'stacked', 'replicated'"), std::string::npos) << e.what();
   }
 }
 

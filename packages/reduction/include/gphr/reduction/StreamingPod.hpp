@@ -6,14 +6,20 @@
 // With every column in one block it is the exact thin SVD; truncating to maxRank between blocks
 // is the incremental SVD of libROM / Brand 2002 (error bounded by the discarded sigma's).
 // Steps take blockColumns columns each, on any rank count, so the truncations and the result are
-// the same on 1, 2 or 3 ranks up to round-off. Each step takes one of two routes, both exact:
+// the same on 1, 2 or 3 ranks up to round-off. Each step takes one of three routes, all exact:
 //   tsqr:       TSQR needs (carried + new columns) <= rows on every rank;
 //   replicated: [U diag(sigma), X] gathered on every rank, one LAPACK SVD there (d x columns
 //               numbers per rank, and every rank does the whole SVD: it takes any rank count but
 //               does not get faster with more ranks).
-// PodRoute::Auto (the default) takes TSQR where the step fits and the replicated route otherwise;
-// Tsqr refuses a step that does not fit (InputError naming its columns and the rows per rank);
-// Replicated takes that route for every step.
+//   stacked:    a TSQR with LAPACK kernels: each rank's rows by GEQRF (any row count), the R
+//               factors stacked on every rank and one GESDD of the stack, each rank's rows of U
+//               by ORMQR; its local work divides with the ranks, it takes any rank count, and
+//               where ranks hold fewer rows than columns it costs about what `replicated` costs.
+// PodRoute::Auto (the default) takes the stacked route for every step: at the paper's NLS size
+// (4096 rows, steps of up to 1120 columns) it was the fastest on 1, 2 and 4 ranks (doc/design-
+// notes.md, "POD routes"; Tpetra's TSQR node kernels were 5x slower there). Tsqr refuses a step
+// that does not fit (InputError naming its columns and the rows per rank); Stacked and Replicated
+// take that route for every step.
 #include <string>
 #include <vector>
 
@@ -21,8 +27,8 @@
 
 namespace gphr {
 
-enum class PodRoute { Auto, Tsqr, Replicated };
-// "auto" | "tsqr" | "replicated" (the config's podRoute values); anything else: InputError.
+enum class PodRoute { Auto, Tsqr, Stacked, Replicated };
+// "auto" | "tsqr" | "stacked" | "replicated" (the config's podRoute values); anything else: InputError.
 PodRoute podRouteFromName(const std::string& name);
 
 class StreamingPod {
@@ -44,17 +50,19 @@ class StreamingPod {
   int blockColumns() const { return blockColumns_; }
   int tsqrSteps() const { return tsqrSteps_; }              // steps taken by each route so far
   int replicatedSteps() const { return replicatedSteps_; }
+  int stackedSteps() const { return stackedSteps_; }
 
  private:
   void step(const MultiVector& X, size_t c0, size_t c1);
   void replicatedStep(const MultiVector& Y);
+  void stackedStep(const MultiVector& Y);
   int truncate(const std::vector<double>& S, int nc);
   RCP<const Map> map_;
   int maxRank_, blockColumns_;
   double rankTolerance_;
   PodRoute route_;
   int cap_;
-  int tsqrSteps_ = 0, replicatedSteps_ = 0;
+  int tsqrSteps_ = 0, replicatedSteps_ = 0, stackedSteps_ = 0;
   RCP<MultiVector> U_;
   std::vector<double> sigma_;
   double energy_ = 0.0;

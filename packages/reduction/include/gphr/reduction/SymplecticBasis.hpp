@@ -32,7 +32,7 @@ struct ReducedBasis {
   double energyCaptured = 0.0;         // sum_{j<=k} sigma_j^2 / ||C||_F^2
   int k = 0;
   std::string method;
-  int tsqrSteps = 0, replicatedSteps = 0;  // streaming POD steps taken by each route
+  int tsqrSteps = 0, replicatedSteps = 0, stackedSteps = 0;  // streaming POD steps taken by each route
 };
 
 // Snapshots: columns of each MultiVector are states y on space.map() (shifted states when the
