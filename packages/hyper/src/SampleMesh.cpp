@@ -1,5 +1,7 @@
 #include "gphr/hyper/SampleMesh.hpp"
 
+#include <unordered_map>
+
 #include "gphr/core/Error.hpp"
 #include "gphr/core/ReplicatedGather.hpp"
 

@@ -178,24 +178,22 @@ void StreamingPod::step(const MultiVector& X, size_t c0, size_t c1) {
       for (int j = 0; j < b; ++j) y(i, r + j) = x(i, c0 + j);
     }
   }
-  if (nc > cap_) {
-    // cap_ and nc are the same on every rank: all ranks refuse together.
-    const GO d = static_cast<GO>(map_->getGlobalNumElements());
-    GPHR_REQUIRE(route_ != PodRoute::Tsqr, InputError, "streaming POD: podRoute 'tsqr' cannot take a step of ", nc,
-                 " columns (", r, " carried + ", b, " new): TSQR needs at most as many columns as rows on every rank, "
-                 "and on ", map_->getComm()->getSize(), " rank(s) the smallest holds ", cap_, " of the ", d,
-                 " rows; allowed: podRoute 'auto', 'stacked' or 'replicated', ",
-                 d >= nc ? detail::concat("at most ", d / nc, " rank(s) with the rows split evenly, ") : std::string(),
-                 "or fewer columns per step (a smaller maxRank or block size)");
-  }
   if (route_ == PodRoute::Stacked || route_ == PodRoute::Auto) {
     ++stackedSteps_;
     return stackedStep(Y);
   }
-  if (route_ == PodRoute::Replicated || nc > cap_) {
+  if (route_ == PodRoute::Replicated) {
     ++replicatedSteps_;
     return replicatedStep(Y);
   }
+  // podRoute 'tsqr'. cap_ and nc are the same on every rank: all ranks refuse together.
+  const GO d = static_cast<GO>(map_->getGlobalNumElements());
+  GPHR_REQUIRE(nc <= cap_, InputError, "streaming POD: podRoute 'tsqr' cannot take a step of ", nc, " columns (", r,
+               " carried + ", b, " new): TSQR needs at most as many columns as rows on every rank, and on ",
+               map_->getComm()->getSize(), " rank(s) the smallest holds ", cap_, " of the ", d,
+               " rows; allowed: podRoute 'auto', 'stacked' or 'replicated', ",
+               d >= nc ? detail::concat("at most ", d / nc, " rank(s) with the rows split evenly, ") : std::string(),
+               "or fewer columns per step (a smaller maxRank or block size)");
   ++tsqrSteps_;
   Teuchos::SerialDenseMatrix<int, double> R(nc, nc);
   MultiVector Q(map_, nc);

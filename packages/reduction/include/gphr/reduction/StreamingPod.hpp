@@ -1,7 +1,7 @@
 #pragma once
 // A streaming POD (incremental thin SVD) of a tall matrix given block by block on any Tpetra
 // map: only the current rank-r factor U diag(sigma) and one block are ever held.
-//   add(X):   Y = [U diag(sigma), X];  TSQR  Y = Q R  (Tpetra::TsqrAdaptor);  R = W S Z^T (LAPACK);
+//   add(X):   Y = [U diag(sigma), X];  Y = Q W S Z^T (the step's route, below);
 //             U <- Q W(:, 1:r'),  sigma <- S(1:r'),  r' = min(maxRank, numerical rank).
 // With every column in one block it is the exact thin SVD; truncating to maxRank between blocks
 // is the incremental SVD of libROM / Brand 2002 (error bounded by the discarded sigma's).
