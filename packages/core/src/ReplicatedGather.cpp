@@ -1,6 +1,7 @@
 #include "gphr/core/ReplicatedGather.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
+#include <algorithm>
 
 #include "gphr/core/Error.hpp"
 
@@ -37,6 +38,21 @@ std::vector<Scalar> gatherRows(const MultiVector& X, const std::vector<GO>& gids
     const LO l = map.getLocalElement(gids[i]);
     if (l == Teuchos::OrdinalTraits<LO>::invalid()) continue;
     for (size_t j = 0; j < nc; ++j) local[i * nc + j] = x(l, j);
+  }
+  return sumAll(*map.getComm(), local);
+}
+
+std::vector<Scalar> gatherRows(const Map& map, const std::vector<Scalar>& localRows, int cols,
+                               const std::vector<GO>& gids) {
+  GPHR_REQUIRE(cols >= 0 && localRows.size() == map.getNodeNumElements() * static_cast<size_t>(cols), InputError,
+               "gatherRows: ", localRows.size(), " local entries for ", map.getNodeNumElements(), " rows of ", cols,
+               " columns");
+  requireOwned(map, gids, "gatherRows");
+  std::vector<Scalar> local(gids.size() * cols, 0.0);
+  for (size_t i = 0; i < gids.size(); ++i) {
+    const LO l = map.getLocalElement(gids[i]);
+    if (l != Teuchos::OrdinalTraits<LO>::invalid())
+      std::copy_n(localRows.data() + static_cast<size_t>(l) * cols, cols, local.data() + i * cols);
   }
   return sumAll(*map.getComm(), local);
 }

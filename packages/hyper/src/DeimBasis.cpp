@@ -63,7 +63,7 @@ void requireNonzero(long used, int rank) {
 // Randomized range finder (Halko, Martinsson & Tropp 2011, Alg. 4.3/4.4) over the streamed M_J:
 //   Y = M_J Omega (Omega of random signs, regenerated per snapshot from a seed: the same on any rank
 //   count), q power passes Y = M_J M_J^T Q, Q = orth(Y), then B B^T = sum_s (Q^T J_s)(Q^T J_s)^T
-//   (ell x ell, LAPACK SYEV: small and dense), U = Q W, sigma = sqrt(lambda).
+//   (ell x ell, LAPACK SYEVD: small and dense), U = Q W, sigma = sqrt(lambda).
 // Each pass regenerates the snapshots (cheap: one kernel evaluation each); nothing of size
 // d x (2k states) is held. The Gram matrix squares sigma: values below ~1e-7 sigma_1 are not
 // resolved, far below the DEIM sizes worth using.

@@ -224,7 +224,12 @@ bool GpAdeimModel::afterStep(long step, const DenseVector& z) {
 // S^T U_{j+1} written into each rank's own rows of U.
 AdeimUpdate GpAdeimModel::updateSampledRows(const CoefficientFactor& cf, int wbar, std::vector<double>& F) {
   Teuchos::TimeMonitor tm(phase("rank-r update"));
-  windowSnapshots(*sampling_, F);
+  if (ownedFValid_) {  // resampled at this update: S^T F_j are rows of F_j on the ranks' own rows
+    Teuchos::TimeMonitor rows(phase("rank-r update: S^T F from own rows"));
+    F = gatherRows(*system_->nonlinearTerm().rowMap(), ownedF_, wbar, S_);
+  } else {
+    windowSnapshots(samplingKernel(), F);
+  }
   const DenseMatrix StF = toDense(F, static_cast<int>(S_.size()), wbar);
   DenseMatrix StU = toDense(gatherRows(*U_, S_), static_cast<int>(S_.size()), m_);
   AdeimUpdate up;
@@ -275,14 +280,23 @@ void GpAdeimModel::resample(const CoefficientFactor& cf, long updateNo) {
     Teuchos::TimeMonitor tm(phase("resampling: select"));
     S_ = largestScoreRows(rowMap, scores, P_, count);
   }
-  if (S_.empty()) return;
-  Teuchos::TimeMonitor tm(phase("resampling: sample mesh of S"));
-  const RCP<const ReducedRowKernel> previous = sampling_;
-  const RowSample none;
-  sampling_ = rcp(new ReducedRowKernel(
-      system_->nonlinearTermPtr(),
-      gatherRowSample(*system_, *A_, S_, std::vector<double>(S_.size(), 1.0), previous.is_null() ? none : previous->sample()),
-      Teuchos::null));
+  samplingStale_ = true;
+}
+
+// The sample mesh of S, (re)built when an update needs S^T F_j without a resampling (gamma >
+// delta): with gamma = delta every update resamples and reads S^T F_j from F_j on the own rows,
+// so this kernel is never built. Collective.
+ReducedRowKernel& GpAdeimModel::samplingKernel() {
+  if (samplingStale_ || sampling_.is_null()) {
+    Teuchos::TimeMonitor tm(phase("sample mesh of S"));
+    const RowSample none;
+    sampling_ = rcp(new ReducedRowKernel(system_->nonlinearTermPtr(),
+                                         gatherRowSample(*system_, *A_, S_, std::vector<double>(S_.size(), 1.0),
+                                                         sampling_.is_null() ? none : sampling_->sample()),
+                                         Teuchos::null));
+    samplingStale_ = false;
+  }
+  return *sampling_;
 }
 
 double GpAdeimModel::fullResidual(const DenseMatrix& C) {
@@ -348,7 +362,7 @@ std::vector<double> GpAdeimModel::columnRotations(const AdeimUpdate& up) const {
 // DEIM projection for a given P). T = V diag(lambda)^{-1/2}, eigenvalues descending, orders the
 // columns by energy for the greedy and QDEIM index selections; for the partial point update,
 // whose index i belongs to column i, T = V diag(lambda)^{-1/2} V^T (Loewdin) keeps each column
-// nearest to its former self. The Gram matrix is m x m (LAPACK SYEV).
+// nearest to its former self. The Gram matrix is m x m (LAPACK SYEVD).
 void GpAdeimModel::orthonormalizeBasis() {
   auto local = rcp(new Map(m_, 0, U_->getMap()->getComm(), Tpetra::LocallyReplicated));
   MultiVector G(local, m_), T(local, m_);

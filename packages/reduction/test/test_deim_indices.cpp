@@ -78,6 +78,34 @@ TEST(GreedyDeim, EqualsTheTextbookAlgorithmOnAnyRankCount) {
     // Fewer indices are the leading ones of the same greedy sequence.
     EXPECT_EQ(selectDeimIndices(*U, 7, "deim"), std::vector<GO>(ref.begin(), ref.begin() + 7));
   }
+  // The elimination runs in panels of 16 columns: m = 40 spans three (the last one partial),
+  // with rows updated across panel boundaries.
+  const auto U = basis(131, 40, 5);
+  EXPECT_EQ(selectDeimIndices(*U, 40, "deim"), textbookDeim(*U, 40));
+}
+
+// The gather of a row-major array of each rank's own rows (GP-ADEIM reads S^T F_j from F_j on
+// the own rows) equals the MultiVector gather of the same rows, in any order, on any rank count;
+// an id no rank owns is refused by name.
+TEST(ReplicatedGather, RowsOfALocalArrayEqualTheMultiVectorGather) {
+  const int nc = 5;
+  const auto U = basis(23, nc, 6);
+  const Map& map = *U->getMap();
+  std::vector<double> local(map.getNodeNumElements() * nc);
+  auto u = U->getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (size_t i = 0; i < map.getNodeNumElements(); ++i)
+    for (int j = 0; j < nc; ++j) local[i * nc + j] = u(i, j);
+  const std::vector<GO> gids = {22, 0, 11, 5, 17, 1};
+  const std::vector<double> want = gatherRows(*U, gids);
+  EXPECT_EQ(gatherRows(map, local, nc, gids), want);
+  for (size_t i = 0; i < gids.size(); ++i)  // and the rows are the right ones
+    EXPECT_EQ(want[i * nc + 2], hashed(6, gids[i], 2));
+  try {
+    gatherRows(map, local, nc, {3, 23});
+    FAIL() << "row 23 of a 23-row map must be refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("global id 23"), std::string::npos) << e.what();
+  }
 }
 
 // ADEIM's partial point update (Peherstorfer & Willcox 2015, Sec. 4.1): index i is re-chosen as

@@ -13,6 +13,11 @@ namespace gphr {
 // throws InputError naming an id that no rank owns.
 std::vector<Scalar> gatherRows(const MultiVector& X, const std::vector<GO>& gids);
 
+// Rows `gids` of a row-major array holding this rank's rows of `map` in local order (rows x cols),
+// replicated in the order given. Collective; throws InputError naming an id that no rank owns.
+std::vector<Scalar> gatherRows(const Map& map, const std::vector<Scalar>& localRows, int cols,
+                               const std::vector<GO>& gids);
+
 // Stencils of the global rows `rows` of G (any rank may own them), in the order given: the
 // documented stencil layout of NonlinearTerm, replicated. Collective.
 Stencil gatherStencils(const NonlinearTerm& term, const std::vector<GO>& rows);

@@ -82,6 +82,7 @@ class GpAdeimModel final : public ReducedHamiltonian {
   bool isUpdateStep(long step) const;
   void windowSnapshots(ReducedRowKernel& kernel, std::vector<double>& F);  // row-major rows x (2k w)
   void resample(const CoefficientFactor& cf, long updateNo);
+  ReducedRowKernel& samplingKernel();  // the sample mesh of S, built on demand
   AdeimUpdate updateSampledRows(const CoefficientFactor& cf, int wbar, std::vector<double>& F);
   double fullResidual(const DenseMatrix& C);
   double moveInterpolationRows(const std::vector<double>& rotation);  // returns cond(P^T U)
@@ -95,7 +96,8 @@ class GpAdeimModel final : public ReducedHamiltonian {
   int m_;
   AdeimOptions opt_;
   std::vector<GO> P_, S_;
-  RCP<ReducedRowKernel> sampling_;  // the rows S
+  RCP<ReducedRowKernel> sampling_;  // the rows S (built on demand: samplingKernel)
+  bool samplingStale_ = true;       // S_ changed since sampling_ was built
   RCP<ReducedRowKernel> owned_;     // this rank's rows of G (resampling, monitoring)
   std::deque<DenseVector> window_;
   std::vector<double> ownedF_;      // F_j on this rank's rows (row-major), when computed

@@ -30,7 +30,7 @@ RCP<GpDeimModel> buildGpDeimModel(const HamiltonianSystem& system, const MultiVe
                                   const std::string& indexMethod = "deim", DeimWeights* diagnostics = nullptr,
                                   const ReducedLinearPart* linear = nullptr);
 
-// Smallest eigenvalue of a symmetric Hessian (LAPACK SYEV: a small dense eigenproblem, where an
+// Smallest eigenvalue of a symmetric Hessian (LAPACK SYEVD: a small dense eigenproblem, where an
 // Anasazi solve would cost more than it saves). Used to flag (k, m) whose H_hr is not convex
 // where H_r is (negative DEIM weights can do that).
 double smallestEigenvalue(const DenseMatrix& H);

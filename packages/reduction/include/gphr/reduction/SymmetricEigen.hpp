@@ -1,5 +1,5 @@
 #pragma once
-// Small dense symmetric eigenproblems (LAPACK SYEV with its workspace query): the Gram matrix of
+// Small dense symmetric eigenproblems (LAPACK SYEVD with its workspace query): the Gram matrix of
 // the randomized DEIM basis, the Hessian convexity check, GP-ADEIM's re-orthonormalization. At
 // these sizes (m, 2k <= a few hundred) a dense LAPACK call is the right tool, not Anasazi.
 #include <vector>
