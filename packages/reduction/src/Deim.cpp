@@ -48,42 +48,46 @@ std::vector<GO> greedyDeim(const MultiVector& U, int m) {
   const int np = map.getComm()->getSize();
   std::vector<double> W(static_cast<size_t>(nl) * m);  // this rank's rows of U, row-major
   std::vector<GO> gid(nl);
-  {
-    auto u = U.getLocalViewHost(Tpetra::Access::ReadOnly);
-    for (LO i = 0; i < nl; ++i) {
-      gid[i] = map.getGlobalElement(i);
-      for (int j = 0; j < m; ++j) W[static_cast<size_t>(i) * m + j] = u(i, j);
-    }
-  }
   std::vector<double> colMax(m, 0.0), globalMax(m, 0.0);  // max_i |U(i, l)|: the scale of column l's residual
-  for (LO i = 0; i < nl; ++i)
-    for (int j = 0; j < m; ++j) colMax[j] = std::max(colMax[j], std::abs(W[static_cast<size_t>(i) * m + j]));
+  {
+    auto u = U.getLocalViewHost(Tpetra::Access::ReadOnly);  // column-major: transposed 8 columns at a time
+    for (LO i = 0; i < nl; ++i) gid[i] = map.getGlobalElement(i);
+    for (int j0 = 0; j0 < m; j0 += 8)
+      for (LO i = 0; i < nl; ++i)
+        for (int j = j0; j < std::min(m, j0 + 8); ++j) {
+          W[static_cast<size_t>(i) * m + j] = u(i, j);
+          colMax[j] = std::max(colMax[j], std::abs(u(i, j)));
+        }
+  }
   Teuchos::reduceAll(*map.getComm(), Teuchos::REDUCE_MAX, m, colMax.data(), globalMax.data());
   std::vector<char> taken(nl, 0);
-  std::vector<double> offer(m + 2), all(static_cast<size_t>(np) * (m + 2)), Ut;
+  // The panel's columns of the untaken rows, kPanel per row: the per-index passes stay in cache.
+  std::vector<double> Wp(static_cast<size_t>(nl) * kPanel), Ut, offer(m + 2), all(static_cast<size_t>(np) * (m + 2));
   std::vector<GO> idx;
-  // This rank's candidate for column l: the untaken row with the largest |W(i, l)|.
-  auto bestRow = [&](int l) {
-    LO best = -1;
-    double bestAbs = -1.0;
-    for (LO i = 0; i < nl; ++i) {
-      if (taken[i]) continue;
-      const double a = std::abs(W[static_cast<size_t>(i) * m + l]);
-      if (a > bestAbs || (a == bestAbs && gid[i] < gid[best])) best = i, bestAbs = a;
-    }
-    return best;
+  LO best = -1;  // this rank's candidate for the current column: the untaken row of largest |entry|
+  double bestAbs = -1.0;
+  auto consider = [&](LO i, double v) {
+    const double a = std::abs(v);
+    if (a > bestAbs || (a == bestAbs && gid[i] < gid[best])) best = i, bestAbs = a;
   };
   for (int l0 = 0; l0 < m; l0 += kPanel) {
-    const int l1 = std::min(m, l0 + kPanel), nt = m - l1;  // panel columns [l0, l1), nt columns right of it
-    Ut.assign(static_cast<size_t>(l1 - l0) * nt, 0.0);
+    const int l1 = std::min(m, l0 + kPanel), nb = l1 - l0, nt = m - l1;  // panel [l0, l1), nt columns right of it
+    best = -1, bestAbs = -1.0;
+    for (LO i = 0; i < nl; ++i) {
+      if (taken[i]) continue;
+      std::copy_n(&W[static_cast<size_t>(i) * m + l0], nb, &Wp[static_cast<size_t>(i) * kPanel]);
+      consider(i, Wp[static_cast<size_t>(i) * kPanel]);
+    }
+    Ut.assign(static_cast<size_t>(nb) * nt, 0.0);
     for (int l = l0; l < l1; ++l) {
-      const LO best = bestRow(l);
+      const int t = l - l0;
       std::fill(offer.begin(), offer.end(), 0.0);
       offer[0] = -1.0;  // |pivot| (none offered), gid, then the row's entries l0..m-1
       if (best >= 0) {
-        offer[0] = std::abs(W[static_cast<size_t>(best) * m + l]);
+        offer[0] = bestAbs;
         offer[1] = static_cast<double>(gid[best]);  // exact below 2^53
-        std::copy_n(&W[static_cast<size_t>(best) * m + l0], m - l0, offer.begin() + 2);
+        std::copy_n(&Wp[static_cast<size_t>(best) * kPanel], nb, offer.begin() + 2);
+        std::copy_n(&W[static_cast<size_t>(best) * m + l1], nt, offer.begin() + 2 + nb);
       }
       Teuchos::gatherAll(*map.getComm(), m + 2, offer.data(), static_cast<int>(all.size()), all.data());
       int win = -1;
@@ -107,29 +111,32 @@ std::vector<GO> greedyDeim(const MultiVector& U, int m) {
       // The pivot row: multipliers at l0..l-1, values at l..m-1 (copied out of the gather buffer,
       // so that the compiler sees it cannot alias W and the row updates vectorize).
       const std::vector<double> pv(pivot + 2, pivot + 2 + (m - l0));
-      const double* __restrict p = pv.data() - l0;  // p[c]: column c
-      double* __restrict ut = Ut.data() + static_cast<size_t>(l - l0) * nt;  // its columns right of the panel,
-      for (int c = 0; c < nt; ++c) ut[c] = p[l1 + c];                          // eliminated by the panel's
-      for (int s = l0; s < l; ++s) {                                           // earlier pivots, in order
+      const double* __restrict p = pv.data();  // p[c]: column l0 + c
+      double* __restrict ut = Ut.data() + static_cast<size_t>(t) * nt;  // its columns right of the panel,
+      for (int c = 0; c < nt; ++c) ut[c] = p[nb + c];                     // eliminated by the panel's
+      for (int s = 0; s < t; ++s) {                                       // earlier pivots, in order
         const double f = p[s];
-        const double* __restrict us = Ut.data() + static_cast<size_t>(s - l0) * nt;
+        const double* __restrict us = Ut.data() + static_cast<size_t>(s) * nt;
         for (int c = 0; c < nt; ++c) ut[c] -= f * us[c];
       }
-      for (LO i = 0; i < nl; ++i) {  // the panel's columns right of l
+      best = -1, bestAbs = -1.0;
+      for (LO i = 0; i < nl; ++i) {  // the panel's columns right of l; the candidate for l + 1
         if (taken[i]) continue;
-        double* __restrict wi = &W[static_cast<size_t>(i) * m];
-        const double f = wi[l] / p[l];
-        wi[l] = f;
-        for (int c = l + 1; c < l1; ++c) wi[c] -= f * p[c];
+        double* __restrict wi = &Wp[static_cast<size_t>(i) * kPanel];
+        const double f = wi[t] / p[t];
+        wi[t] = f;
+        for (int c = t + 1; c < nb; ++c) wi[c] -= f * p[c];
+        if (t + 1 < nb) consider(i, wi[t + 1]);
       }
     }
     for (LO i = 0; i < nl; ++i) {  // the columns right of the panel, once per panel
       if (taken[i]) continue;
-      double* __restrict wi = &W[static_cast<size_t>(i) * m];
-      for (int s = l0; s < l1; ++s) {
-        const double f = wi[s];
-        const double* __restrict us = Ut.data() + static_cast<size_t>(s - l0) * nt;
-        for (int c = 0; c < nt; ++c) wi[l1 + c] -= f * us[c];
+      const double* __restrict fi = &Wp[static_cast<size_t>(i) * kPanel];
+      double* __restrict wi = &W[static_cast<size_t>(i) * m + l1];
+      for (int s = 0; s < nb; ++s) {
+        const double f = fi[s];
+        const double* __restrict us = Ut.data() + static_cast<size_t>(s) * nt;
+        for (int c = 0; c < nt; ++c) wi[c] -= f * us[c];
       }
     }
   }
