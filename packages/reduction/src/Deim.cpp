@@ -29,115 +29,72 @@ void luSolve(std::vector<double>& B, int m, std::vector<double>& rhs, char trans
 // Greedy DEIM (Chaturantabut & Sorensen, Alg. 1) as Gaussian elimination with partial (row)
 // pivoting on U: after l elimination steps, column l of the Schur complement is exactly the DEIM
 // residual u_l - U_l (P^T U_l)^{-1} P^T u_l, and the next index is its largest entry (Sorensen &
-// Embree 2016). One collective per index: each rank offers its best row with the row itself, so
-// the pivot row arrives with the argmax. Ties go to the smallest gid.
-//
-// The elimination is blocked by panels of kPanel columns, as LAPACK's GETRF is, but without
-// reordering any arithmetic: inside a panel only its own columns are updated (and the multipliers
-// f = w_il / p_l stored in place); the columns right of it are updated once per panel, row by
-// row, with the panel's pivot rows eliminated among themselves (Ut). Each entry therefore sees the
-// same operations in the same order as in the unblocked elimination, bit for bit, and each row's
-// arithmetic is the same on any rank count. What changes is the memory traffic: the unblocked
-// form streams the whole d x m block once per index (m passes, memory-bound: ~10 ms at d = 2048,
-// m = 100); this one makes about m / kPanel passes. (LAPACK's GETRF would also pick these pivots,
-// but it is not distributed and reorders the trailing sums.)
+// Embree 2016). Eliminating column by column costs d m^2 / 2 flops and one collective per index
+// (each rank offers its best row with the row itself, so the pivot row arrives with the argmax),
+// instead of an l x l LU, the residual and two collectives per index. Ties go to the smallest
+// gid; each row's arithmetic is the same on any rank count, so the indices are too.
 std::vector<GO> greedyDeim(const MultiVector& U, int m) {
-  constexpr int kPanel = 16;
   const Map& map = *U.getMap();
   const LO nl = static_cast<LO>(map.getNodeNumElements());
   const int np = map.getComm()->getSize();
   std::vector<double> W(static_cast<size_t>(nl) * m);  // this rank's rows of U, row-major
-  std::vector<GO> gid(nl);
-  std::vector<double> colMax(m, 0.0), globalMax(m, 0.0);  // max_i |U(i, l)|: the scale of column l's residual
   {
-    auto u = U.getLocalViewHost(Tpetra::Access::ReadOnly);  // column-major: transposed 8 columns at a time
-    for (LO i = 0; i < nl; ++i) gid[i] = map.getGlobalElement(i);
-    for (int j0 = 0; j0 < m; j0 += 8)
-      for (LO i = 0; i < nl; ++i)
-        for (int j = j0; j < std::min(m, j0 + 8); ++j) {
-          W[static_cast<size_t>(i) * m + j] = u(i, j);
-          colMax[j] = std::max(colMax[j], std::abs(u(i, j)));
-        }
+    auto u = U.getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (LO i = 0; i < nl; ++i)
+      for (int j = 0; j < m; ++j) W[static_cast<size_t>(i) * m + j] = u(i, j);
   }
+  std::vector<double> colMax(m, 0.0), globalMax(m, 0.0);  // max_i |U(i, l)|: the scale of column l's residual
+  for (LO i = 0; i < nl; ++i)
+    for (int j = 0; j < m; ++j) colMax[j] = std::max(colMax[j], std::abs(W[static_cast<size_t>(i) * m + j]));
   Teuchos::reduceAll(*map.getComm(), Teuchos::REDUCE_MAX, m, colMax.data(), globalMax.data());
   std::vector<char> taken(nl, 0);
-  // The panel's columns of the untaken rows, kPanel per row: the per-index passes stay in cache.
-  std::vector<double> Wp(static_cast<size_t>(nl) * kPanel), Ut, offer(m + 2), all(static_cast<size_t>(np) * (m + 2));
+  std::vector<double> offer(m + 2), all(static_cast<size_t>(np) * (m + 2)), pivotRow(m);
   std::vector<GO> idx;
-  LO best = -1;  // this rank's candidate for the current column: the untaken row of largest |entry|
-  double bestAbs = -1.0;
-  auto consider = [&](LO i, double v) {
-    const double a = std::abs(v);
-    if (a > bestAbs || (a == bestAbs && gid[i] < gid[best])) best = i, bestAbs = a;
-  };
-  for (int l0 = 0; l0 < m; l0 += kPanel) {
-    const int l1 = std::min(m, l0 + kPanel), nb = l1 - l0, nt = m - l1;  // panel [l0, l1), nt columns right of it
-    best = -1, bestAbs = -1.0;
+  for (int l = 0; l < m; ++l) {
+    LO best = -1;
+    double bestAbs = -1.0;
+    GO bestGid = 0;
     for (LO i = 0; i < nl; ++i) {
       if (taken[i]) continue;
-      std::copy_n(&W[static_cast<size_t>(i) * m + l0], nb, &Wp[static_cast<size_t>(i) * kPanel]);
-      consider(i, Wp[static_cast<size_t>(i) * kPanel]);
+      const double a = std::abs(W[static_cast<size_t>(i) * m + l]);
+      const GO g = map.getGlobalElement(i);
+      if (a > bestAbs || (a == bestAbs && g < bestGid)) best = i, bestAbs = a, bestGid = g;
     }
-    Ut.assign(static_cast<size_t>(nb) * nt, 0.0);
-    for (int l = l0; l < l1; ++l) {
-      const int t = l - l0;
-      std::fill(offer.begin(), offer.end(), 0.0);
-      offer[0] = -1.0;  // |pivot| (none offered), gid, then the row's entries l0..m-1
-      if (best >= 0) {
-        offer[0] = bestAbs;
-        offer[1] = static_cast<double>(gid[best]);  // exact below 2^53
-        std::copy_n(&Wp[static_cast<size_t>(best) * kPanel], nb, offer.begin() + 2);
-        std::copy_n(&W[static_cast<size_t>(best) * m + l1], nt, offer.begin() + 2 + nb);
-      }
-      Teuchos::gatherAll(*map.getComm(), m + 2, offer.data(), static_cast<int>(all.size()), all.data());
-      int win = -1;
-      for (int p = 0; p < np; ++p) {
-        const double* o = &all[static_cast<size_t>(p) * (m + 2)];
-        if (o[0] < 0.0) continue;
-        const double* w = win < 0 ? nullptr : &all[static_cast<size_t>(win) * (m + 2)];
-        if (!w || o[0] > w[0] || (o[0] == w[0] && o[1] < w[1])) win = p;
-      }
-      const double* pivot = &all[static_cast<size_t>(std::max(win, 0)) * (m + 2)];
-      // A residual at the round-off level of its column (d eps relative) is a dependent column.
-      const double floor = 10.0 * static_cast<double>(map.getGlobalNumElements()) *
-                           std::numeric_limits<double>::epsilon() * globalMax[l];
-      GPHR_REQUIRE(win >= 0 && pivot[0] > floor && std::isfinite(pivot[0]), InputError,
-                   "greedy DEIM: the residual of DEIM basis column ", l + 1, " vanishes (", win < 0 ? 0.0 : pivot[0],
-                   " against max |u| = ", globalMax[l], "): the DEIM basis is rank-deficient; use m <= ", l);
-      const GO g = static_cast<GO>(pivot[1]);
-      idx.push_back(g);
-      const LO mine = map.getLocalElement(g);
-      if (mine != Teuchos::OrdinalTraits<LO>::invalid()) taken[mine] = 1;
-      // The pivot row: multipliers at l0..l-1, values at l..m-1 (copied out of the gather buffer,
-      // so that the compiler sees it cannot alias W and the row updates vectorize).
-      const std::vector<double> pv(pivot + 2, pivot + 2 + (m - l0));
-      const double* __restrict p = pv.data();  // p[c]: column l0 + c
-      double* __restrict ut = Ut.data() + static_cast<size_t>(t) * nt;  // its columns right of the panel,
-      for (int c = 0; c < nt; ++c) ut[c] = p[nb + c];                     // eliminated by the panel's
-      for (int s = 0; s < t; ++s) {                                       // earlier pivots, in order
-        const double f = p[s];
-        const double* __restrict us = Ut.data() + static_cast<size_t>(s) * nt;
-        for (int c = 0; c < nt; ++c) ut[c] -= f * us[c];
-      }
-      best = -1, bestAbs = -1.0;
-      for (LO i = 0; i < nl; ++i) {  // the panel's columns right of l; the candidate for l + 1
-        if (taken[i]) continue;
-        double* __restrict wi = &Wp[static_cast<size_t>(i) * kPanel];
-        const double f = wi[t] / p[t];
-        wi[t] = f;
-        for (int c = t + 1; c < nb; ++c) wi[c] -= f * p[c];
-        if (t + 1 < nb) consider(i, wi[t + 1]);
-      }
+    std::fill(offer.begin(), offer.end(), 0.0);
+    offer[0] = -1.0;  // |pivot| (none offered), gid, then the row's entries l..m-1
+    if (best >= 0) {
+      offer[0] = bestAbs;
+      offer[1] = static_cast<double>(bestGid);  // exact below 2^53
+      std::copy_n(&W[static_cast<size_t>(best) * m + l], m - l, offer.begin() + 2);
     }
-    for (LO i = 0; i < nl; ++i) {  // the columns right of the panel, once per panel
+    Teuchos::gatherAll(*map.getComm(), m + 2, offer.data(), static_cast<int>(all.size()), all.data());
+    int win = -1;
+    for (int p = 0; p < np; ++p) {
+      const double* o = &all[static_cast<size_t>(p) * (m + 2)];
+      if (o[0] < 0.0) continue;
+      const double* w = win < 0 ? nullptr : &all[static_cast<size_t>(win) * (m + 2)];
+      if (!w || o[0] > w[0] || (o[0] == w[0] && o[1] < w[1])) win = p;
+    }
+    const double* pivot = &all[static_cast<size_t>(std::max(win, 0)) * (m + 2)];
+    // A residual at the round-off level of its column (d eps relative) is a dependent column.
+    const double floor = 10.0 * static_cast<double>(map.getGlobalNumElements()) *
+                         std::numeric_limits<double>::epsilon() * globalMax[l];
+    GPHR_REQUIRE(win >= 0 && pivot[0] > floor && std::isfinite(pivot[0]), InputError,
+                 "greedy DEIM: the residual of DEIM basis column ", l + 1, " vanishes (", win < 0 ? 0.0 : pivot[0],
+                 " against max |u| = ", globalMax[l], "): the DEIM basis is rank-deficient; use m <= ", l);
+    const GO gid = static_cast<GO>(pivot[1]);
+    idx.push_back(gid);
+    const LO mine = map.getLocalElement(gid);
+    if (mine != Teuchos::OrdinalTraits<LO>::invalid()) taken[mine] = 1;
+    // The pivot row, copied out of the gather buffer so that the compiler sees it cannot alias W
+    // (the row update then vectorizes; it is the d m^2 / 2 part of the cost).
+    std::copy_n(pivot + 2, m - l, pivotRow.begin());
+    const double* __restrict p = pivotRow.data();  // entries l..m-1 of the pivot row
+    for (LO i = 0; i < nl; ++i) {
       if (taken[i]) continue;
-      const double* __restrict fi = &Wp[static_cast<size_t>(i) * kPanel];
-      double* __restrict wi = &W[static_cast<size_t>(i) * m + l1];
-      for (int s = 0; s < nb; ++s) {
-        const double f = fi[s];
-        const double* __restrict us = Ut.data() + static_cast<size_t>(s) * nt;
-        for (int c = 0; c < nt; ++c) wi[c] -= f * us[c];
-      }
+      double* __restrict wi = &W[static_cast<size_t>(i) * m + l];
+      const double f = wi[0] / p[0];
+      for (int j = 1; j < m - l; ++j) wi[j] -= f * p[j];
     }
   }
   return idx;

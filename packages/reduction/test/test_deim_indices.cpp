@@ -78,8 +78,8 @@ TEST(GreedyDeim, EqualsTheTextbookAlgorithmOnAnyRankCount) {
     // Fewer indices are the leading ones of the same greedy sequence.
     EXPECT_EQ(selectDeimIndices(*U, 7, "deim"), std::vector<GO>(ref.begin(), ref.begin() + 7));
   }
-  // The elimination runs in panels of 16 columns: m = 40 spans three (the last one partial),
-  // with rows updated across panel boundaries.
+  // A longer greedy sequence (m = 40): any elimination that reorders or blocks its row updates
+  // must still pick the textbook rows.
   const auto U = basis(131, 40, 5);
   EXPECT_EQ(selectDeimIndices(*U, 40, "deim"), textbookDeim(*U, 40));
 }
