@@ -26,20 +26,27 @@ void requireOwned(const Map& map, const std::vector<GO>& gids, const char* what)
     GPHR_REQUIRE(total[i] == 1, InputError, what, ": global id ", gids[i], " is not an entry of the map (allowed: 0 to ",
                  map.getMaxAllGlobalIndex(), ")");
 }
+
+// The gathers of rows: this rank fills the rows `gids` it owns, `copyRow(l, out)` writing local
+// row l's cols entries, and one sum-reduction completes them on every rank.
+template <class CopyRow>
+std::vector<Scalar> gatherOwnedRows(const Map& map, const std::vector<GO>& gids, size_t cols, CopyRow copyRow) {
+  requireOwned(map, gids, "gatherRows");
+  std::vector<Scalar> local(gids.size() * cols, 0.0);
+  for (size_t i = 0; i < gids.size(); ++i) {
+    const LO l = map.getLocalElement(gids[i]);
+    if (l != Teuchos::OrdinalTraits<LO>::invalid()) copyRow(l, local.data() + i * cols);
+  }
+  return sumAll(*map.getComm(), local);
+}
 }  // namespace
 
 std::vector<Scalar> gatherRows(const MultiVector& X, const std::vector<GO>& gids) {
-  const Map& map = *X.getMap();
-  requireOwned(map, gids, "gatherRows");
   const size_t nc = X.getNumVectors();
-  std::vector<Scalar> local(gids.size() * nc, 0.0);
   auto x = X.getLocalViewHost(Tpetra::Access::ReadOnly);
-  for (size_t i = 0; i < gids.size(); ++i) {
-    const LO l = map.getLocalElement(gids[i]);
-    if (l == Teuchos::OrdinalTraits<LO>::invalid()) continue;
-    for (size_t j = 0; j < nc; ++j) local[i * nc + j] = x(l, j);
-  }
-  return sumAll(*map.getComm(), local);
+  return gatherOwnedRows(*X.getMap(), gids, nc, [&](LO l, Scalar* out) {
+    for (size_t j = 0; j < nc; ++j) out[j] = x(l, j);
+  });
 }
 
 std::vector<Scalar> gatherRows(const Map& map, const std::vector<Scalar>& localRows, int cols,
@@ -47,14 +54,9 @@ std::vector<Scalar> gatherRows(const Map& map, const std::vector<Scalar>& localR
   GPHR_REQUIRE(cols >= 0 && localRows.size() == map.getNodeNumElements() * static_cast<size_t>(cols), InputError,
                "gatherRows: ", localRows.size(), " local entries for ", map.getNodeNumElements(), " rows of ", cols,
                " columns");
-  requireOwned(map, gids, "gatherRows");
-  std::vector<Scalar> local(gids.size() * cols, 0.0);
-  for (size_t i = 0; i < gids.size(); ++i) {
-    const LO l = map.getLocalElement(gids[i]);
-    if (l != Teuchos::OrdinalTraits<LO>::invalid())
-      std::copy_n(localRows.data() + static_cast<size_t>(l) * cols, cols, local.data() + i * cols);
-  }
-  return sumAll(*map.getComm(), local);
+  return gatherOwnedRows(map, gids, static_cast<size_t>(cols), [&](LO l, Scalar* out) {
+    std::copy_n(localRows.data() + static_cast<size_t>(l) * cols, cols, out);
+  });
 }
 
 Stencil gatherStencils(const NonlinearTerm& term, const std::vector<GO>& rows) {

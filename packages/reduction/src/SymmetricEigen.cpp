@@ -14,8 +14,8 @@ namespace gphr {
 // LAPACK, one thread, measured on this project's machine), and GP-ADEIM orthonormalizes at every
 // update. Same accuracy class (both backward stable).
 std::vector<double> symmetricEigen(int n, double* a, bool vectors, const char* what) {
-  std::vector<double> lambda(std::max(n, 1));
   if (n <= 0) return {};
+  std::vector<double> lambda(n);
   const char jobz = vectors ? 'V' : 'N', uplo = 'U';
   double wq = 0.0;
   int iq = 0, info = 0, lwork = -1, liwork = -1;
@@ -26,7 +26,6 @@ std::vector<double> symmetricEigen(int n, double* a, bool vectors, const char* w
   std::vector<int> iwork(liwork);
   dsyevd_(&jobz, &uplo, &n, a, &n, lambda.data(), work.data(), &lwork, iwork.data(), &liwork, &info);
   GPHR_REQUIRE(info == 0, SolverError, what, ": LAPACK SYEVD failed (info = ", info, ")");
-  lambda.resize(n);
   return lambda;
 }
 
