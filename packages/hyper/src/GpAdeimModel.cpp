@@ -27,7 +27,8 @@ Teuchos::ParameterList adeimValidParameters() {
   setIntParameter(pl, "updateRank", 0, 0, 1000000, "r: fixed update rank; 0 = numerical rank of S^T R C^T by rankTol");
   setDoubleParameter(pl, "rankTol", 1e-8, 0.0, 1.0, "tau_r: sigma_i(S^T R C^T) > rankTol sigma_1 (relative)");
   setDoubleParameter(pl, "coefficientTol", 1e-8, 0.0, 1.0,
-                     "directions of C_j with sigma_i <= coefficientTol sigma_1 are dropped (C C^T numerically singular)");
+                     "directions of C_j with |R_ll| <= coefficientTol |R_11| in the column-pivoted QR of C_j^T are "
+                     "dropped (C C^T numerically singular)");
   setIntParameter(pl, "numSamples", 0, 0, 100000000, "m_s: sampling rows (>= m); 0 = chosen by sampleTol");
   setDoubleParameter(pl, "sampleTol", 1e-3, 0.0, 1.0,
                      "tau_s: rows whose score exceeds sampleTol x the largest score (relative: the scale of F does not matter)");
@@ -270,7 +271,7 @@ void GpAdeimModel::resample(const CoefficientFactor& cf, long updateNo) {
     {
       Teuchos::TimeMonitor tm(phase("resampling: row scores"));
       scores = residualRowNorms(ownedRows(*U_), ownedF_, owned_->numRows(), cf.C,
-                                opt_.sampling == "projected" ? &cf.Vc : nullptr);
+                                opt_.sampling == "projected" ? &cf.Q : nullptr);
     }
     SampleCount count;
     count.fixed = opt_.numSamples;

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/hyper/AdeimSampling.hpp"
 #include "gphr/hyper/AdeimUpdate.hpp"
 
 namespace gphr {
@@ -301,6 +302,68 @@ TEST(AdeimUpdate, ZeroResidualIsANoOp) {
     DenseMatrix U(x->StU);
     applyAdeimUpdate(up, U);
     EXPECT_EQ(relDiff(U, x->StU), 0.0);
+  }
+}
+
+// The factor of C is a rank-revealing QR of C^T: Q orthonormal, C^T = Q T when nothing is cut,
+// T Tinv = I; with C of rank 5 (P^T F's last row a combination of two others) one direction is
+// cut and C^T = Q T still holds to round-off (the cut R22 is round-off). Tolerance 1e-13: a few
+// hundred eps for Householder QR and a triangular inverse of these well-conditioned (cond < 1e2)
+// random factors.
+TEST(AdeimUpdate, CoefficientFactorIsARankRevealingQR) {
+  for (bool cut : {false, true}) {
+    Window w = randomWindow(kM, kMs, kW, cut ? 12 : 11);
+    if (cut)
+      for (int j = 0; j < kW; ++j) w.PtF(kM - 1, j) = 0.5 * w.PtF(0, j) - 0.25 * w.PtF(1, j);
+    const CoefficientFactor f = factorCoefficients(w.PtU, w.PtF, 1e-8);
+    const int rc = cut ? kM - 1 : kM;
+    ASSERT_EQ(f.rank(), rc);
+    EXPECT_EQ(f.cut, cut);
+    DenseMatrix I(rc, rc);
+    for (int i = 0; i < rc; ++i) I(i, i) = 1.0;
+    EXPECT_LT(relDiff(mul(TRANS, NO_TRANS, f.Q, f.Q), I), 1e-13);
+    EXPECT_LT(relDiff(mul(NO_TRANS, NO_TRANS, f.T, f.Tinv), I), 1e-13);
+    DenseMatrix Ct(kW, kM);
+    for (int j = 0; j < kW; ++j)
+      for (int i = 0; i < kM; ++i) Ct(j, i) = f.C(i, j);
+    EXPECT_LT(relDiff(mul(NO_TRANS, NO_TRANS, f.Q, f.T), Ct), 1e-13) << "cut " << cut;
+  }
+}
+
+// The sampling scores of alg:indices_adapt against their definition: the row norms of R C_bar,
+// R = U C - F, C_bar = C^T (C C^T)^{-1} C formed by the normal equations (POSV), and of R itself
+// for the residual rule. Tolerance 1e-12 relative to the largest row norm of R (cond(C C^T) < 1e2).
+TEST(AdeimUpdate, ProjectedScoresAreRowNormsOfRCbar) {
+  const int rows = 40;
+  const Window w = randomWindow(kM, kMs, kW, 13);
+  const CoefficientFactor f = factorCoefficients(w.PtU, w.PtF, 1e-8);
+  std::mt19937 gen(131);
+  const DenseMatrix U = randomMatrix(rows, kM, gen), F = randomMatrix(rows, kW, gen);
+  std::vector<double> Ul(rows * kM), Fl(rows * kW);
+  for (int i = 0; i < rows; ++i) {
+    for (int j = 0; j < kM; ++j) Ul[i * kM + j] = U(i, j);
+    for (int j = 0; j < kW; ++j) Fl[i * kW + j] = F(i, j);
+  }
+  DenseMatrix R = mul(NO_TRANS, NO_TRANS, U, f.C);
+  R -= F;
+  DenseMatrix G = mul(NO_TRANS, TRANS, f.C, f.C), Y(f.C);
+  int info = 0;
+  Teuchos::LAPACK<int, double>().POSV('U', kM, kW, G.values(), G.stride(), Y.values(), Y.stride(), &info);
+  ASSERT_EQ(info, 0);
+  const DenseMatrix RCbar = mul(NO_TRANS, NO_TRANS, R, mul(TRANS, NO_TRANS, f.C, Y));
+  const std::vector<double> projected = residualRowNorms(Ul, Fl, rows, f.C, &f.Q);
+  const std::vector<double> plain = residualRowNorms(Ul, Fl, rows, f.C, nullptr);
+  double scale = 0.0;
+  for (int i = 0; i < rows; ++i) {
+    double a = 0.0;
+    for (int j = 0; j < kW; ++j) a += R(i, j) * R(i, j);
+    scale = std::max(scale, std::sqrt(a));
+  }
+  for (int i = 0; i < rows; ++i) {
+    double p = 0.0, q = 0.0;
+    for (int j = 0; j < kW; ++j) p += RCbar(i, j) * RCbar(i, j), q += R(i, j) * R(i, j);
+    EXPECT_NEAR(projected[i], std::sqrt(p), 1e-12 * scale) << "row " << i;
+    EXPECT_NEAR(plain[i], std::sqrt(q), 1e-12 * scale) << "row " << i;
   }
 }
 

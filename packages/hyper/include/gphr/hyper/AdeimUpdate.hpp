@@ -21,10 +21,11 @@ struct AdeimUpdateOptions {
   // does not matter, the paper's tau_r).
   int rank = 0;
   double rankTol = 1e-8;
-  // Directions of C with sigma_i(C) <= coefficientTol sigma_1(C) are dropped (the rank-revealing
-  // route after theo:minprob_eig_equivalence). Below 1e-8 the Gram matrix C C^T has a condition
-  // number past 1e16, numerically singular; an update along such a direction would need
-  // coefficients b ~ 1/sigma_i and fits what F barely excites.
+  // Directions of C with |R_ll| <= coefficientTol |R_11| in the column-pivoted QR of C^T are
+  // dropped (the rank-revealing route after theo:minprob_eig_equivalence; |R_ll| / |R_11| tracks
+  // sigma_l(C) / sigma_1(C)). Below 1e-8 the Gram matrix C C^T has a condition number past 1e16,
+  // numerically singular; an update along such a direction would need coefficients b ~ 1/sigma
+  // and fits what F barely excites.
   double coefficientTol = 1e-8;
 };
 
@@ -39,15 +40,18 @@ struct AdeimUpdate {
   double residualAfter = 0.0;       // ||S^T R_j + a b^T C_j||_F = sqrt(before^2 - sum_{i<=r} lambda_i)
 };
 
-// C_j and its thin SVD C = U_c diag(s) V_c^T, truncated to its numerical rank r_C (relative
-// tolerance `coefficientTol`): V_c V_c^T = C^T (C C^T)^{-1} C is the projector C_bar of Lemma
+// C_j and its rank-revealing factor C^T Pi = Q R (LAPACK GEQP3), cut to the numerical rank r_C
+// (|R_ll| > coefficientTol |R_11|): C^T ~ Q_1 T with Q_1 (wbar x r_C) orthonormal and
+// T = [R11 R12] Pi^T. Q_1 Q_1^T = C^T (C C^T)^{-1} C is the projector C_bar of Lemma
 // theo:update_error and alg:indices_adapt, here without forming C C^T. Computed once per update,
 // shared by the resampling and the update.
 struct CoefficientFactor {
-  DenseMatrix C;          // m x wbar
-  DenseMatrix Uc, Vc;     // m x r_C, wbar x r_C
-  std::vector<double> s;  // r_C singular values
-  int rank() const { return static_cast<int>(s.size()); }
+  DenseMatrix C;     // m x wbar
+  DenseMatrix Q;     // wbar x r_C, orthonormal columns spanning C's (numerical) row space
+  DenseMatrix T;     // r_C x m: C^T ~ Q T
+  DenseMatrix Tinv;  // m x r_C: Pi [R11^{-1}; 0], a right inverse of T (T Tinv = I)
+  bool cut = false;  // r_C < min(m, wbar): directions of C dropped
+  int rank() const { return Q.numCols(); }
 };
 CoefficientFactor factorCoefficients(const DenseMatrix& PtU, const DenseMatrix& PtF, double coefficientTol);
 
