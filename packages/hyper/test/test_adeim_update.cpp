@@ -339,11 +339,9 @@ TEST(AdeimUpdate, ProjectedScoresAreRowNormsOfRCbar) {
   const CoefficientFactor f = factorCoefficients(w.PtU, w.PtF, 1e-8);
   std::mt19937 gen(131);
   const DenseMatrix U = randomMatrix(rows, kM, gen), F = randomMatrix(rows, kW, gen);
-  std::vector<double> Ul(rows * kM), Fl(rows * kW);
-  for (int i = 0; i < rows; ++i) {
-    for (int j = 0; j < kM; ++j) Ul[i * kM + j] = U(i, j);
+  std::vector<double> Fl(rows * kW);  // row-major; U is read column-major (DenseMatrix storage)
+  for (int i = 0; i < rows; ++i)
     for (int j = 0; j < kW; ++j) Fl[i * kW + j] = F(i, j);
-  }
   DenseMatrix R = mul(NO_TRANS, NO_TRANS, U, f.C);
   R -= F;
   DenseMatrix G = mul(NO_TRANS, TRANS, f.C, f.C), Y(f.C);
@@ -351,8 +349,8 @@ TEST(AdeimUpdate, ProjectedScoresAreRowNormsOfRCbar) {
   Teuchos::LAPACK<int, double>().POSV('U', kM, kW, G.values(), G.stride(), Y.values(), Y.stride(), &info);
   ASSERT_EQ(info, 0);
   const DenseMatrix RCbar = mul(NO_TRANS, NO_TRANS, R, mul(TRANS, NO_TRANS, f.C, Y));
-  const std::vector<double> projected = residualRowNorms(Ul, Fl, rows, f.C, &f.Q);
-  const std::vector<double> plain = residualRowNorms(Ul, Fl, rows, f.C, nullptr);
+  const std::vector<double> projected = residualRowNorms(U.values(), U.stride(), Fl, rows, f.C, &f.Q);
+  const std::vector<double> plain = residualRowNorms(U.values(), U.stride(), Fl, rows, f.C, nullptr);
   double scale = 0.0;
   for (int i = 0; i < rows; ++i) {
     double a = 0.0;

@@ -12,6 +12,7 @@
 
 #include "HyperTestUtils.hpp"
 #include "gphr/hyper/GradientDeimModel.hpp"
+#include "gphr/reduction/ReducedRowKernel.hpp"
 
 using namespace gphr;
 
@@ -81,6 +82,44 @@ TEST(GpDeim, DerivativesMatchFiniteDifferencesAndFormAGradientField) {
     // A gradient field has a symmetric Jacobian; the FD Jacobian's asymmetry is FD error only.
     EXPECT_LE(asym.normInf(), 1e-7 * Jfd.normInf()) << "m = " << m;
   }
+}
+
+// The reduced-Jacobian rows J_G(y) A (eq:snaps_JG, the DEIM snapshots and GP-ADEIM's F_j) against
+// central differences of each row's G_i (weights one-hot on row i), on each rank's own rows; and
+// the strided form (row stride ld > 2k, GP-ADEIM's window of several states) writes the same
+// numbers and leaves the padding alone.
+TEST(GpDeim, ReducedJacobianRowsMatchFiniteDifferences) {
+  auto hc = test::nlsCase(32, 4, test::comm());
+  ReducedRowKernel kernel(hc.test.system->nonlinearTermPtr(), ownedRowSample(*hc.test.system, *hc.basis.A),
+                          Teuchos::null);
+  const int r = kernel.reducedDim(), rows = kernel.numRows(), ld = r + 3;
+  const DenseVector z = probePoint(r);
+  kernel.evaluate(z, true, false);
+  std::vector<double> J(static_cast<size_t>(rows) * r), wide(static_cast<size_t>(rows) * ld, -7.0);
+  kernel.reducedJacobian(J.data());
+  kernel.reducedJacobian(wide.data(), ld);
+  for (int i = 0; i < rows; ++i)
+    for (int c = 0; c < ld; ++c)
+      EXPECT_EQ(wide[i * ld + c], c < r ? J[i * r + c] : -7.0) << "row " << i << ", column " << c;
+  double err = 0.0, scale = 0.0;
+  DenseVector zp(z), zm(z);
+  for (int i = 0; i < rows; ++i) {
+    std::vector<double> w(rows, 0.0);
+    w[i] = 1.0;
+    kernel.setWeights(w);
+    for (int c = 0; c < r; ++c) {
+      zp.assign(z), zm.assign(z);
+      zp(c) += kFdStep, zm(c) -= kFdStep;
+      kernel.evaluate(zp, false, false);
+      const double gp = kernel.value();
+      kernel.evaluate(zm, false, false);
+      const double fd = (gp - kernel.value()) / (2 * kFdStep);
+      err = std::max(err, std::abs(fd - J[i * r + c]));
+      scale = std::max(scale, std::abs(J[i * r + c]));
+    }
+  }
+  EXPECT_GT(scale, 0.0);
+  EXPECT_LE(err, kFdTol * scale);
 }
 
 // ||J - J^T|| / ||J|| of the FD Jacobian of a model's vector field at the probe point.

@@ -214,8 +214,10 @@ void ReducedRowKernel::addHessian(DenseMatrix& H, double scale) const {
     for (int i = 0; i < r; ++i) H(i, j) += scale * hessBuf_[i + static_cast<size_t>(r) * j];
 }
 
-void ReducedRowKernel::reducedJacobian(Scalar* out) const {
+void ReducedRowKernel::reducedJacobian(Scalar* out, size_t ld) const {
   const int r = reducedDim();
+  const size_t stride = ld == 0 ? static_cast<size_t>(r) : ld;
+  GPHR_REQUIRE(stride >= static_cast<size_t>(r), InputError, "reduced Jacobian: row stride ", ld, " < 2k = ", r);
   const auto AS = AS_;
   const auto grad = batch_.grad;
   const auto off = batch_.offsets;
@@ -223,7 +225,7 @@ void ReducedRowKernel::reducedJacobian(Scalar* out) const {
       "gphr::reducedJacobianRows", Kokkos::RangePolicy<ExecSpace>(0, numRows()), KOKKOS_LAMBDA(const LO i) {
         // Row i = sum over its stencil entries j of grad_j A_S(j, :): axpys along the contiguous
         // basis rows (the sum over j is short; the loop over the 2k columns vectorizes).
-        Scalar* __restrict row = out + static_cast<size_t>(i) * r;
+        Scalar* __restrict row = out + static_cast<size_t>(i) * stride;
         for (int c = 0; c < r; ++c) row[c] = 0.0;
         for (size_t j = off(i); j < off(i + 1); ++j) {
           const Scalar g = grad(j);

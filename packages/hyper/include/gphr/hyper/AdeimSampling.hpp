@@ -16,8 +16,9 @@
 namespace gphr {
 
 // Per local row i: ||(U_i C - F_i) V||  (V = C's row-space basis, wbar x r_C; projected rule) or
-// ||U_i C - F_i|| (V empty; residual rule). Ul: local rows x m, Fl: local rows x wbar, row-major.
-std::vector<double> residualRowNorms(const std::vector<double>& Ul, const std::vector<double>& Fl, int rows,
+// ||U_i C - F_i|| (V null; residual rule). U: local rows x m, column-major with leading dimension
+// ldU (a MultiVector's local view, read in place); Fl: local rows x wbar, row-major.
+std::vector<double> residualRowNorms(const double* U, int ldU, const std::vector<double>& Fl, int rows,
                                      const DenseMatrix& C, const DenseMatrix* V);
 
 struct SampleCount {

@@ -101,7 +101,6 @@ class GpAdeimModel final : public ReducedHamiltonian {
   RCP<ReducedRowKernel> owned_;     // this rank's rows of G (resampling, monitoring)
   std::deque<DenseVector> window_;
   std::vector<double> ownedF_;      // F_j on this rank's rows (row-major), when computed
-  std::vector<double> buffer_;      // one state's reduced-Jacobian rows
   bool ownedFValid_ = false;
   std::vector<AdeimUpdateRecord> records_;
 };
