@@ -68,6 +68,18 @@ std::vector<Scalar> gatherRows(const Map& map, const std::vector<Scalar>& localR
   });
 }
 
+LocalRows::LocalRows(const MultiVector& X) : map(X.getMap()), cols(static_cast<int>(X.getNumVectors())) {
+  auto x = X.getLocalViewHost(Tpetra::Access::ReadOnly);
+  const size_t nl = x.extent(0), nc = x.extent(1);
+  rows.resize(nl * nc);
+  for (size_t j = 0; j < nc; ++j)
+    for (size_t i = 0; i < nl; ++i) rows[i * nc + j] = x(i, j);
+}
+
+std::vector<Scalar> gatherRows(const LocalRows& X, const std::vector<GO>& gids) {
+  return gatherRows(*X.map, X.rows, X.cols, gids);
+}
+
 Stencil gatherStencils(const NonlinearTerm& term, const std::vector<GO>& rows) {
   const Map& rowMap = *term.rowMap();
   requireOwned(rowMap, rows, "gatherStencils (row of G)");

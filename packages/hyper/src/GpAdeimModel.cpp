@@ -105,7 +105,8 @@ std::vector<GO> timedIndices(const MultiVector& U, int m, const std::string& met
 
 // The GP-DEIM row kernel of (U, P): the weights and the sample mesh of P (`known`: the previous
 // sample, whose rows need no new gather). Collective.
-RCP<ReducedRowKernel> interpolationKernel(const HamiltonianSystem& system, const MultiVector& A, const MultiVector& U,
+template <class Basis>
+RCP<ReducedRowKernel> interpolationKernel(const HamiltonianSystem& system, const Basis& A, const MultiVector& U,
                                           const std::vector<GO>& P, const RowSample& known = RowSample(),
                                           double* cond = nullptr) {
   DeimWeights w;
@@ -143,6 +144,7 @@ GpAdeimModel::GpAdeimModel(RCP<const HamiltonianSystem> system, RCP<const MultiV
       m_(static_cast<int>(U->getNumVectors())),
       opt_(std::move(options)) {
   P_ = rows().sample().rows;
+  Arows_ = rcp(new LocalRows(*A_));
   owned_ = rcp(new ReducedRowKernel(system_->nonlinearTermPtr(), ownedRowSample(*system_, *A_), Teuchos::null));
 }
 
@@ -287,7 +289,7 @@ ReducedRowKernel& GpAdeimModel::samplingKernel() {
     Teuchos::TimeMonitor tm(phase("sample mesh of S"));
     const RowSample none;
     sampling_ = rcp(new ReducedRowKernel(system_->nonlinearTermPtr(),
-                                         gatherRowSample(*system_, *A_, S_, std::vector<double>(S_.size(), 1.0),
+                                         gatherRowSample(*system_, *Arows_, S_, std::vector<double>(S_.size(), 1.0),
                                                          sampling_.is_null() ? none : sampling_->sample()),
                                          Teuchos::null));
     samplingStale_ = false;
@@ -332,7 +334,7 @@ double GpAdeimModel::moveInterpolationRows(const std::vector<double>& rotation) 
     P = timedIndices(*U_, m_, opt_.indices);
   }
   double cond = 0.0;
-  replaceRows(interpolationKernel(*system_, *A_, *U_, P, rows().sample(), &cond));
+  replaceRows(interpolationKernel(*system_, *Arows_, *U_, P, rows().sample(), &cond));
   P_ = rows().sample().rows;
   return cond;
 }

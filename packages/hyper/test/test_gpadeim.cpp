@@ -205,17 +205,20 @@ TEST_F(GpAdeim, IncrementalRowSampleEqualsAFreshGather) {
   const std::vector<GO> rows{40, 5, 3, 47, 0};
   const std::vector<double> w{0.5, -1.0, 2.0, 0.25, 7.0};
   const RowSample fresh = gatherRowSample(sys, *hc.basis.A, rows, w);
-  for (const RowSample* known : {&before, &fresh}) {  // some rows new; then none (no communication)
-    const RowSample inc = gatherRowSample(sys, *hc.basis.A, rows, w, *known);
-    EXPECT_EQ(inc.rows, fresh.rows);
-    EXPECT_EQ(inc.weights, fresh.weights);
-    EXPECT_EQ(inc.stencil.offsets, fresh.stencil.offsets);
-    EXPECT_EQ(inc.stencil.gids, fresh.stencil.gids);
-    EXPECT_EQ(inc.basisRows, fresh.basisRows);
-    EXPECT_EQ(inc.reference, fresh.reference);
-    EXPECT_EQ(inc.shifted, fresh.shifted);
-    EXPECT_EQ(inc.reducedDim, fresh.reducedDim);
-  }
+  const LocalRows Arows(*hc.basis.A);  // the row-major copy GP-ADEIM gathers from: the same numbers
+  for (const RowSample* known : {&before, &fresh})  // some rows new; then none (no communication)
+    for (bool fromCopy : {false, true}) {
+      const RowSample inc = fromCopy ? gatherRowSample(sys, Arows, rows, w, *known)
+                                     : gatherRowSample(sys, *hc.basis.A, rows, w, *known);
+      EXPECT_EQ(inc.rows, fresh.rows) << fromCopy;
+      EXPECT_EQ(inc.weights, fresh.weights) << fromCopy;
+      EXPECT_EQ(inc.stencil.offsets, fresh.stencil.offsets) << fromCopy;
+      EXPECT_EQ(inc.stencil.gids, fresh.stencil.gids) << fromCopy;
+      EXPECT_EQ(inc.basisRows, fresh.basisRows) << fromCopy;
+      EXPECT_EQ(inc.reference, fresh.reference) << fromCopy;
+      EXPECT_EQ(inc.shifted, fresh.shifted) << fromCopy;
+      EXPECT_EQ(inc.reducedDim, fresh.reducedDim) << fromCopy;
+    }
 }
 
 }  // namespace

@@ -92,6 +92,7 @@ class GpAdeimModel final : public ReducedHamiltonian {
 
   RCP<const HamiltonianSystem> system_;
   RCP<const MultiVector> A_;
+  RCP<const LocalRows> Arows_;  // A's local rows, row-major: the moving sample meshes gather from it
   RCP<MultiVector> U_;
   int m_;
   AdeimOptions opt_;

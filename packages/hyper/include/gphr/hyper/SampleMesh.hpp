@@ -2,6 +2,7 @@
 // The sample mesh of the hyper-reduced model (DESIGN.md): for the m sampled rows of G their
 // stencils, the rows of A under them, y0 there (the shift), the DEIM weights, and L_r, f_r, c.
 // This is everything the online phase holds: O(m s k + k^2) numbers, nothing of size n or d.
+#include "gphr/core/ReplicatedGather.hpp"
 #include "gphr/reduction/ReducedHamiltonian.hpp"
 
 namespace gphr {
@@ -21,6 +22,9 @@ RowSample gatherRowSample(const HamiltonianSystem& system, const MultiVector& A,
 // The same, reusing the rows already held in `known` (a previous sample of the same system and
 // basis): only rows not in it are gathered. Collective; every rank passes the same arguments.
 RowSample gatherRowSample(const HamiltonianSystem& system, const MultiVector& A, const std::vector<GO>& rows,
+                          const std::vector<double>& weights, const RowSample& known);
+// The same from a row-major copy of A's local rows (repeated gathers: GP-ADEIM's moving rows).
+RowSample gatherRowSample(const HamiltonianSystem& system, const LocalRows& A, const std::vector<GO>& rows,
                           const std::vector<double>& weights, const RowSample& known);
 
 // Gathers (collectively) what the rows `rows` of the system's G need; weights one per row.
