@@ -15,7 +15,8 @@ using Teuchos::NO_TRANS;
 using Teuchos::TRANS;
 
 // Thin SVD A = U diag(s) Vt of a small dense matrix by GESDD (denseThinSvd); an update takes one
-// with vectors (M) and one of values only (the tau_r test). withVectors = false: the values only.
+// with vectors (of M's R factor, rightSvd) and one of values only (the tau_r test).
+// withVectors = false: the values only.
 struct ThinSvd {
   DenseMatrix U, Vt;
   std::vector<double> s;

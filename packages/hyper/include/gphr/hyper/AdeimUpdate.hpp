@@ -67,8 +67,8 @@ AdeimUpdate computeAdeimUpdate(const CoefficientFactor& factor, const DenseMatri
 // StU += a b^T (the rows S of U_{j+1}).
 void applyAdeimUpdate(const AdeimUpdate& update, DenseMatrix& StU);
 
-// The DEIM coefficients C = (P^T U)^{-1} P^T F (LAPACK GESV). InputError naming the pivot when
-// P^T U is singular.
+// The DEIM coefficients C = (P^T U)^{-1} P^T F (LAPACK GETRF + GETRI, then one GEMM). InputError
+// naming the pivot when P^T U is singular.
 DenseMatrix deimCoefficients(const DenseMatrix& PtU, const DenseMatrix& PtF);
 
 }  // namespace gphr
