@@ -1,5 +1,6 @@
 #include "gphr/hyper/AdeimUpdate.hpp"
 
+#include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_LAPACK.hpp>
 #include <algorithm>
 #include <cmath>
@@ -173,36 +174,85 @@ AdeimUpdate computeAdeimUpdate(const DenseMatrix& PtU, const DenseMatrix& PtF, c
 
 AdeimUpdate computeAdeimUpdate(const CoefficientFactor& cf, const DenseMatrix& StU, const DenseMatrix& StF,
                                const AdeimUpdateOptions& opt) {
-  const int m = cf.C.numRows(), ms = StU.numRows(), wbar = cf.C.numCols();
-  GPHR_REQUIRE(StU.numCols() == m && StF.numRows() == ms && StF.numCols() == wbar, InputError,
-               "GP-ADEIM update: S^T U is ", ms, " x ", StU.numCols(), ", S^T F ", StF.numRows(), " x ", StF.numCols(),
-               " (need m_s x m and m_s x wbar with m = ", m, ", wbar = ", wbar, ")");
+  SampledRowShare all;
+  all.numRows = StU.numRows();
+  all.positions.resize(all.numRows);
+  for (int i = 0; i < all.numRows; ++i) all.positions[i] = i;
+  return computeAdeimUpdate(cf, StU, StF, opt, all);
+}
+
+namespace {
+void sumAll(const SampledRowShare& share, std::vector<double>& buf) {
+  if (share.comm.is_null() || share.comm->getSize() == 1 || buf.empty()) return;
+  std::vector<double> in(buf);
+  Teuchos::reduceAll(*share.comm, Teuchos::REDUCE_SUM, static_cast<int>(buf.size()), in.data(), buf.data());
+}
+
+// Rows of a replicated m_s x cols matrix scattered from this rank's rows (zero elsewhere) into buf
+// at offset, column-major: the sum over ranks assembles it (each row comes from one rank).
+void scatterOwnRows(const DenseMatrix& own, const SampledRowShare& share, std::vector<double>& buf, size_t offset) {
+  for (int c = 0; c < own.numCols(); ++c)
+    for (int i = 0; i < own.numRows(); ++i)
+      buf[offset + static_cast<size_t>(c) * share.numRows + share.positions[i]] = own(i, c);
+}
+
+DenseMatrix columnMajor(const std::vector<double>& buf, size_t offset, int rows, int cols) {
+  DenseMatrix M(rows, cols);
+  for (int c = 0; c < cols; ++c)
+    for (int i = 0; i < rows; ++i) M(i, c) = buf[offset + static_cast<size_t>(c) * rows + i];
+  return M;
+}
+}  // namespace
+
+// Each rank forms S^T R on its rows, X = S^T U C - S^T F, and M = X Q_1; one sum-reduction
+// assembles M (and, after a cut, X C^T for the tau_r test) with the norms and a non-finite flag,
+// so every rank then runs the same small dense algebra and throws (or not) together.
+AdeimUpdate computeAdeimUpdate(const CoefficientFactor& cf, const DenseMatrix& StU, const DenseMatrix& StF,
+                               const AdeimUpdateOptions& opt, const SampledRowShare& share) {
+  const int m = cf.C.numRows(), own = StU.numRows(), ms = share.numRows, wbar = cf.C.numCols(), rc = cf.rank();
+  GPHR_REQUIRE(StU.numCols() == m && StF.numRows() == own && StF.numCols() == wbar &&
+                   static_cast<int>(share.positions.size()) == own && own <= ms,
+               InputError, "GP-ADEIM update: S^T U is ", own, " x ", StU.numCols(), ", S^T F ", StF.numRows(), " x ",
+               StF.numCols(), " for ", share.positions.size(), " of ", ms,
+               " sampling rows (need own x m and own x wbar with m = ", m, ", wbar = ", wbar, ")");
   GPHR_REQUIRE(opt.rank >= 0 && opt.rankTol >= 0.0, InputError, "GP-ADEIM update: rank ", opt.rank, ", rankTol ",
                opt.rankTol, " (need non-negative values)");
-  GPHR_REQUIRE(allFinite(StF) && allFinite(StU), InputError,
-               "GP-ADEIM update: non-finite entries in the snapshot window or the DEIM basis rows");
+  for (int p : share.positions)
+    GPHR_REQUIRE(p >= 0 && p < ms, InputError, "GP-ADEIM update: sampling row position ", p, " outside 0 .. ", ms - 1);
   AdeimUpdate up;
   up.C = cf.C;
-  DenseMatrix X = product(NO_TRANS, NO_TRANS, StU, up.C);  // S^T R = S^T U C - S^T F
-  const double fitted = X.normFrobenius();
+  DenseMatrix X = product(NO_TRANS, NO_TRANS, StU, up.C);  // S^T R = S^T U C - S^T F (own rows)
+  const double fitted2 = std::pow(X.normFrobenius(), 2);
   X -= StF;
-  up.residualBefore = up.residualAfter = X.normFrobenius();
+  const size_t mSize = static_cast<size_t>(ms) * rc, xcSize = cf.cut ? static_cast<size_t>(ms) * m : 0;
+  std::vector<double> buf(mSize + xcSize + 4, 0.0);
+  if (rc > 0) scatterOwnRows(product(NO_TRANS, NO_TRANS, X, cf.Q), share, buf, 0);
+  if (cf.cut) scatterOwnRows(product(NO_TRANS, TRANS, X, up.C), share, buf, mSize);
+  double* tail = buf.data() + mSize + xcSize;
+  tail[0] = fitted2;
+  tail[1] = std::pow(StF.normFrobenius(), 2);
+  tail[2] = std::pow(X.normFrobenius(), 2);
+  tail[3] = allFinite(StF) && allFinite(StU) ? 0.0 : 1.0;
+  sumAll(share, buf);
+  tail = buf.data() + mSize + xcSize;
+  GPHR_REQUIRE(tail[3] == 0.0, InputError,
+               "GP-ADEIM update: non-finite entries in the snapshot window or the DEIM basis rows");
+  up.residualBefore = up.residualAfter = std::sqrt(tail[2]);
   up.a.shape(ms, 0);
   up.b.shape(m, 0);
   // A residual at the round-off level of its own subtraction is zero: no update (U unchanged).
-  const double roundoff = 100.0 * std::numeric_limits<double>::epsilon() * (fitted + StF.normFrobenius());
+  const double roundoff = 100.0 * std::numeric_limits<double>::epsilon() * (std::sqrt(tail[0]) + std::sqrt(tail[1]));
   if (up.residualBefore <= roundoff) return up;
-  up.coefficientRank = cf.rank();
-  const int rc = cf.rank();
+  up.coefficientRank = rc;
   if (rc == 0) return up;
-  const DenseMatrix M = product(NO_TRANS, NO_TRANS, X, cf.Q);
+  const DenseMatrix M = columnMajor(buf, 0, ms, rc);
   const ThinSvd ms_ = rightSvd(M);
   const int rbar = countAbove(ms_.s, std::max(ms, rc) * std::numeric_limits<double>::epsilon());
   for (int i = 0; i < rbar; ++i) up.eigenvalues.push_back(ms_.s[i] * ms_.s[i]);
   // The tau_r test on S^T R C^T: with nothing cut, C^T = Q_1 T and M = U_M Sigma_M V_M^T, so
   // S^T R C^T = M T = U_M (Sigma_M V_M^T T) has the singular values of the small
   // min(m_s, r_C) x m matrix Sigma_M V_M^T T (no product over wbar, no SVD of m_s rows);
-  // after a cut, the product itself.
+  // after a cut, the product itself (assembled above).
   int r = rbar;
   if (opt.rank > 0) {
     r = std::min(opt.rank, rbar);
@@ -215,7 +265,7 @@ AdeimUpdate computeAdeimUpdate(const CoefficientFactor& cf, const DenseMatrix& S
         for (int i = 0; i < k; ++i) SV(i, l) = ms_.s[i] * ms_.Vt(i, l);
       XCt = product(NO_TRANS, NO_TRANS, SV, cf.T);
     } else {
-      XCt = product(NO_TRANS, TRANS, X, up.C);
+      XCt = columnMajor(buf, mSize, ms, m);
     }
     r = std::min(countAbove(thinSvd(XCt, false).s, opt.rankTol), rbar);
   }
@@ -229,11 +279,29 @@ AdeimUpdate computeAdeimUpdate(const CoefficientFactor& cf, const DenseMatrix& S
   up.b = product(NO_TRANS, NO_TRANS, cf.Tinv, W);
   up.a.shape(ms, r);
   up.a.multiply(NO_TRANS, NO_TRANS, -1.0, M, W, 0.0);
-  const DenseMatrix g = product(TRANS, NO_TRANS, up.C, up.b);  // wbar x r: C^T b_i, formed for the check
-  // ||S^T R + a b^T C||_F, evaluated (eq:update_error states it equals before^2 - sum lambda_i).
-  X.multiply(NO_TRANS, TRANS, 1.0, up.a, g, 1.0);
-  up.residualAfter = X.normFrobenius();
+  // ||S^T R + a b^T C||_F, evaluated on the own rows (eq:update_error states it equals
+  // before^2 - sum lambda_i); g = C^T b_i is formed for this check only.
+  const DenseMatrix g = product(TRANS, NO_TRANS, up.C, up.b);  // wbar x r
+  DenseMatrix aOwn(own, r);
+  for (int c = 0; c < r; ++c)
+    for (int i = 0; i < own; ++i) aOwn(i, c) = up.a(share.positions[i], c);
+  X.multiply(NO_TRANS, TRANS, 1.0, aOwn, g, 1.0);
+  std::vector<double> after{std::pow(X.normFrobenius(), 2)};
+  sumAll(share, after);
+  up.residualAfter = std::sqrt(after[0]);
   return up;
+}
+
+void applyAdeimUpdate(const AdeimUpdate& up, const SampledRowShare& share, DenseMatrix& StU) {
+  GPHR_REQUIRE(static_cast<int>(share.positions.size()) == StU.numRows() && StU.numCols() == up.b.numRows() &&
+                   share.numRows == up.a.numRows(),
+               InputError, "GP-ADEIM update: ", StU.numRows(), " x ", StU.numCols(), " own rows of S^T U for ",
+               share.positions.size(), " positions, the update ", up.a.numRows(), " x ", up.b.numRows());
+  if (up.rank == 0) return;
+  DenseMatrix aOwn(StU.numRows(), up.rank);
+  for (int c = 0; c < up.rank; ++c)
+    for (int i = 0; i < StU.numRows(); ++i) aOwn(i, c) = up.a(share.positions[i], c);
+  StU.multiply(NO_TRANS, TRANS, 1.0, aOwn, up.b, 1.0);
 }
 
 void applyAdeimUpdate(const AdeimUpdate& up, DenseMatrix& StU) {

@@ -143,6 +143,9 @@ GpAdeimModel::GpAdeimModel(RCP<const HamiltonianSystem> system, RCP<const MultiV
       U_(U),
       m_(static_cast<int>(U->getNumVectors())),
       opt_(std::move(options)) {
+  // The resampling scores and the update read U's and F_j's own rows by the same local index.
+  GPHR_REQUIRE(U_->getMap()->isSameAs(*system_->nonlinearTerm().rowMap()), InputError,
+               "GP-ADEIM: the DEIM basis is not distributed like the rows of the nonlinear term G");
   P_ = rows().sample().rows;
   Arows_ = rcp(new LocalRows(*A_));
   owned_ = rcp(new ReducedRowKernel(system_->nonlinearTermPtr(), ownedRowSample(*system_, *A_), Teuchos::null));
@@ -220,26 +223,47 @@ bool GpAdeimModel::afterStep(long step, const DenseVector& z) {
   return up.rank > 0;
 }
 
-// alg:basis_adapt lines 4-9 at the sampling rows: S^T F_j, S^T U_j, the rank-r update, and
-// S^T U_{j+1} written into each rank's own rows of U.
+// alg:basis_adapt lines 4-9 at the sampling rows, each rank on its own rows of S: S^T F_j,
+// S^T U_j, the rank-r update (computeAdeimUpdate assembles the small m_s x r_C product it
+// factors) and S^T U_{j+1} written back into U. Nothing of S is gathered. Collective.
 AdeimUpdate GpAdeimModel::updateSampledRows(const CoefficientFactor& cf, int wbar, std::vector<double>& F) {
   Teuchos::TimeMonitor tm(phase("rank-r update"));
-  if (ownedFValid_) {  // resampled at this update: S^T F_j are rows of F_j on the ranks' own rows
-    Teuchos::TimeMonitor rows(phase("rank-r update: S^T F from own rows"));
-    F = gatherRows(*system_->nonlinearTerm().rowMap(), ownedF_, wbar, S_);
-  } else {
-    windowSnapshots(samplingKernel(), F);
+  const Map& map = *U_->getMap();
+  SampledRowShare share;
+  share.comm = map.getComm();
+  share.numRows = static_cast<int>(S_.size());
+  std::vector<LO> local;  // U's local row of each own sampling row
+  for (int i = 0; i < share.numRows; ++i) {
+    const LO l = map.getLocalElement(S_[i]);
+    if (l == Teuchos::OrdinalTraits<LO>::invalid()) continue;
+    share.positions.push_back(i);
+    local.push_back(l);
   }
-  const DenseMatrix StF = toDense(F, static_cast<int>(S_.size()), wbar);
-  DenseMatrix StU = toDense(gatherRows(*U_, S_), static_cast<int>(S_.size()), m_);
+  const int own = static_cast<int>(local.size());
+  DenseMatrix StF(own, wbar), StU(own, m_);
+  if (ownedFValid_) {  // resampled at this update: F_j on the own rows is at hand (U's local order)
+    for (int i = 0; i < own; ++i)
+      for (int c = 0; c < wbar; ++c) StF(i, c) = ownedF_[static_cast<size_t>(local[i]) * wbar + c];
+  } else {  // the sample mesh of S (replicated rows, in S's order)
+    windowSnapshots(samplingKernel(), F);
+    for (int i = 0; i < own; ++i)
+      for (int c = 0; c < wbar; ++c) StF(i, c) = F[static_cast<size_t>(share.positions[i]) * wbar + c];
+  }
+  {
+    auto u = U_->getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (int c = 0; c < m_; ++c)
+      for (int i = 0; i < own; ++i) StU(i, c) = u(local[i], c);
+  }
   AdeimUpdate up;
   {
     Teuchos::TimeMonitor dense(phase("rank-r update: dense algebra"));
-    up = computeAdeimUpdate(cf, StU, StF, opt_.update);
+    up = computeAdeimUpdate(cf, StU, StF, opt_.update, share);
   }
   if (up.rank > 0) {
-    applyAdeimUpdate(up, StU);
-    writeSampledRows(StU);
+    applyAdeimUpdate(up, share, StU);
+    auto u = U_->getLocalViewHost(Tpetra::Access::ReadWrite);
+    for (int c = 0; c < m_; ++c)
+      for (int i = 0; i < own; ++i) u(local[i], c) = StU(i, c);
   }
   return up;
 }
@@ -307,16 +331,6 @@ double GpAdeimModel::fullResidual(const DenseMatrix& C) {
   for (double v : norms) local += v * v;
   Teuchos::reduceAll(*U_->getMap()->getComm(), Teuchos::REDUCE_SUM, 1, &local, &global);
   return std::sqrt(global);
-}
-
-void GpAdeimModel::writeSampledRows(const DenseMatrix& StU) {
-  const Map& map = *U_->getMap();
-  auto u = U_->getLocalViewHost(Tpetra::Access::ReadWrite);
-  for (size_t i = 0; i < S_.size(); ++i) {
-    const LO l = map.getLocalElement(S_[i]);
-    if (l == Teuchos::OrdinalTraits<LO>::invalid()) continue;
-    for (int c = 0; c < m_; ++c) u(l, c) = StU(static_cast<int>(i), c);
-  }
 }
 
 // P_{j+1} (alg:SP-ADEIM line 11): greedy DEIM or QDEIM from U_{j+1}, or Peher15's partial update

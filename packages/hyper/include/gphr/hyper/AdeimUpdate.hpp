@@ -9,6 +9,8 @@
 //   b_i: eigenvectors of  C (S^T R)^T (S^T R) C^T v = lambda C C^T v  for the r largest lambda  eq:gen_eval
 //   a_i = -S^T R C^T b_i / ||C^T b_i||^2                            eq:ai_from_bi
 //   S^T U_{j+1} = S^T U_j + a b^T,  the other rows unchanged       eq:Uupdate, eq:Scheck
+#include <Teuchos_Comm.hpp>
+#include <Teuchos_RCP.hpp>
 #include <vector>
 
 #include "gphr/timeint/DenseBackend.hpp"
@@ -64,8 +66,26 @@ AdeimUpdate computeAdeimUpdate(const DenseMatrix& PtU, const DenseMatrix& PtF, c
 AdeimUpdate computeAdeimUpdate(const CoefficientFactor& factor, const DenseMatrix& StU, const DenseMatrix& StF,
                                const AdeimUpdateOptions& options);
 
+// This rank's share of the sampling rows S when the update runs on distributed rows: row i of the
+// local S^T U and S^T F is row positions[i] of S (of numRows), and every row of S is on exactly
+// one rank. comm null (or one rank): every row is here.
+struct SampledRowShare {
+  Teuchos::RCP<const Teuchos::Comm<int>> comm;
+  std::vector<int> positions;
+  int numRows = 0;
+};
+
+// The same update with S^T U and S^T F distributed by rows (each rank passes its own rows): the
+// products of m_s rows (S^T R, M = S^T R Q_1 and the residual check) run on each rank's rows, and
+// one sum-reduction assembles the small M (m_s x r_C) everywhere, so the result (a replicated) is
+// the serial one to round-off on any rank count. Collective over share.comm.
+AdeimUpdate computeAdeimUpdate(const CoefficientFactor& factor, const DenseMatrix& StUown, const DenseMatrix& StFown,
+                               const AdeimUpdateOptions& options, const SampledRowShare& share);
+
 // StU += a b^T (the rows S of U_{j+1}).
 void applyAdeimUpdate(const AdeimUpdate& update, DenseMatrix& StU);
+// The same on this rank's rows of S (share as in computeAdeimUpdate).
+void applyAdeimUpdate(const AdeimUpdate& update, const SampledRowShare& share, DenseMatrix& StUown);
 
 // The DEIM coefficients C = (P^T U)^{-1} P^T F (LAPACK GETRF + GETRI, then one GEMM). InputError
 // naming the pivot when P^T U is singular.

@@ -88,7 +88,6 @@ class GpAdeimModel final : public ReducedHamiltonian {
   double moveInterpolationRows(const std::vector<double>& rotation);  // returns cond(P^T U)
   std::vector<double> columnRotations(const AdeimUpdate& up) const;  // ||(U_{j+1} - U_j) e_i|| / ||U_{j+1} e_i||
   void orthonormalizeBasis();
-  void writeSampledRows(const DenseMatrix& StU);
 
   RCP<const HamiltonianSystem> system_;
   RCP<const MultiVector> A_;
