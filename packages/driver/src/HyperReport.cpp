@@ -71,7 +71,7 @@ void writeAdeimUpdates(const FomResult& fom, const std::vector<ModelRun>& runs, 
   std::ofstream os(csv);
   os.precision(10);
   os << "run,k,m,update,step,t,rank,coefficient_rank,m_s,resampled,sampled_residual_before,sampled_residual_after,"
-        "full_residual,cond_PtU,update_s,dH_total,eps_fom,eps_hr,deim_end,deim_start,bound\n";
+        "full_residual,cond1_PtU,update_s,dH_total,eps_fom,eps_hr,deim_end,deim_start,bound\n";
   for (const auto& r : runs) {
     if (r.method != "gp-adeim" || r.modelHamiltonian.empty()) continue;
     const double H0 = fom.hamiltonian.front();

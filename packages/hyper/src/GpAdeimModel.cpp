@@ -112,7 +112,7 @@ RCP<ReducedRowKernel> interpolationKernel(const HamiltonianSystem& system, const
   DeimWeights w;
   {
     Teuchos::TimeMonitor tm(phase("indices: weights"));
-    w = computeDeimWeights(U, P, *system.nonlinearTerm().weights());
+    w = computeDeimWeights(U, P, *system.nonlinearTerm().weights(), true);
   }
   if (cond) *cond = w.conditionNumber;
   Teuchos::TimeMonitor tm(phase("indices: sample mesh of P"));

@@ -253,7 +253,8 @@ std::vector<GO> selectDeimIndices(const MultiVector& U, int m, const std::string
   return qdeim(U, m);
 }
 
-DeimWeights computeDeimWeights(const MultiVector& U, const std::vector<GO>& indices, const Vector& v) {
+DeimWeights computeDeimWeights(const MultiVector& U, const std::vector<GO>& indices, const Vector& v,
+                               bool estimateCondition) {
   const int m = static_cast<int>(indices.size()), nc = static_cast<int>(U.getNumVectors());
   GPHR_REQUIRE(m >= 1 && m <= nc, InputError, "DEIM weights: ", m, " indices for a basis of ", nc, " columns");
   auto local = rcp(new Map(nc, 0, U.getMap()->getComm(), Tpetra::LocallyReplicated));
@@ -262,11 +263,26 @@ DeimWeights computeDeimWeights(const MultiVector& U, const std::vector<GO>& indi
   const std::vector<double> rows = gatherRows(U, indices);  // (P^T U)(i, j) = rows[i * nc + j]
   std::vector<double> B = pointRows(rows, m, nc);
   DeimWeights out;
-  out.conditionNumber = conditionNumber(B, m);
+  Lapack lapack;
+  double norm1 = 0.0;  // ||B||_1, the max column sum (Teuchos::LAPACK does not wrap LANGE)
+  for (int j = 0; j < m; ++j) {
+    double col = 0.0;
+    for (int i = 0; i < m; ++i) col += std::abs(B[i + static_cast<size_t>(m) * j]);
+    norm1 = std::max(norm1, col);
+  }
+  if (!estimateCondition) out.conditionNumber = conditionNumber(B, m);
   out.weights.resize(m);
   auto c = Utv.getLocalViewHost(Tpetra::Access::ReadOnly);
   for (int j = 0; j < m; ++j) out.weights[j] = c(j, 0);
-  luSolve(B, m, out.weights, 'T', "DEIM weights");  // (P^T U)^T x = U^T v
+  luSolve(B, m, out.weights, 'T', "DEIM weights");  // (P^T U)^T x = U^T v; B now holds the LU
+  if (estimateCondition) {
+    double rcond = 0.0;
+    std::vector<double> work(4 * m);
+    std::vector<int> iwork(m);
+    int info = 0;
+    lapack.GECON('1', m, B.data(), m, norm1, &rcond, work.data(), iwork.data(), &info);
+    out.conditionNumber = rcond > 0.0 ? 1.0 / rcond : std::numeric_limits<double>::infinity();
+  }
   return out;
 }
 

@@ -53,7 +53,7 @@ struct AdeimUpdateRecord {
   double sampledBefore = 0.0; // ||S^T R_j||_F
   double sampledAfter = 0.0;  // ||S^T (U_{j+1} C_j - F_j)||_F
   double fullResidual = -1.0; // ||U_{j+1} C_j - F_j||_F over all d rows (fig:schro_samplingstrats); -1: not computed
-  double condPtU = 0.0;       // cond_2(P_{j+1}^T U_{j+1}) of the new pair
+  double condPtU = 0.0;       // cond_1(P_{j+1}^T U_{j+1}) of the new pair, LAPACK GECON estimate
   double hrBefore = 0.0;      // H_hr^j(z^{ell_{j+1}})   (the local model ending here)
   double hrAfter = 0.0;       // H_hr^{j+1}(z^{ell_{j+1}})
   double seconds = 0.0;       // wall time of this adaptation
