@@ -106,6 +106,22 @@ bool ReducedHamiltonian::averagedGradient(const DenseVector& z0, const DenseVect
   return true;
 }
 
+bool ReducedHamiltonian::addAveragedHessian(const DenseVector& z0, const DenseVector& z1, const QuadratureRule& rule,
+                                            double scale, DenseMatrix& H) {
+  const int n = dim();
+  GPHR_REQUIRE(z0.length() == n && z1.length() == n && H.numRows() == n && H.numCols() == n, InputError,
+               "reduced Hamiltonian: averaged Hessian of ", z0.length(), "- and ", z1.length(), "-vectors into a ",
+               H.numRows(), " x ", H.numCols(), " matrix (need ", n, ")");
+  std::vector<double> coef(rule.size());
+  double csum = 0.0;
+  for (int q = 0; q < rule.size(); ++q) csum += coef[q] = rule.weights[q] * rule.nodes[q];
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) H(i, j) += scale * csum * linear_.L(i, j);
+  rows_->addAveragedHessian(z0, z1, rule.nodes, coef, H, scale);
+  haveLast_ = false;  // the kernel now holds the last node's evaluation
+  return true;
+}
+
 void ReducedHamiltonian::addHessian(const DenseVector& z, double scale, DenseMatrix& H) {
   evaluateAt(z);
   for (int j = 0; j < dim(); ++j)

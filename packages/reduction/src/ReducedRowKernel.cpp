@@ -35,6 +35,7 @@ ReducedRowKernel::ReducedRowKernel(RCP<const NonlinearTerm> term, RowSample samp
   v0_ = HostView1("gphr::v0", M);
   v1_ = HostView1("gphr::v1", M);
   uSum_ = HostView1("gphr::uSum", M);
+  hessSum_ = HostView1("gphr::hessSum", batch_.hess.extent(0));
   w_ = HostView1("gphr::w", nr);
   gRef_ = HostView1("gphr::gRef", nr);
   entryRow_ = IndexView("gphr::entryRow", M);
@@ -101,12 +102,12 @@ void ReducedRowKernel::weightedGradients() const {
       KOKKOS_LAMBDA(const size_t j) { u(j) = w(row(j)) * grad(j); });
 }
 
-void ReducedRowKernel::weightedHessianBlocks() const {
+void ReducedRowKernel::weightedHessianBlocks(const HostView1& hessians) const {
   // W rows of row i: w_i Hess G_i A_Si (s x r), one row of G per Kokkos index.
   const int r = reducedDim();
   const auto AS = AS_;
   const auto W = W_;
-  const auto hess = batch_.hess;
+  const auto hess = hessians;
   const auto off = batch_.offsets;
   const auto hoff = batch_.hessOffsets;
   const auto w = w_;
@@ -132,7 +133,7 @@ void ReducedRowKernel::entryGradients(const std::vector<int>& entrySlot, int num
 }
 
 void ReducedRowKernel::entryHessianRows(const std::vector<int>& entrySlot, int numSlots, Scalar* out) const {
-  weightedHessianBlocks();
+  weightedHessianBlocks(batch_.hess);
   const int r = reducedDim();
   std::fill(out, out + static_cast<size_t>(numSlots) * r, 0.0);
   for (size_t j = 0; j < entrySlot.size(); ++j)
@@ -164,19 +165,22 @@ void ReducedRowKernel::stencilValues(const DenseVector& z, HostView1 out) const 
   if (numStencilEntries() > 0) KokkosBlas::gemv("T", 1.0, basisT(), ConstVec(z.values(), reducedDim()), 0.0, out);
 }
 
+void ReducedRowKernel::setZ0(const DenseVector& z0) {
+  bool sameZ0 = haveZ0_;
+  for (int i = 0; i < z0.length() && sameZ0; ++i) sameZ0 = z0(i) == z0_(i);
+  if (sameZ0) return;
+  stencilValues(z0, v0_);
+  if (z0_.length() != z0.length()) z0_.size(z0.length());
+  z0_.assign(z0);
+  haveZ0_ = true;
+}
+
 void ReducedRowKernel::addAveragedGradient(const DenseVector& z0, const DenseVector& z1,
                                            const std::vector<double>& nodes, const std::vector<double>& weights,
                                            DenseVector& g, double scale) {
   GPHR_REQUIRE(nodes.size() == weights.size() && !nodes.empty(), InputError, "reduced row kernel: ", nodes.size(),
                " quadrature nodes and ", weights.size(), " weights");
-  bool sameZ0 = haveZ0_;
-  for (int i = 0; i < z0.length() && sameZ0; ++i) sameZ0 = z0(i) == z0_(i);
-  if (!sameZ0) {
-    stencilValues(z0, v0_);
-    if (z0_.length() != z0.length()) z0_.size(z0.length());
-    z0_.assign(z0);
-    haveZ0_ = true;
-  }
+  setZ0(z0);
   stencilValues(z1, v1_);
   const size_t M = numStencilEntries();
   const auto v0 = v0_, v1 = v1_, yref = yref_, values = batch_.values, uSum = uSum_, grad = batch_.grad, w = w_;
@@ -198,10 +202,40 @@ void ReducedRowKernel::addAveragedGradient(const DenseVector& z0, const DenseVec
   reduceToGradient(uSum_, g, scale);
 }
 
+void ReducedRowKernel::addAveragedHessian(const DenseVector& z0, const DenseVector& z1,
+                                          const std::vector<double>& nodes, const std::vector<double>& coefficients,
+                                          DenseMatrix& H, double scale) {
+  GPHR_REQUIRE(nodes.size() == coefficients.size() && !nodes.empty(), InputError, "reduced row kernel: ",
+               nodes.size(), " quadrature nodes and ", coefficients.size(), " coefficients");
+  GPHR_REQUIRE(batch_.hess.extent(0) > 0 || numRows() == 0, InputError,
+               "reduced row kernel: averaged Hessian without Hessian storage");
+  setZ0(z0);
+  stencilValues(z1, v1_);
+  const size_t M = numStencilEntries(), Mh = hessSum_.extent(0);
+  const auto v0 = v0_, v1 = v1_, yref = yref_, values = batch_.values, hess = batch_.hess, hessSum = hessSum_;
+  for (size_t q = 0; q < nodes.size(); ++q) {
+    const double s = nodes[q], c = coefficients[q];
+    Kokkos::parallel_for(
+        "gphr::nodeValues", Kokkos::RangePolicy<ExecSpace>(0, M),
+        KOKKOS_LAMBDA(const size_t j) { values(j) = yref(j) + (1.0 - s) * v0(j) + s * v1(j); });
+    term_->evaluate(batch_);
+    const bool first = q == 0;
+    Kokkos::parallel_for(
+        "gphr::nodeHessianSum", Kokkos::RangePolicy<ExecSpace>(0, Mh),
+        KOKKOS_LAMBDA(const size_t j) { hessSum(j) = (first ? 0.0 : hessSum(j)) + c * hess(j); });
+  }
+  weightedHessianBlocks(hessSum_);
+  addBlockProduct(H, scale);
+}
+
 void ReducedRowKernel::addHessian(DenseMatrix& H, double scale) const {
+  weightedHessianBlocks(batch_.hess);
+  addBlockProduct(H, scale);
+}
+
+void ReducedRowKernel::addBlockProduct(DenseMatrix& H, double scale) const {
   const int r = reducedDim();
   const size_t M = numStencilEntries();
-  weightedHessianBlocks();
   // A_S^T W: both row-major M x r, i.e. column-major r x M: (A_S^T)(W^T)^T.
   std::fill(hessBuf_.begin(), hessBuf_.end(), 0.0);
   if (M > 0)

@@ -257,6 +257,33 @@ TEST_P(RomDerivatives, AveragedGradientEqualsNodeByNodeSum) {
   }
 }
 
+// The averaged Hessian term of the Newton matrix, scale sum_q w_q s_q Hess H_r(z_q), that the
+// time scheme takes from the model at once (L_r added once, the nodes' Hessian blocks summed
+// before one A_S^T W product) equals the node-by-node sum of addHessian. Round-off again, so
+// 1e-12 relative; the z0 moves are those of AveragedGradientEqualsNodeByNodeSum, and the
+// averaged gradient is interleaved so that the kernel's cached A_S z0 is shared by both.
+TEST_P(RomDerivatives, AveragedHessianEqualsNodeByNodeSum) {
+  const int dim = rom_->dim();
+  DenseVector z1 = z_, z0b = z_, gbar(dim), zq(dim);
+  z1 += genericDense(dim, 0.05 * z_.normFrobenius(), 7);
+  z0b += genericDense(dim, 0.05 * z_.normFrobenius(), 8);
+  const double scale = -0.01;
+  for (int points : {1, 2, 3}) {
+    const QuadratureRule rule = gaussLegendre(points);
+    for (const auto& [z0, zz1] : {std::pair{z_, z1}, std::pair{z_, z0b}, std::pair{z0b, z1}}) {
+      DenseMatrix H(dim, dim), ref(dim, dim);
+      ASSERT_TRUE(rom_->averagedGradient(z0, zz1, rule, gbar));
+      ASSERT_TRUE(rom_->addAveragedHessian(z0, zz1, rule, scale, H));
+      for (int q = 0; q < rule.size(); ++q) {
+        DenseBackend::update(zq, 1.0 - rule.nodes[q], z0, rule.nodes[q], zz1, 0.0);
+        rom_->addHessian(zq, scale * rule.weights[q] * rule.nodes[q], ref);
+      }
+      ref -= H;
+      EXPECT_LE(ref.normFrobenius(), 1e-12 * H.normFrobenius()) << c_.name << ", " << points << " nodes";
+    }
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Scenes, RomDerivatives, ::testing::Range(0, 4));
 
 }  // namespace

@@ -30,6 +30,10 @@ class ReducedHamiltonian : public DenseHamiltonian {
   // average point: one L_r product per Newton iteration), plus the rows' averaged gradient.
   bool averagedGradient(const DenseVector& z0, const DenseVector& z1, const QuadratureRule& rule,
                         DenseVector& gbar) override;
+  // H += scale sum_q c_q Hess H(z_q), c_q = w_q s_q: (scale sum_q c_q) L_r once, plus the rows'
+  // averaged Hessian (one A_S^T W product for all nodes).
+  bool addAveragedHessian(const DenseVector& z0, const DenseVector& z1, const QuadratureRule& rule, double scale,
+                          DenseMatrix& H) override;
 
   const ReducedLinearPart& linearPart() const { return linear_; }
   const ReducedRowKernel& rows() const { return *rows_; }

@@ -61,6 +61,13 @@ class ReducedRowKernel {
   void addAveragedGradient(const DenseVector& z0, const DenseVector& z1, const std::vector<double>& nodes,
                            const std::vector<double>& weights, DenseVector& g, double scale);
   void addHessian(DenseMatrix& H, double scale) const;           // H += scale * Hessian
+  // H += scale * sum_q c_q Hessian((1 - s_q) z0 + s_q z1): the time scheme's Newton matrix term
+  // (nodes s_q, coefficients c_q = w_q s_q). The Hessian is sum_i A_Si^T D_i A_Si with the same
+  // basis rows at every node, so the nodes' weighted blocks c_q w_i Hess G_i are summed first and
+  // the O(M (2k)^2) product A_S^T W is formed once instead of once per node. Leaves the kernel
+  // evaluated at the last node.
+  void addAveragedHessian(const DenseVector& z0, const DenseVector& z1, const std::vector<double>& nodes,
+                          const std::vector<double>& coefficients, DenseMatrix& H, double scale);
   // After evaluate(z, true, ...): rows of J_G(y) A of this sample, row-major numRows() x 2k, row i
   // at out + i * ld (ld = 0: 2k; a larger ld writes into columns of a wider array).
   void reducedJacobian(Scalar* out, size_t ld = 0) const;
@@ -78,7 +85,9 @@ class ReducedRowKernel {
   void weightedGradients() const;      // u = w_i grad G_i per stencil entry
   void stencilValues(const DenseVector& z, HostView1 out) const;  // out = A_S z
   void reduceToGradient(const HostView1& u, DenseVector& g, double scale) const;  // g += scale A_S^T u (summed)
-  void weightedHessianBlocks() const;  // W = w_i Hess G_i A_Si per row
+  void weightedHessianBlocks(const HostView1& hess) const;  // W = w_i hess_i A_Si per row
+  void addBlockProduct(DenseMatrix& H, double scale) const;  // H += scale A_S^T W (summed over sumOver)
+  void setZ0(const DenseVector& z0);                         // v0_ = A_S z0 unless z0 is the cached one
   RCP<const NonlinearTerm> term_;
   RowSample sample_;
   RCP<const Comm> sumOver_;
@@ -86,6 +95,7 @@ class ReducedRowKernel {
   Rows2 AS_, W_;                       // stacked basis rows; w_i Hess G_i A_Si
   HostView1 yref_, u_, w_, gRef_;       // per entry: yref, w_i grad; per row: w_i, G_i(yref)
   HostView1 v0_, v1_, uSum_;            // per entry: A_S z0, A_S z1, sum_q w_q w_i grad (averaged gradient)
+  HostView1 hessSum_;                   // per row: sum_q c_q Hess G_i (averaged Hessian)
   DenseVector z0_;                      // the z0 of v0_
   bool haveZ0_ = false;
   IndexView entryRow_;                 // row of each stencil entry

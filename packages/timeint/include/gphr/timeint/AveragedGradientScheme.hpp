@@ -23,6 +23,8 @@
 //   void applyJ(const Vector& x, Vector& out);
 //   void beginNewtonMatrix();                            // M = I
 //   void addHessian(const Vector& y, double scale);     // M += scale J Hess H(y)
+//   bool addAveragedHessian(const Vector& y0, const Vector& y1, const QuadratureRule& rule, double scale);
+//                         // M += scale J sum_q w_q s_q Hess H(y_q) at once; false: the scheme loops over nodes
 //   void endNewtonMatrix();
 //   int solveNewton(const Vector& rhs, Vector& dx);      // M dx = rhs; returns linear iterations
 //   static void update(Vector& y, double a, const Vector& x, double b);  // y = a x + b y
@@ -115,10 +117,11 @@ class AveragedGradientScheme {
   // The backend's Newton matrix := K(y0, y1) = I - dt J sum_q w_q s_q Hess H(y0 + s_q (y1 - y0)).
   void assembleNewtonMatrix(const Vector& y0, const Vector& y1, double dt) {
     be_.beginNewtonMatrix();
-    for (int q = 0; q < rule_.size(); ++q) {
-      Backend::update(yq_, 1.0 - rule_.nodes[q], y0, rule_.nodes[q], y1, 0.0);
-      be_.addHessian(yq_, -dt * rule_.weights[q] * rule_.nodes[q]);
-    }
+    if (!be_.addAveragedHessian(y0, y1, rule_, -dt))
+      for (int q = 0; q < rule_.size(); ++q) {
+        Backend::update(yq_, 1.0 - rule_.nodes[q], y0, rule_.nodes[q], y1, 0.0);
+        be_.addHessian(yq_, -dt * rule_.weights[q] * rule_.nodes[q]);
+      }
     be_.endNewtonMatrix();
   }
 

@@ -31,6 +31,15 @@ class DenseHamiltonian {
     (void)z0, (void)z1, (void)rule, (void)gbar;
     return false;
   }
+  // H += scale * sum_q w_q s_q Hess H((1 - s_q) z0 + s_q z1), the scheme's Newton matrix term, at
+  // once, for a model that can do better than node by node (ReducedHamiltonian: one GEMM with the
+  // nodes' Hessian blocks summed instead of one per node). Returns false (the default) to let the
+  // scheme loop over the nodes with addHessian.
+  virtual bool addAveragedHessian(const DenseVector& z0, const DenseVector& z1, const QuadratureRule& rule,
+                                  double scale, DenseMatrix& H) {
+    (void)z0, (void)z1, (void)rule, (void)scale, (void)H;
+    return false;
+  }
 };
 
 // out = J_{2k} x: out_q = x_p, out_p = -x_q.
@@ -49,6 +58,9 @@ class DenseBackend {
   void applyJ(const Vector& x, Vector& out) { applyCanonicalJ(x, out); }
   void beginNewtonMatrix() { hbar_.putScalar(0.0); }
   void addHessian(const Vector& z, double scale) { model_.addHessian(z, scale, hbar_); }
+  bool addAveragedHessian(const Vector& z0, const Vector& z1, const QuadratureRule& rule, double scale) {
+    return model_.addAveragedHessian(z0, z1, rule, scale, hbar_);
+  }
   void endNewtonMatrix();  // K = I + J hbar (hbar holds -dt Hbar), then LU
   int solveNewton(const Vector& rhs, Vector& dx);
   // Newton matrices assembled and LU-factored so far (endNewtonMatrix() calls).

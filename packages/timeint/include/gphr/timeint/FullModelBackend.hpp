@@ -34,6 +34,7 @@ class FullModelBackend {
   void applyJ(const Vector& x, Vector& out) { system_->space().applyJ(x, out); }
   void beginNewtonMatrix();
   void addHessian(const Vector& y, double scale) { system_->addHessian(y, scale, *newtonMatrix_, true); }
+  bool addAveragedHessian(const Vector&, const Vector&, const QuadratureRule&, double) { return false; }  // by node
   void endNewtonMatrix();
   int solveNewton(const Vector& rhs, Vector& dx);
   // The Newton matrix (assembled in place), and whether the last endNewtonMatrix() was one at which
