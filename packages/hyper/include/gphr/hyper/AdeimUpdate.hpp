@@ -1,7 +1,8 @@
 #pragma once
 // The rank-r update of the DEIM basis of GP-ADEIM (paper Sec. 4.1, alg:basis_adapt), on small
-// replicated dense data: the rows P (interpolation, m) and S (sampling, m_s) of U_j and of the
-// reduced-Jacobian window F_j (d x wbar, wbar = 2k w). Nothing here is of size n or d.
+// dense data: the rows P (interpolation, m; replicated) and S (sampling, m_s; replicated, or
+// distributed by rows over the ranks) of U_j and of the reduced-Jacobian window F_j (d x wbar,
+// wbar = 2k w). Nothing here is of size n or d.
 //
 //   C_j = (P^T U_j)^{-1} P^T F_j                                   DEIM coefficients (m x wbar)
 //   S^T R_j = S^T U_j C_j - S^T F_j                                 residual at the sampling rows
