@@ -31,10 +31,10 @@ std::vector<double> residualRowNorms(const double* U, int ldU, const std::vector
   if (V) {
     DenseMatrix CV(m, len);
     CV.multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, C, *V, 0.0);
-    blas.GEMM(Teuchos::NO_TRANS, Teuchos::NO_TRANS, rows, len, m, 1.0, U, ldU, CV.values(), CV.stride(), 0.0,
+    blas.GEMM(Teuchos::NO_TRANS, Teuchos::NO_TRANS, rows, len, m, 1.0, U, ldU, CV.values(), CV.stride(), 0.0, X.data(),
+              rows);
+    blas.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, rows, len, wbar, -1.0, Fl.data(), wbar, V->values(), V->stride(), 1.0,
               X.data(), rows);
-    blas.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, rows, len, wbar, -1.0, Fl.data(), wbar, V->values(), V->stride(),
-              1.0, X.data(), rows);
   } else {
     blas.GEMM(Teuchos::NO_TRANS, Teuchos::NO_TRANS, rows, len, m, 1.0, U, ldU, C.values(), C.stride(), 0.0, X.data(),
               rows);

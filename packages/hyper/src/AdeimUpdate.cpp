@@ -128,8 +128,8 @@ CoefficientFactor factorCoefficients(const DenseMatrix& PtU, const DenseMatrix& 
   if (k > 0) {
     lapack.GEQP3(wbar, m, Ct.values(), Ct.stride(), jpvt.data(), tau.data(), work.data(), -1, nullptr, &info);
     work.resize(std::max<size_t>(1, static_cast<size_t>(work[0])));
-    lapack.GEQP3(wbar, m, Ct.values(), Ct.stride(), jpvt.data(), tau.data(), work.data(),
-                 static_cast<int>(work.size()), nullptr, &info);
+    lapack.GEQP3(wbar, m, Ct.values(), Ct.stride(), jpvt.data(), tau.data(), work.data(), static_cast<int>(work.size()),
+                 nullptr, &info);
     GPHR_REQUIRE(info == 0, SolverError, "GP-ADEIM: LAPACK GEQP3 of C^T (", wbar, " x ", m, ") failed, info = ", info);
     const double r11 = std::abs(Ct(0, 0));
     while (rc < k && std::abs(Ct(rc, rc)) > 0.0 && std::abs(Ct(rc, rc)) > tol * r11) ++rc;
@@ -149,8 +149,7 @@ CoefficientFactor factorCoefficients(const DenseMatrix& PtU, const DenseMatrix& 
       for (int l = 0; l < rc; ++l) f.Tinv(jpvt[i] - 1, l) = R11inv(i, l);
     lapack.ORGQR(wbar, rc, rc, Ct.values(), Ct.stride(), tau.data(), work.data(), -1, &info);
     work.resize(std::max<size_t>(work.size(), static_cast<size_t>(work[0])));
-    lapack.ORGQR(wbar, rc, rc, Ct.values(), Ct.stride(), tau.data(), work.data(), static_cast<int>(work.size()),
-                 &info);
+    lapack.ORGQR(wbar, rc, rc, Ct.values(), Ct.stride(), tau.data(), work.data(), static_cast<int>(work.size()), &info);
     GPHR_REQUIRE(info == 0, SolverError, "GP-ADEIM: LAPACK ORGQR failed, info = ", info);
   }
   f.Q.shape(wbar, rc);
@@ -184,7 +183,8 @@ namespace {
 // One rank's failure inside work that only some ranks do, re-thrown on every rank after the
 // reduction that would otherwise wait for it.
 void throwIfFailed(double failed, const std::string& what) {
-  GPHR_REQUIRE(failed == 0.0, SolverError, "GP-ADEIM update: ", what.empty() ? "a LAPACK call failed on another rank" : what);
+  GPHR_REQUIRE(failed == 0.0, SolverError,
+               "GP-ADEIM update: ", what.empty() ? "a LAPACK call failed on another rank" : what);
 }
 
 void sumAll(const SampledRowShare& share, std::vector<double>& buf) {
@@ -252,31 +252,40 @@ void splitSvds(const SampledRowShare& share, const DenseMatrix& R, const DenseMa
 AdeimUpdate computeAdeimUpdate(const CoefficientFactor& cf, const DenseMatrix& StU, const DenseMatrix& StF,
                                const AdeimUpdateOptions& opt, const SampledRowShare& share) {
   const int m = cf.C.numRows(), own = StU.numRows(), ms = share.numRows, wbar = cf.C.numCols(), rc = cf.rank();
-  GPHR_REQUIRE(StU.numCols() == m && StF.numRows() == own && StF.numCols() == wbar &&
-                   static_cast<int>(share.positions.size()) == own && own <= ms,
-               InputError, "GP-ADEIM update: S^T U is ", own, " x ", StU.numCols(), ", S^T F ", StF.numRows(), " x ",
-               StF.numCols(), " for ", share.positions.size(), " of ", ms,
-               " sampling rows (need own x m and own x wbar with m = ", m, ", wbar = ", wbar, ")");
   GPHR_REQUIRE(opt.rank >= 0 && opt.rankTol >= 0.0, InputError, "GP-ADEIM update: rank ", opt.rank, ", rankTol ",
                opt.rankTol, " (need non-negative values)");
-  for (int p : share.positions)
-    GPHR_REQUIRE(p >= 0 && p < ms, InputError, "GP-ADEIM update: sampling row position ", p, " outside 0 .. ", ms - 1);
+  // This rank's inputs are checked here but refused only after the reduction, on every rank
+  // together: a throw before it would leave the other ranks waiting.
+  bool shapeOk = StU.numCols() == m && StF.numRows() == own && StF.numCols() == wbar &&
+                 static_cast<int>(share.positions.size()) == own && own <= ms;
+  for (int p : share.positions) shapeOk = shapeOk && p >= 0 && p < ms;
+  const std::string shapeError =
+      shapeOk ? std::string()
+              : detail::concat("GP-ADEIM update: S^T U is ", own, " x ", StU.numCols(), ", S^T F ", StF.numRows(),
+                               " x ", StF.numCols(), " for ", share.positions.size(), " positions among ", ms,
+                               " sampling rows (need own x m and own x wbar with m = ", m, ", wbar = ", wbar,
+                               ", positions in 0 .. m_s - 1)");
   AdeimUpdate up;
   up.C = cf.C;
-  DenseMatrix X = product(NO_TRANS, NO_TRANS, StU, up.C);  // S^T R = S^T U C - S^T F (own rows)
-  const double fitted2 = std::pow(X.normFrobenius(), 2);
-  X -= StF;
   const size_t mSize = static_cast<size_t>(ms) * rc, xcSize = cf.cut ? static_cast<size_t>(ms) * m : 0;
-  std::vector<double> buf(mSize + xcSize + 4, 0.0);
-  if (rc > 0) scatterOwnRows(product(NO_TRANS, NO_TRANS, X, cf.Q), share, buf, 0);
-  if (cf.cut) scatterOwnRows(product(NO_TRANS, TRANS, X, up.C), share, buf, mSize);
+  std::vector<double> buf(mSize + xcSize + 5, 0.0);
   double* tail = buf.data() + mSize + xcSize;
-  tail[0] = fitted2;
-  tail[1] = std::pow(StF.normFrobenius(), 2);
-  tail[2] = std::pow(X.normFrobenius(), 2);
-  tail[3] = allFinite(StF) && allFinite(StU) ? 0.0 : 1.0;
+  DenseMatrix X;
+  if (shapeOk) {
+    X = product(NO_TRANS, NO_TRANS, StU, up.C);  // S^T R = S^T U C - S^T F (own rows)
+    tail[0] = std::pow(X.normFrobenius(), 2);
+    X -= StF;
+    if (rc > 0) scatterOwnRows(product(NO_TRANS, NO_TRANS, X, cf.Q), share, buf, 0);
+    if (cf.cut) scatterOwnRows(product(NO_TRANS, TRANS, X, up.C), share, buf, mSize);
+    tail[1] = std::pow(StF.normFrobenius(), 2);
+    tail[2] = std::pow(X.normFrobenius(), 2);
+    tail[3] = allFinite(StF) && allFinite(StU) ? 0.0 : 1.0;
+  }
+  tail[4] = shapeOk ? 0.0 : 1.0;
   sumAll(share, buf);
   tail = buf.data() + mSize + xcSize;
+  GPHR_REQUIRE(tail[4] == 0.0, InputError,
+               shapeOk ? "GP-ADEIM update: mismatched sampling-row inputs on another rank" : shapeError);
   GPHR_REQUIRE(tail[3] == 0.0, InputError,
                "GP-ADEIM update: non-finite entries in the snapshot window or the DEIM basis rows");
   up.residualBefore = up.residualAfter = std::sqrt(tail[2]);

@@ -86,8 +86,8 @@ TEST(AdeimUpdateRanks, DistributedRowsGiveTheSerialUpdate) {
     int wbar, repeats, rank;
     double rankTol;  // 0.3: the tau_r test keeps only some of the m directions of these data
   };
-  for (const Case c : {Case{12, 0, 0, 1e-8}, Case{12, 0, 0, 0.3}, Case{12, 0, 3, 1e-8}, Case{10, 5, 0, 1e-8},
-                       Case{10, 5, 0, 0.3}}) {
+  for (const Case c :
+       {Case{12, 0, 0, 1e-8}, Case{12, 0, 0, 0.3}, Case{12, 0, 3, 1e-8}, Case{10, 5, 0, 1e-8}, Case{10, 5, 0, 0.3}}) {
     const Window w = randomWindow(c.wbar, c.repeats, 11 + c.wbar + c.repeats + c.rank);
     AdeimUpdateOptions o;
     o.rank = c.rank;
@@ -125,6 +125,19 @@ TEST(AdeimUpdateRanks, NonFiniteRowOnOneRankThrowsOnAll) {
   w.StF(owner, 0) = std::numeric_limits<double>::quiet_NaN();
   const CoefficientFactor f = factorCoefficients(w.PtU, w.PtF, 1e-8);
   EXPECT_THROW(computeAdeimUpdate(f, ownRows(w.StU, s), ownRows(w.StF, s), AdeimUpdateOptions(), s), InputError);
+}
+
+// Inconsistent inputs on one rank (a sampling-row position outside 0 .. m_s - 1) are an
+// InputError on every rank, raised after the reduction, not on one rank while the others wait.
+TEST(AdeimUpdateRanks, BadPositionOnOneRankThrowsOnAll) {
+  auto comm = Tpetra::getDefaultComm();
+  ASSERT_GT(comm->getSize(), 1) << "register this test on 2 or more ranks";
+  SampledRowShare s = share(comm);
+  const Window w = randomWindow(12, 0, 9);
+  const DenseMatrix StU = ownRows(w.StU, s), StF = ownRows(w.StF, s);
+  if (comm->getRank() == 1) s.positions[0] = kMs;
+  const CoefficientFactor f = factorCoefficients(w.PtU, w.PtF, 1e-8);
+  EXPECT_THROW(computeAdeimUpdate(f, StU, StF, AdeimUpdateOptions(), s), InputError);
 }
 
 }  // namespace
