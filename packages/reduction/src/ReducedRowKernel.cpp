@@ -175,6 +175,14 @@ void ReducedRowKernel::setZ0(const DenseVector& z0) {
   haveZ0_ = true;
 }
 
+void ReducedRowKernel::evaluateAtNode(double s, const RowBatch& b) {
+  const auto v0 = v0_, v1 = v1_, yref = yref_, values = batch_.values;
+  Kokkos::parallel_for(
+      "gphr::nodeValues", Kokkos::RangePolicy<ExecSpace>(0, numStencilEntries()),
+      KOKKOS_LAMBDA(const size_t j) { values(j) = yref(j) + (1.0 - s) * v0(j) + s * v1(j); });
+  term_->evaluate(b);
+}
+
 void ReducedRowKernel::addAveragedGradient(const DenseVector& z0, const DenseVector& z1,
                                            const std::vector<double>& nodes, const std::vector<double>& weights,
                                            DenseVector& g, double scale) {
@@ -183,16 +191,13 @@ void ReducedRowKernel::addAveragedGradient(const DenseVector& z0, const DenseVec
   setZ0(z0);
   stencilValues(z1, v1_);
   const size_t M = numStencilEntries();
-  const auto v0 = v0_, v1 = v1_, yref = yref_, values = batch_.values, uSum = uSum_, grad = batch_.grad, w = w_;
+  const auto uSum = uSum_, grad = batch_.grad, w = w_;
   const auto row = entryRow_;
   RowBatch b = batch_;
   b.hess = HostView1();
   for (size_t q = 0; q < nodes.size(); ++q) {
-    const double s = nodes[q], wq = weights[q];
-    Kokkos::parallel_for(
-        "gphr::nodeValues", Kokkos::RangePolicy<ExecSpace>(0, M),
-        KOKKOS_LAMBDA(const size_t j) { values(j) = yref(j) + (1.0 - s) * v0(j) + s * v1(j); });
-    term_->evaluate(b);
+    const double wq = weights[q];
+    evaluateAtNode(nodes[q], b);
     const bool first = q == 0;
     Kokkos::parallel_for(
         "gphr::nodeGradientSum", Kokkos::RangePolicy<ExecSpace>(0, M), KOKKOS_LAMBDA(const size_t j) {
@@ -211,14 +216,11 @@ void ReducedRowKernel::addAveragedHessian(const DenseVector& z0, const DenseVect
                "reduced row kernel: averaged Hessian without Hessian storage");
   setZ0(z0);
   stencilValues(z1, v1_);
-  const size_t M = numStencilEntries(), Mh = hessSum_.extent(0);
-  const auto v0 = v0_, v1 = v1_, yref = yref_, values = batch_.values, hess = batch_.hess, hessSum = hessSum_;
+  const size_t Mh = hessSum_.extent(0);
+  const auto hess = batch_.hess, hessSum = hessSum_;
   for (size_t q = 0; q < nodes.size(); ++q) {
-    const double s = nodes[q], c = coefficients[q];
-    Kokkos::parallel_for(
-        "gphr::nodeValues", Kokkos::RangePolicy<ExecSpace>(0, M),
-        KOKKOS_LAMBDA(const size_t j) { values(j) = yref(j) + (1.0 - s) * v0(j) + s * v1(j); });
-    term_->evaluate(batch_);
+    const double c = coefficients[q];
+    evaluateAtNode(nodes[q], batch_);
     const bool first = q == 0;
     Kokkos::parallel_for(
         "gphr::nodeHessianSum", Kokkos::RangePolicy<ExecSpace>(0, Mh),

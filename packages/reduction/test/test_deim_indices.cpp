@@ -88,8 +88,8 @@ TEST(GreedyDeim, EqualsTheTextbookAlgorithmOnAnyRankCount) {
   EXPECT_EQ(selectDeimIndices(*V, 70, "deim"), textbookDeim(*V, 70));
 }
 
-// The gather of a row-major array of each rank's own rows (GP-ADEIM reads S^T F_j from F_j on
-// the own rows) equals the MultiVector gather of the same rows, in any order, on any rank count;
+// The gather of a row-major array of each rank's own rows (what LocalRows, GP-ADEIM's copy of
+// A's rows for its moving sample meshes, gathers through) equals the MultiVector gather of the same rows, in any order, on any rank count;
 // an id no rank owns is refused by name.
 TEST(ReplicatedGather, RowsOfALocalArrayEqualTheMultiVectorGather) {
   const int nc = 5;

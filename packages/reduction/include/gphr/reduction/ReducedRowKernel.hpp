@@ -88,6 +88,8 @@ class ReducedRowKernel {
   void weightedHessianBlocks(const HostView1& hess) const;  // W = w_i hess_i A_Si per row
   void addBlockProduct(DenseMatrix& H, double scale) const;  // H += scale A_S^T W (summed over sumOver)
   void setZ0(const DenseVector& z0);                         // v0_ = A_S z0 unless z0 is the cached one
+  // values = yref + (1 - s) v0_ + s v1_ (the quadrature node s on [z0, z1]), then b evaluated.
+  void evaluateAtNode(double s, const RowBatch& b);
   RCP<const NonlinearTerm> term_;
   RowSample sample_;
   RCP<const Comm> sumOver_;
