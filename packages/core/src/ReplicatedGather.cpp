@@ -18,30 +18,35 @@ std::vector<T> sumAll(const Comm& comm, const std::vector<T>& local) {
   return out;
 }
 
-// Ownership check shared by the gathers: every id must be owned by exactly one rank.
-void requireOwned(const Map& map, const std::vector<GO>& gids, const char* what) {
-  std::vector<int> own(gids.size(), 0);
-  for (size_t i = 0; i < gids.size(); ++i) own[i] = map.isNodeGlobalElement(gids[i]) ? 1 : 0;
-  const auto total = sumAll(*map.getComm(), own);
+// Ownership check shared by the gathers: every id must be owned by exactly one rank. `owners`
+// holds the sum over the ranks of each id's ownership flag (carried in the gather's own
+// reduction, so the check costs no extra collective), and every rank throws together.
+template <class T>
+void requireOwnedOnce(const Map& map, const std::vector<GO>& gids, const T* owners, const char* what) {
   for (size_t i = 0; i < gids.size(); ++i)
-    GPHR_REQUIRE(total[i] == 1, InputError, what, ": global id ", gids[i], " is not an entry of the map (allowed: 0 to ",
-                 map.getMaxAllGlobalIndex(), ")");
+    GPHR_REQUIRE(owners[i] == T(1), InputError, what, ": global id ", gids[i],
+                 " is not an entry of the map (allowed: 0 to ", map.getMaxAllGlobalIndex(), ")");
 }
 
 // The gathers of rows: this rank finds the rows `gids` it owns (their positions i and local
 // indices l), `fill(owned, out)` writes their cols entries into out (row i at out + i * cols),
-// and one sum-reduction completes them on every rank.
+// and one sum-reduction completes them on every rank, with the ownership flags behind them.
 template <class Fill>
 std::vector<Scalar> gatherOwnedRows(const Map& map, const std::vector<GO>& gids, size_t cols, Fill fill) {
-  requireOwned(map, gids, "gatherRows");
   std::vector<std::pair<size_t, LO>> owned;
+  const size_t data = gids.size() * cols;
+  std::vector<Scalar> local(data + gids.size(), 0.0);
   for (size_t i = 0; i < gids.size(); ++i) {
     const LO l = map.getLocalElement(gids[i]);
-    if (l != Teuchos::OrdinalTraits<LO>::invalid()) owned.emplace_back(i, l);
+    if (l == Teuchos::OrdinalTraits<LO>::invalid()) continue;
+    owned.emplace_back(i, l);
+    local[data + i] = 1.0;  // exact: a sum of at most the rank count of ones
   }
-  std::vector<Scalar> local(gids.size() * cols, 0.0);
   fill(owned, local.data());
-  return sumAll(*map.getComm(), local);
+  std::vector<Scalar> out = sumAll(*map.getComm(), local);
+  requireOwnedOnce(map, gids, out.data() + data, "gatherRows");
+  out.resize(data);
+  return out;
 }
 }  // namespace
 
@@ -82,14 +87,16 @@ std::vector<Scalar> gatherRows(const LocalRows& X, const std::vector<GO>& gids) 
 
 Stencil gatherStencils(const NonlinearTerm& term, const std::vector<GO>& rows) {
   const Map& rowMap = *term.rowMap();
-  requireOwned(rowMap, rows, "gatherStencils (row of G)");
   const Stencil& own = term.stencil();
-  std::vector<long long> sizes(rows.size(), 0);
-  for (size_t i = 0; i < rows.size(); ++i) {
+  const size_t nr = rows.size();
+  std::vector<long long> sizes(2 * nr, 0);  // the stencil sizes, then the ownership flags
+  for (size_t i = 0; i < nr; ++i) {
     const LO l = rowMap.getLocalElement(rows[i]);
-    if (l != Teuchos::OrdinalTraits<LO>::invalid()) sizes[i] = own.size(l);
+    if (l != Teuchos::OrdinalTraits<LO>::invalid()) sizes[i] = own.size(l), sizes[nr + i] = 1;
   }
   sizes = sumAll(*rowMap.getComm(), sizes);
+  requireOwnedOnce(rowMap, rows, sizes.data() + nr, "gatherStencils (row of G)");
+  sizes.resize(nr);
   Stencil out;
   for (long long s : sizes) out.offsets.push_back(out.offsets.back() + static_cast<size_t>(s));
   std::vector<GO> gids(out.offsets.back(), 0);

@@ -402,9 +402,9 @@ void GpAdeimModel::orthonormalizeBasis() {
         for (int i = 0; i < m_; ++i) t(i, j) = Gd(i, m_ - 1 - j) / std::sqrt(lambda[m_ - 1 - j]);
     }
   }
-  MultiVector Q(U_->getMap(), m_);
-  Q.multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, *U_, T, 0.0);
-  Tpetra::deep_copy(*U_, Q);
+  if (Unext_.is_null()) Unext_ = rcp(new MultiVector(U_->getMap(), m_));
+  Unext_->multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, *U_, T, 0.0);
+  U_->swap(*Unext_);
 }
 
 RCP<MultiVector> initialAdeimBasis(RCP<const HamiltonianSystem> system, const Vector& y0, const MultiVector& A,

@@ -28,8 +28,10 @@ ReducedRowKernel::ReducedRowKernel(RCP<const NonlinearTerm> term, RowSample samp
   GPHR_REQUIRE(s.basisRows.size() == M * r && s.reference.size() == M, InputError,
                "reduced row kernel: basis rows / reference do not match the ", M, " stencil entries");
   batch_.allocate(s.rows, s.stencil.offsets, true, true);
-  AS_ = Rows2("gphr::AS", M, r);
-  W_ = Rows2("gphr::W", M, r);
+  // AS_ is written in full below and W_ before every read: no zero fill (GP-ADEIM builds a kernel
+  // per update, and at m = 100, 2k = 400 these are 640 KB each).
+  AS_ = Rows2(Kokkos::view_alloc(Kokkos::WithoutInitializing, "gphr::AS"), M, r);
+  W_ = Rows2(Kokkos::view_alloc(Kokkos::WithoutInitializing, "gphr::W"), M, r);
   yref_ = HostView1("gphr::yref", M);
   u_ = HostView1("gphr::u", M);
   v0_ = HostView1("gphr::v0", M);
@@ -46,9 +48,7 @@ ReducedRowKernel::ReducedRowKernel(RCP<const NonlinearTerm> term, RowSample samp
   for (size_t i = 0; i < nr; ++i)
     for (size_t j = s.stencil.offsets[i]; j < s.stencil.offsets[i + 1]; ++j) entryRow_(j) = static_cast<LO>(i);
   setWeights(s.weights);
-  gradBuf_.resize(r);
-  hessBuf_.resize(static_cast<size_t>(r) * r);
-  sumBuf_.resize(static_cast<size_t>(r) * r);
+  gradBuf_.resize(r);  // hessBuf_ and sumBuf_ (r x r) on first use: most kernels never assemble a Hessian
   if (s.shifted) {  // G_i(yref): the kernel at z = 0
     evaluate(DenseVector(r), false, false);
     for (size_t i = 0; i < nr; ++i) gRef_(i) = batch_.g(i);
@@ -148,6 +148,7 @@ void ReducedRowKernel::reduceToGradient(const HostView1& u, DenseVector& g, doub
   std::fill(gradBuf_.begin(), gradBuf_.end(), 0.0);
   if (M > 0) KokkosBlas::gemv("N", 1.0, basisT(), ConstVec(u.data(), M), 0.0, Vec(gradBuf_.data(), r));
   if (!sumOver_.is_null()) {
+    if (sumBuf_.size() < static_cast<size_t>(r)) sumBuf_.resize(r);
     Teuchos::reduceAll(*sumOver_, Teuchos::REDUCE_SUM, r, gradBuf_.data(), sumBuf_.data());
     std::copy(sumBuf_.begin(), sumBuf_.begin() + r, gradBuf_.begin());
   }
@@ -239,10 +240,11 @@ void ReducedRowKernel::addBlockProduct(DenseMatrix& H, double scale) const {
   const int r = reducedDim();
   const size_t M = numStencilEntries();
   // A_S^T W: both row-major M x r, i.e. column-major r x M: (A_S^T)(W^T)^T.
-  std::fill(hessBuf_.begin(), hessBuf_.end(), 0.0);
+  hessBuf_.assign(static_cast<size_t>(r) * r, 0.0);
   if (M > 0)
     KokkosBlas::gemm("N", "T", 1.0, basisT(), ColMajor(W_.data(), r, M), 0.0, ColMajor(hessBuf_.data(), r, r));
   if (!sumOver_.is_null()) {
+    sumBuf_.resize(hessBuf_.size());
     Teuchos::reduceAll(*sumOver_, Teuchos::REDUCE_SUM, r * r, hessBuf_.data(), sumBuf_.data());
     hessBuf_.swap(sumBuf_);
   }

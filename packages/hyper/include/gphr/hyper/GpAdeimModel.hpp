@@ -93,6 +93,7 @@ class GpAdeimModel final : public ReducedHamiltonian {
   RCP<const MultiVector> A_;
   RCP<const LocalRows> Arows_;  // A's local rows, row-major: the moving sample meshes gather from it
   RCP<MultiVector> U_;
+  RCP<MultiVector> Unext_;  // the re-orthonormalization's product, swapped with U_ (allocated once)
   int m_;
   AdeimOptions opt_;
   std::vector<GO> P_, S_;
