@@ -13,6 +13,7 @@
 #include "gphr/hyper/AdeimSampling.hpp"
 #include "gphr/hyper/DeimBasis.hpp"
 #include "gphr/reduction/Deim.hpp"
+#include "gphr/reduction/PivotedCholesky.hpp"
 #include "gphr/reduction/SymmetricEigen.hpp"
 #include "gphr/timeint/FullModelIntegrator.hpp"
 
@@ -43,7 +44,8 @@ Teuchos::ParameterList adeimValidParameters() {
   setChoiceParameter(pl, "initialBasis", "fom", Teuchos::tuple<std::string>("fom", "training"),
                      "(U_0, P_0) from the first initialWindow full-model steps at the test parameter, or the training DEIM basis");
   pl.set("orthonormalize", true,
-         "replace U_{j+1} by an orthonormal basis of its span before choosing P_{j+1} (Gram eigenvectors by energy; "
+         "replace U_{j+1} by an orthonormal basis of its span before choosing P_{j+1} (columns in column-pivoted QR "
+         "order, from the pivoted Cholesky factor of the Gram matrix; "
          "with indices = partial the nearest one, U G^{-1/2}); the DEIM projection depends only on span(U) and P");
   pl.set("monitorResidual", true, "record ||U_{j+1} C_j - F_j||_F over all d rows at every update (O(d) each)");
   setIntParameter(pl, "seed", 20240601, 0, 2147483647, "seed of the random sampling rule");
@@ -370,11 +372,12 @@ std::vector<double> GpAdeimModel::columnRotations(const AdeimUpdate& up) const {
   return out;
 }
 
-// U <- U T with U^T U = V diag(lambda) V^T: an orthonormal basis of the same span (so the same
-// DEIM projection for a given P). T = V diag(lambda)^{-1/2}, eigenvalues descending, orders the
-// columns by energy for the greedy and QDEIM index selections; for the partial point update,
-// whose index i belongs to column i, T = V diag(lambda)^{-1/2} V^T (Loewdin) keeps each column
-// nearest to its former self. The Gram matrix is m x m (LAPACK SYEVD).
+// U <- U T, an orthonormal basis of the same span (so the same DEIM projection for a given P),
+// from the m x m Gram matrix G = U^T U. For greedy and QDEIM index selection the columns come
+// by energy: the pivoted Cholesky factorization Pi^T G Pi = R^T R (LAPACK PSTRF) orders them as
+// column-pivoted QR of U would (largest remaining norm first), and T = Pi R^{-1}. For the
+// partial point update, whose index i belongs to column i, T = V diag(lambda)^{-1/2} V^T
+// (Loewdin, the symmetric eigenproblem by SYEVD) keeps each column nearest to its former self.
 void GpAdeimModel::orthonormalizeBasis() {
   auto local = rcp(new Map(m_, 0, U_->getMap()->getComm(), Tpetra::LocallyReplicated));
   MultiVector G(local, m_), T(local, m_);
@@ -385,22 +388,23 @@ void GpAdeimModel::orthonormalizeBasis() {
     for (int j = 0; j < m_; ++j)
       for (int i = 0; i < m_; ++i) Gd(i, j) = 0.5 * (g(i, j) + g(j, i));
   }
-  const std::vector<double> lambda = symmetricEigen(m_, Gd.values(), true, "GP-ADEIM re-orthonormalization");
-  GPHR_REQUIRE(lambda[0] > 0.0, SolverError, "GP-ADEIM: the updated DEIM basis is rank-deficient (Gram eigenvalues "
-               "down to ", lambda[0], ")");
-  {
-    auto t = T.getLocalViewHost(Tpetra::Access::OverwriteAll);
-    if (opt_.indices == "partial") {
-      for (int j = 0; j < m_; ++j)
-        for (int i = 0; i < m_; ++i) {
-          double sum = 0.0;
-          for (int l = 0; l < m_; ++l) sum += Gd(i, l) * Gd(j, l) / std::sqrt(lambda[l]);
-          t(i, j) = sum;
-        }
-    } else {
-      for (int j = 0; j < m_; ++j)  // column j: the eigenvector of the j-th largest eigenvalue, scaled
-        for (int i = 0; i < m_; ++i) t(i, j) = Gd(i, m_ - 1 - j) / std::sqrt(lambda[m_ - 1 - j]);
-    }
+  auto t = T.getLocalViewHost(Tpetra::Access::OverwriteAll);
+  if (opt_.indices == "partial") {
+    const std::vector<double> lambda = symmetricEigen(m_, Gd.values(), true, "GP-ADEIM re-orthonormalization");
+    GPHR_REQUIRE(lambda[0] > 0.0, SolverError, "GP-ADEIM: the updated DEIM basis is rank-deficient (Gram eigenvalues "
+                 "down to ", lambda[0], ")");
+    for (int j = 0; j < m_; ++j)
+      for (int i = 0; i < m_; ++i) {
+        double sum = 0.0;
+        for (int l = 0; l < m_; ++l) sum += Gd(i, l) * Gd(j, l) / std::sqrt(lambda[l]);
+        t(i, j) = sum;
+      }
+  } else {
+    const PivotedCholesky pc = pivotedCholeskyInverse(Gd);
+    GPHR_REQUIRE(pc.rank == m_, SolverError, "GP-ADEIM: the updated DEIM basis is rank-deficient (pivoted Cholesky "
+                 "of its Gram matrix stops at rank ", pc.rank, " of ", m_, ")");
+    for (int j = 0; j < m_; ++j)
+      for (int i = 0; i < m_; ++i) t(pc.perm[i], j) = pc.Rinv(i, j);
   }
   if (Unext_.is_null()) Unext_ = rcp(new MultiVector(U_->getMap(), m_));
   Unext_->multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, *U_, T, 0.0);

@@ -33,7 +33,7 @@ struct AdeimOptions {
   int pointUpdates = 1;                // partial: indices re-chosen per update (the most rotated columns)
   std::string initialBasis = "fom";    // (U_0, P_0): fom (delta0 FOM steps) | training
   bool monitorResidual = true;  // ||U_{j+1} C_j - F_j||_F on all d rows at every update (O(d))
-  bool orthonormalize = true;  // U_{j+1} <- an orthonormal basis of its span (O(d m^2)): ordered by energy,
+  bool orthonormalize = true;  // U_{j+1} <- an orthonormal basis of its span (O(d m^2)): in column-pivoted QR order,
                                // or for indices = partial the nearest one (U G^{-1/2}), column by column
   unsigned long long seed = 20240601;
 };
