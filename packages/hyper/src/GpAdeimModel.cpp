@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include <Teuchos_BLAS.hpp>
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_OrdinalTraits.hpp>
 #include <Teuchos_Time.hpp>
@@ -373,41 +374,51 @@ std::vector<double> GpAdeimModel::columnRotations(const AdeimUpdate& up) const {
 }
 
 // U <- U T, an orthonormal basis of the same span (so the same DEIM projection for a given P),
-// from the m x m Gram matrix G = U^T U. For greedy and QDEIM index selection the columns come
-// by energy: the pivoted Cholesky factorization Pi^T G Pi = R^T R (LAPACK PSTRF) orders them as
-// column-pivoted QR of U would (largest remaining norm first), and T = Pi R^{-1}. For the
-// partial point update, whose index i belongs to column i, T = V diag(lambda)^{-1/2} V^T
-// (Loewdin, the symmetric eigenproblem by SYEVD) keeps each column nearest to its former self.
+// from the m x m Gram matrix G = U^T U (each rank's SYRK on its rows, one sum-reduction). For
+// greedy and QDEIM index selection the columns come by energy: the pivoted Cholesky
+// factorization Pi^T G Pi = R^T R (LAPACK PSTRF) orders them as column-pivoted QR of U would
+// (largest remaining norm first), and U Pi R^{-1} is a column permutation and a TRMM (half a
+// GEMM's flops). For the partial point update, whose index i belongs to column i,
+// T = V diag(lambda)^{-1/2} V^T (Loewdin, the symmetric eigenproblem by SYEVD) keeps each column
+// nearest to its former self. Collective.
 void GpAdeimModel::orthonormalizeBasis() {
-  auto local = rcp(new Map(m_, 0, U_->getMap()->getComm(), Tpetra::LocallyReplicated));
-  MultiVector G(local, m_), T(local, m_);
-  G.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, *U_, *U_, 0.0);
-  DenseMatrix Gd(m_, m_);
-  {
-    auto g = G.getLocalViewHost(Tpetra::Access::ReadOnly);
-    for (int j = 0; j < m_; ++j)
-      for (int i = 0; i < m_; ++i) Gd(i, j) = 0.5 * (g(i, j) + g(j, i));
-  }
-  auto t = T.getLocalViewHost(Tpetra::Access::OverwriteAll);
+  if (Unext_.is_null()) Unext_ = rcp(new MultiVector(U_->getMap(), m_));
+  auto u = U_->getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto q = Unext_->getLocalViewHost(Tpetra::Access::OverwriteAll);
+  const int nl = static_cast<int>(u.extent(0)), ldu = std::max<int>(1, static_cast<int>(u.stride(1))),
+            ldq = std::max<int>(1, static_cast<int>(q.stride(1)));
+  Teuchos::BLAS<int, double> blas;
+  DenseMatrix G(m_, m_), Gd(m_, m_);
+  if (nl > 0) blas.SYRK(Teuchos::UPPER_TRI, Teuchos::TRANS, m_, nl, 1.0, u.data(), ldu, 0.0, G.values(), G.stride());
+  Teuchos::reduceAll(*U_->getMap()->getComm(), Teuchos::REDUCE_SUM, m_ * m_, G.values(), Gd.values());
+  for (int j = 0; j < m_; ++j)
+    for (int i = j + 1; i < m_; ++i) Gd(i, j) = Gd(j, i);
   if (opt_.indices == "partial") {
     const std::vector<double> lambda = symmetricEigen(m_, Gd.values(), true, "GP-ADEIM re-orthonormalization");
     GPHR_REQUIRE(lambda[0] > 0.0, SolverError, "GP-ADEIM: the updated DEIM basis is rank-deficient (Gram eigenvalues "
                  "down to ", lambda[0], ")");
+    DenseMatrix T(m_, m_);
     for (int j = 0; j < m_; ++j)
       for (int i = 0; i < m_; ++i) {
         double sum = 0.0;
         for (int l = 0; l < m_; ++l) sum += Gd(i, l) * Gd(j, l) / std::sqrt(lambda[l]);
-        t(i, j) = sum;
+        T(i, j) = sum;
       }
+    if (nl > 0)
+      blas.GEMM(Teuchos::NO_TRANS, Teuchos::NO_TRANS, nl, m_, m_, 1.0, u.data(), ldu, T.values(), T.stride(), 0.0,
+                q.data(), ldq);
   } else {
     const PivotedCholesky pc = pivotedCholeskyInverse(Gd);
     GPHR_REQUIRE(pc.rank == m_, SolverError, "GP-ADEIM: the updated DEIM basis is rank-deficient (pivoted Cholesky "
                  "of its Gram matrix stops at rank ", pc.rank, " of ", m_, ")");
-    for (int j = 0; j < m_; ++j)
-      for (int i = 0; i < m_; ++i) t(pc.perm[i], j) = pc.Rinv(i, j);
+    for (int j = 0; j < m_; ++j) std::copy_n(u.data() + static_cast<size_t>(ldu) * pc.perm[j], nl,
+                                             q.data() + static_cast<size_t>(ldq) * j);
+    if (nl > 0)
+      blas.TRMM(Teuchos::RIGHT_SIDE, Teuchos::UPPER_TRI, Teuchos::NO_TRANS, Teuchos::NON_UNIT_DIAG, nl, m_, 1.0,
+                pc.Rinv.values(), pc.Rinv.stride(), q.data(), ldq);
   }
-  if (Unext_.is_null()) Unext_ = rcp(new MultiVector(U_->getMap(), m_));
-  Unext_->multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, *U_, T, 0.0);
+  u = decltype(u)();  // release the views before the swap
+  q = decltype(q)();
   U_->swap(*Unext_);
 }
 
