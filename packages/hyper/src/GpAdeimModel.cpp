@@ -27,10 +27,12 @@ Teuchos::ParameterList adeimValidParameters() {
   setIntParameter(pl, "window", 1, 1, 1000000, "w: reduced states in the snapshot window F_j (w < delta0)");
   setIntParameter(pl, "resampleEvery", 5, 1, 1000000, "gamma: steps between sampling-row updates (a multiple of delta)");
   setIntParameter(pl, "updateRank", 0, 0, 1000000, "r: fixed update rank; 0 = numerical rank of S^T R C^T by rankTol");
-  setDoubleParameter(pl, "rankTol", 1e-8, 0.0, 1.0, "tau_r: sigma_i(S^T R C^T) > rankTol sigma_1 (relative)");
-  setDoubleParameter(pl, "coefficientTol", 1e-8, 0.0, 1.0,
+  setDoubleParameter(pl, "rankTol", 1e-12, 0.0, 1.0,
+                     "tau_r: sigma_i(S^T R C^T) > rankTol sigma_1 (relative; 0 = every non-zero direction, r-bar)");
+  setDoubleParameter(pl, "coefficientTol", 1e-12, 0.0, 1.0,
                      "directions of C_j with |R_ll| <= coefficientTol |R_11| in the column-pivoted QR of C_j^T are "
-                     "dropped (C C^T numerically singular)");
+                     "dropped (C C^T, never formed, is numerically singular well before: the QR resolves down to "
+                     "~wbar eps)");
   setIntParameter(pl, "numSamples", 0, 0, 100000000, "m_s: sampling rows (>= m); 0 = chosen by sampleTol");
   setDoubleParameter(pl, "sampleTol", 1e-3, 0.0, 1.0,
                      "tau_s: rows whose score exceeds sampleTol x the largest score (relative: the scale of F does not matter)");

@@ -267,21 +267,31 @@ TEST(AdeimUpdate, RankDeficientCoefficients) {
   }
 }
 
-// C of full rank in exact arithmetic with cond(C C^T) = 1e18 (sigma ratio 1e-9): the direction
-// below coefficientTol (1e-8) is dropped, no NaN, and the residual still drops.
+// C of full rank in exact arithmetic, its last row the first one plus ratio times a random row:
+// sigma_min / sigma_1 ~ ratio, cond(C C^T) ~ ratio^-2. (Until this session the last row was the
+// first times 1 + 1e-9: parallel, so rank-deficient in exact arithmetic.) At ratio 1e-9 (cond(C C^T) ~ 1e18, past what the Gram
+// matrix resolves) the QR route keeps the direction under the default cut (1e-12): the update
+// still lowers the residual, and the objective recomputed here from (a, b) matches the reported
+// residual to 1e-6 relative (b carries 1 / sigma ~ 1e9, so forming a b^T C here loses ~1e9 eps).
+// At ratio 1e-14, below the cut, the direction is dropped. No NaN in either case.
 TEST(AdeimUpdate, NumericallySingularGramMatrix) {
-  Window w = randomWindow(kM, kMs, kW, 8);
-  std::mt19937 gen(88);
-  DenseMatrix C = randomMatrix(kM, kW, gen);
-  for (int j = 0; j < kW; ++j) C(kM - 1, j) = C(0, j) * (1.0 + 1e-9);  // last row ~ first row
-  w.PtF = mul(NO_TRANS, NO_TRANS, w.PtU, C);
-  AdeimUpdateOptions o;
-  o.rankTol = 0.0;
-  AdeimUpdate up;
-  ASSERT_NO_THROW(up = computeAdeimUpdate(w.PtU, w.PtF, w.StU, w.StF, o));
-  EXPECT_EQ(up.coefficientRank, kM - 1);
-  EXPECT_TRUE(finite(up.a) && finite(up.b));
-  EXPECT_LT(up.residualAfter, up.residualBefore);
+  for (const auto& [ratio, kept] : {std::pair<double, int>{1e-9, kM}, {1e-14, kM - 1}}) {
+    Window w = randomWindow(kM, kMs, kW, 8);
+    std::mt19937 gen(88);
+    DenseMatrix C = randomMatrix(kM, kW, gen);
+    const DenseMatrix E = randomMatrix(1, kW, gen);
+    for (int j = 0; j < kW; ++j) C(kM - 1, j) = C(0, j) + ratio * E(0, j);  // last row ~ first row
+    w.PtF = mul(NO_TRANS, NO_TRANS, w.PtU, C);
+    AdeimUpdateOptions o;
+    o.rankTol = 0.0;
+    AdeimUpdate up;
+    ASSERT_NO_THROW(up = computeAdeimUpdate(w.PtU, w.PtF, w.StU, w.StF, o)) << "ratio " << ratio;
+    EXPECT_EQ(up.coefficientRank, kept) << "ratio " << ratio << " with the default coefficientTol";
+    EXPECT_TRUE(finite(up.a) && finite(up.b)) << "ratio " << ratio;
+    EXPECT_LT(up.residualAfter, up.residualBefore) << "ratio " << ratio;
+    EXPECT_NEAR(std::sqrt(objective(w, up.C, up.a, up.b)), up.residualAfter, 1e-6 * up.residualBefore)
+        << "ratio " << ratio;
+  }
 }
 
 // F in the span of U (the DEIM approximation is exact): residual zero up to round-off, rank 0,
