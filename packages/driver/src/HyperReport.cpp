@@ -220,7 +220,8 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
   {
     std::ostringstream b;
     b << "set logscale y\nset format y '%.0e'\nset xlabel 'm (DEIM size)'\nset ylabel 'E_L2'\nset key outside\n"
-      << "set title 'Error vs DEIM size (fig:2dsw_errors_avf_imr)'\nplot ";
+      << "set title 'Error vs DEIM size (" << (adeim ? "fig:error_vs_ctime_2k400, left" : "fig:2dsw_errors_avf_imr")
+      << ")'\nplot ";
     std::vector<std::pair<std::string, int>> curves;
     for (const auto& r : st.runs)
       if (r.method != "rom" && std::find(curves.begin(), curves.end(), std::make_pair(r.method, r.k)) == curves.end())
