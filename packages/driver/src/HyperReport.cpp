@@ -7,6 +7,7 @@
 
 #include "gphr/driver/Config.hpp"
 #include "gphr/driver/Report.hpp"
+#include "gphr/hyper/GpAdeimModel.hpp"
 
 namespace gphr {
 
@@ -95,6 +96,24 @@ void writeAdeimUpdates(const FomResult& fom, const std::vector<ModelRun>& runs, 
   }
 }
 
+// GP-ADEIM runs whose window has fewer columns than m (2k w < m): C_j then has rank at most 2k w,
+// and at least m - 2k w directions of U are left out of every update. Harmless on small NLS runs
+// (the default job has one), but the SWE at 2k = 80 diverged with m = 150, w = 1 and ran to the
+// ROM's error with w = 2 (design notes, seventh session), so the report says so.
+std::string adeimWindowCaution(const RunContext& ctx, const RomStages& st) {
+  std::ostringstream md;
+  for (const auto& r : st.runs) {
+    if (r.method != "gp-adeim") continue;
+    const int wbar = 2 * r.k * adeimOptionsFrom(ctx.config.sublist("adeim"), r.m).window;
+    if (wbar >= r.m) continue;
+    if (md.tellp() == 0)
+      md << "\nWindow narrower than the DEIM basis (2k w < m): C_j has rank at most 2k w, so at least m - 2k w "
+            "directions of U are never updated. If such a run drifts, raise adeim.window to at least m / 2k.\n\n";
+    md << "- " << r.label() << ": 2k w = " << wbar << " < m = " << r.m << "\n";
+  }
+  return md.str();
+}
+
 std::string reportMd(const RunContext& ctx, const FomResult& fom, const RomStages& st) {
   std::ostringstream md;
   const double fomOnline = fom.tOnline;
@@ -143,6 +162,7 @@ std::string reportMd(const RunContext& ctx, const FomResult& fom, const RomStage
     }
     md << "\nPer update (rank, m_s, residuals, the terms of eq:Hambound): adeim_updates.csv and adeim_updates.png; "
           "error vs total time: error_vs_total_time.png.\n";
+    md << adeimWindowCaution(ctx, st);
   }
   md << "\nDiagnostics of each GP-DEIM run (cond(P^T U), the smallest eigenvalue of Hess H_hr(z0) next to "
         "the reduced model's, and whether convexity was lost) are in summary.json; a (k, m) with "
