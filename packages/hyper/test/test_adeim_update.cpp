@@ -268,12 +268,13 @@ TEST(AdeimUpdate, RankDeficientCoefficients) {
 }
 
 // C of full rank in exact arithmetic, its last row the first one plus ratio times a random row:
-// sigma_min / sigma_1 ~ ratio, cond(C C^T) ~ ratio^-2. (Until this session the last row was the
-// first times 1 + 1e-9: parallel, so rank-deficient in exact arithmetic.) At ratio 1e-9 (cond(C C^T) ~ 1e18, past what the Gram
-// matrix resolves) the QR route keeps the direction under the default cut (1e-10): the update
-// still lowers the residual, and the objective recomputed here from (a, b) matches the reported
-// residual to 1e-6 relative (b carries 1 / sigma ~ 1e9, so forming a b^T C here loses ~1e9 eps).
-// At ratio 1e-14, below the cut, the direction is dropped. No NaN in either case.
+// sigma_min / sigma_1 ~ ratio, cond(C C^T) ~ ratio^-2. (A last row equal to the first times
+// 1 + ratio would be parallel to it: rank-deficient in exact arithmetic, not ill-conditioned.)
+// At ratio 1e-9 (cond(C C^T) ~ 1e18, past what the Gram matrix resolves) the QR route keeps the
+// direction under the default cut (1e-10): the update still lowers the residual, and the
+// objective recomputed here from (a, b) matches the reported residual to 1e-6 relative (b
+// carries 1 / sigma ~ 1e9, so forming a b^T C here loses ~1e9 eps). At ratio 1e-14, below the
+// cut, the direction is dropped. No NaN in either case.
 TEST(AdeimUpdate, NumericallySingularGramMatrix) {
   for (const auto& [ratio, kept] : {std::pair<double, int>{1e-9, kM}, {1e-14, kM - 1}}) {
     Window w = randomWindow(kM, kMs, kW, 8);
