@@ -7,7 +7,8 @@
 # a broken ROM (wrong basis or reduced gradient) gives O(1), a ROM compared with itself 0.
 # GP-DEIM (m = 10, 20, 40) runs beside it: each conserves its H_hr under AVF, and at m = 40 its
 # error is within 10% of the ROM's (measured ratio 1.0000); GP-ADEIM (the same m) runs its 100
-# updates, conserves each local H_hr, and at m = 10 is within 10% of the ROM (measured 0.98) where
+# updates, conserves each local H_hr, and at m = 10 is within 10% of the ROM (measured 0.992 on
+# 2026-11-23, at the defaults tau_r = 1e-12, coefficientTol 1e-10; 0.98 before them) where
 # GP-DEIM's error is 27x the ROM's; the report files exist. The report cautions about the one
 # GP-ADEIM run whose window is narrower than its DEIM basis (2k w = 20 < m = 40), and only that one.
 set -eu
@@ -19,5 +20,5 @@ for f in artifacts.h5 summary.json fom_history.csv rom_history.csv; do [ -s "$wo
 python3 "$here/check_summary.py" check "$work/out/summary.json" --scene nls1d --scheme avf --n 256 --steps 500 \
   --rom-k 10 --rom-E-L2 0.012 0.048 --gp-deim 10 20 40 1.1 --gp-adeim 10 20 40 1.1
 for f in report.md runs.csv deim_singular_values.csv adeim_updates.csv; do [ -s "$work/out/$f" ] || { echo "missing $f"; exit 1; }; done
-grep -qx -- "- gp-adeim k=10 m=40: 2k w = 20 < m = 40" "$work/out/report.md" || { echo "no window caution for m = 40"; exit 1; }
+grep -qx -- "- gp-adeim k=10 m=40: 2k w = 20 < m = 40 (window >= 2, initialWindow > 2)" "$work/out/report.md" || { echo "no window caution for m = 40"; exit 1; }
 if grep -q -- "^- gp-adeim k=10 m=[12]0:" "$work/out/report.md"; then echo "window caution for m <= 2k w"; exit 1; fi

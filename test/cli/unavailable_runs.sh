@@ -2,20 +2,30 @@
 # A DEIM size the offline data cannot support (m = d = 64 on NLS n = 32: more than the DEIM basis
 # from the training snapshots, and than the first delta0 full-model steps give GP-ADEIM) is an
 # `unavailable` run with its reason, beside the runs that can be made; gphr exits 0 and writes the
-# whole report (artifacts.h5 included: an unavailable run has no trajectory to store).
+# whole report (artifacts.h5 included: an unavailable run has no trajectory to store). The report's
+# caution about GP-ADEIM windows narrower than the basis (2k w < m, here 2k = 8) lists m = 9 (the
+# most the offline data supports) at w = 1 (8 < 9) but not at w = 2 (16), and never the
+# unavailable m = 64, which did not run; the tables call m = 64 unavailable, not diverged.
 # usage: unavailable_runs.sh GPHR
 set -u
 gphr=$1
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
-printf 'gphr:\n  scene: {name: nls1d, n: 32}\n  time: {T: 0.2, dt: 0.01}\n  training: {points: [2]}\n  reduction: {k: 4}\n  pipeline: {rom: true, methods: [gp-deim, gp-adeim], m: [4, 64]}\n  output: {plots: false}\n' > "$work/c.yaml"
-"$gphr" run "$work/c.yaml" --output "$work/out" > /dev/null 2> "$work/err" || { echo "FAIL: exit $?"; cat "$work/err"; exit 1; }
-python3 - "$work/out/summary.json" <<'PY'
+for w in 1 2; do
+  printf 'gphr:\n  scene: {name: nls1d, n: 32}\n  time: {T: 0.2, dt: 0.01}\n  training: {points: [2]}\n  reduction: {k: 4}\n  pipeline: {rom: true, methods: [gp-deim, gp-adeim], m: [4, 9, 64]}\n  adeim: {window: %d}\n  output: {plots: false}\n' $w > "$work/c$w.yaml"
+  "$gphr" run "$work/c$w.yaml" --output "$work/out$w" > /dev/null 2> "$work/err" || { echo "FAIL: exit $?"; cat "$work/err"; exit 1; }
+done
+grep -q -- "^- gp-adeim k=4 m=9: 2k w = 8 < m = 9" "$work/out1/report.md" || { echo "FAIL: no caution for m = 9 at w = 1"; exit 1; }
+if grep -q -- "^- gp-adeim k=4 m=\(9\|64\):" "$work/out2/report.md"; then echo "FAIL: caution at w = 2 (2k w = 16)"; exit 1; fi
+grep -q -- "^| gp-adeim | 4 | 64 | unavailable |" "$work/out1/report.md" || { echo "FAIL: m = 64 not shown as unavailable"; exit 1; }
+if grep -q -- "^- gp-adeim k=4 m=64:" "$work/out1/report.md"; then echo "FAIL: caution for the unavailable m = 64"; exit 1; fi
+python3 - "$work/out1/summary.json" <<'PY'
 import json, sys
 runs = {(r["method"], r.get("m")): r for r in json.load(open(sys.argv[1]))["runs"]}
 for method in ("gp-deim", "gp-adeim"):
     ok, big = runs[(method, 4)], runs[(method, 64)]
     assert ok["status"] == "ok" and ok["E_L2"] is not None, (method, ok)
+    assert runs[(method, 9)]["status"] == "ok", (method, runs[(method, 9)])
     why = big.get("reason", "")
     assert big["status"] == "unavailable" and ("fewer than m = 64" in why or "vectors" in why), (method, big)
-print("ok: m = 4 ran, m = 64 unavailable with a reason, for gp-deim and gp-adeim")
+print("ok: m = 4 and 9 ran, m = 64 unavailable with a reason, for gp-deim and gp-adeim; window caution for m = 9 at w = 1 only")
 PY

@@ -97,19 +97,24 @@ void writeAdeimUpdates(const FomResult& fom, const std::vector<ModelRun>& runs, 
 }
 
 // GP-ADEIM runs whose window has fewer columns than m (2k w < m): C_j then has rank at most 2k w,
-// and at least m - 2k w directions of U are left out of every update. Harmless on small NLS runs
-// (the default job has one), but the SWE at 2k = 80 diverged with m = 150, w = 1 and ran to the
-// ROM's error with w = 2 (design notes, seventh session), so the report says so.
+// and at least m - 2k w directions of U are left out of each update. Harmless on small NLS runs
+// (the default job has one), but the SWE at 2k = 80 diverged with m = 150, w = 1 and reached the
+// ROM's error with w = 2 and every row sampled (design notes, seventh session), so the report
+// says so. Runs never evaluated (unavailable) are not listed.
 std::string adeimWindowCaution(const RunContext& ctx, const RomStages& st) {
   std::ostringstream md;
   for (const auto& r : st.runs) {
-    if (r.method != "gp-adeim") continue;
-    const int wbar = 2 * r.k * adeimOptionsFrom(ctx.config.sublist("adeim"), r.m).window;
+    if (r.method != "gp-adeim" || !r.available) continue;
+    const AdeimOptions o = adeimOptionsFrom(ctx.config.sublist("adeim"), r.m);
+    const int wbar = 2 * r.k * o.window;
     if (wbar >= r.m) continue;
     if (md.tellp() == 0)
       md << "\nWindow narrower than the DEIM basis (2k w < m): C_j has rank at most 2k w, so at least m - 2k w "
-            "directions of U are never updated. If such a run drifts, raise adeim.window to at least m / 2k.\n\n";
-    md << "- " << r.label() << ": 2k w = " << wbar << " < m = " << r.m << "\n";
+            "directions of U are left out of each update. If such a run drifts, raise adeim.window (and "
+            "adeim.initialWindow above it) and the sampling rows adeim.numSamples.\n\n";
+    const int wNeeded = (r.m + 2 * r.k - 1) / (2 * r.k);
+    md << "- " << r.label() << ": 2k w = " << wbar << " < m = " << r.m << " (window >= " << wNeeded
+       << ", initialWindow > " << wNeeded << ")\n";
   }
   return md.str();
 }
@@ -129,7 +134,7 @@ std::string reportMd(const RunContext& ctx, const FomResult& fom, const RomStage
     for (const auto& q : st.runs)
       if (q.method == "rom" && q.k == r.k) eRom = q.eL2, tRom = q.tOnline;
     md << "| " << r.method << " | " << r.k << " | " << (r.m ? std::to_string(r.m) : "-") << " | "
-       << (r.ok ? "ok" : "**diverged**") << " | " << fmt(r.eL2) << " | " << fmt(r.eL2 / eRom) << " | "
+       << r.statusText() << " | " << fmt(r.eL2) << " | " << fmt(r.eL2 / eRom) << " | "
        << fmt(r.tOnline, "%.3f") << " | " << fmt(tRom / r.tOnline, "%.2f") << "x | " << fmt(fomOnline / r.tOnline, "%.2f")
        << "x |\n";
   }
@@ -154,7 +159,7 @@ std::string reportMd(const RunContext& ctx, const FomResult& fom, const RomStage
     for (const auto& r : st.runs) {
       if (r.method != "gp-deim" && r.method != "gp-adeim") continue;
       const auto num = [&](const char* key) { return r.run.number(key); };
-      md << "| " << r.method << " | " << r.k << " | " << r.m << " | " << (r.ok ? "ok" : "**diverged**") << " | "
+      md << "| " << r.method << " | " << r.k << " | " << r.m << " | " << r.statusText() << " | "
          << fmt(r.eL2) << " | " << fmt(num("t_hyper_offline_s"), "%.3f") << " | " << fmt(r.tOnline, "%.3f") << " | "
          << fmt(num("t_total_s"), "%.3f") << " | " << (r.method == "gp-adeim" ? fmt(num("updates"), "%.0f") : "-")
          << " | " << (r.method == "gp-adeim" ? fmt(num("update_rank_mean"), "%.1f") : "-") << " | "
@@ -240,7 +245,8 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
   {
     std::ostringstream b;
     b << "set logscale y\nset format y '%.0e'\nset xlabel 'm (DEIM size)'\nset ylabel 'E_L2'\nset key outside\n"
-      << "set title 'Error vs DEIM size (" << (adeim ? "fig:error_vs_ctime_2k400, left" : "fig:2dsw_errors_avf_imr")
+      << "set title 'Error vs DEIM size (" << (adeim && ctx.scene->name() == "nls1d" ? "fig:error_vs_ctime_2k400, left"
+                                                                      : "fig:2dsw_errors_avf_imr")
       << ")'\nplot ";
     std::vector<std::pair<std::string, int>> curves;
     for (const auto& r : st.runs)

@@ -100,7 +100,7 @@ CachedDeimBasis deimBasisFor(const RunContext& ctx, const RomStages& st, const M
 
 ModelRun unavailable(const std::string& method, int k, int m, const std::string& why) {
   ModelRun r;
-  r.method = method, r.k = k, r.m = m, r.ok = false;
+  r.method = method, r.k = k, r.m = m, r.ok = false, r.available = false;
   r.run.set("method", method).set("k", static_cast<long>(k)).set("m", static_cast<long>(m));
   r.run.set("status", "unavailable").set("reason", why);
   return r;

@@ -31,8 +31,8 @@ Teuchos::ParameterList adeimValidParameters() {
                      "tau_r: sigma_i(S^T R C^T) > rankTol sigma_1 (relative; 0 = every non-zero direction, r-bar)");
   setDoubleParameter(pl, "coefficientTol", 1e-10, 0.0, 1.0,
                      "directions of C_j with |R_ll| <= coefficientTol |R_11| in the column-pivoted QR of C_j^T are "
-                     "dropped (C C^T, never formed, is numerically singular well before: the QR resolves down to "
-                     "~wbar eps; a kept direction moves U by ~1 / |R_ll|)");
+                     "dropped (C C^T would be numerically singular below 1e-8 but is never formed: the QR resolves "
+                     "down to ~wbar eps; a kept direction moves U by ~1 / |R_ll|)");
   setIntParameter(pl, "numSamples", 0, 0, 100000000, "m_s: sampling rows (>= m); 0 = chosen by sampleTol");
   setDoubleParameter(pl, "sampleTol", 1e-3, 0.0, 1.0,
                      "tau_s: rows whose score exceeds sampleTol x the largest score (relative: the scale of F does not matter)");

@@ -271,10 +271,11 @@ TEST(AdeimUpdate, RankDeficientCoefficients) {
 // sigma_min / sigma_1 ~ ratio, cond(C C^T) ~ ratio^-2. (A last row equal to the first times
 // 1 + ratio would be parallel to it: rank-deficient in exact arithmetic, not ill-conditioned.)
 // At ratio 1e-9 (cond(C C^T) ~ 1e18, past what the Gram matrix resolves) the QR route keeps the
-// direction under the default cut (1e-10): the update still lowers the residual, and the
+// direction under the default cut (1e-10; for these data |R_66| / |R_11| lies between 5e-10 and
+// 1e-9, measured by cutting at those values): the update still lowers the residual, and the
 // objective recomputed here from (a, b) matches the reported residual to 1e-6 relative (b
-// carries 1 / sigma ~ 1e9, so forming a b^T C here loses ~1e9 eps). At ratio 1e-14, below the
-// cut, the direction is dropped. No NaN in either case.
+// carries 1 / sigma ~ 1e9, so forming a b^T C here loses ~1e9 eps). At ratio 1e-14 (|R_66| /
+// |R_11| between 1e-15 and 1e-14), below the cut, the direction is dropped. No NaN in either case.
 TEST(AdeimUpdate, NumericallySingularGramMatrix) {
   for (const auto& [ratio, kept] : {std::pair<double, int>{1e-9, kM}, {1e-14, kM - 1}}) {
     Window w = randomWindow(kM, kMs, kW, 8);

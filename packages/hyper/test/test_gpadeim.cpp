@@ -156,6 +156,12 @@ TEST(GpAdeimParts, OptionsAreValidated) {
   EXPECT_EQ(o.initialWindow, 5);
   EXPECT_EQ(o.maxSamples, 40);
   EXPECT_EQ(o.sampling, "projected");
+  // The config's defaults are the update's: the cut-offs the NLS and SWE runs chose (tau_r 1e-12,
+  // coefficientTol 1e-10; AdeimUpdate.hpp says why), whichever way a caller builds the options.
+  EXPECT_EQ(o.update.rankTol, 1e-12);
+  EXPECT_EQ(o.update.coefficientTol, 1e-10);
+  EXPECT_EQ(o.update.rankTol, AdeimUpdateOptions{}.rankTol);
+  EXPECT_EQ(o.update.coefficientTol, AdeimUpdateOptions{}.coefficientTol);
 }
 
 // Random rows: distinct, outside the excluded rows, in range, the same for the same (seed,

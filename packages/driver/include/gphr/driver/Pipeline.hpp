@@ -32,8 +32,10 @@ struct ModelRun {
   std::vector<AdeimUpdateRecord> adeimUpdates;  // gp-adeim: one record per adaptation
   double eL2 = 0.0, tOnline = 0.0;
   bool ok = true;
+  bool available = true;  // false: not run, the offline data cannot support this (k, m)
   JsonObject run;
   std::string label() const;
+  std::string statusText() const { return ok ? "ok" : available ? "**diverged**" : "unavailable"; }
 };
 
 struct RomStages {
