@@ -377,9 +377,9 @@ std::vector<double> GpAdeimModel::columnRotations(const AdeimUpdate& up) const {
 
 // U <- U T, an orthonormal basis of the same span (so the same DEIM projection for a given P),
 // from the m x m Gram matrix G = U^T U (each rank's SYRK on its rows, one sum-reduction). For
-// greedy and QDEIM index selection the columns come by energy: the pivoted Cholesky
-// factorization Pi^T G Pi = R^T R (LAPACK PSTRF) orders them as column-pivoted QR of U would
-// (largest remaining norm first), and U Pi R^{-1} is a column permutation and a TRMM (half a
+// greedy and QDEIM index selection the columns come in column-pivoted QR order: the pivoted
+// Cholesky factorization Pi^T G Pi = R^T R (LAPACK PSTRF) orders them as column-pivoted QR of U
+// would (largest remaining norm first), and U Pi R^{-1} is a column permutation and a TRMM (half a
 // GEMM's flops). For the partial point update, whose index i belongs to column i,
 // T = V diag(lambda)^{-1/2} V^T (Loewdin, the symmetric eigenproblem by SYEVD) keeps each column
 // nearest to its former self. Collective.

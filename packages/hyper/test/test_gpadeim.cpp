@@ -249,10 +249,6 @@ TEST_F(GpAdeim, AdaptationTracksTheReducedModelBetterThanTheFixedBasis) {
   }
 }
 
-// Peher15's partial point update (adeim.indices = partial): each update re-chooses at most
-// pointUpdates interpolation rows (the rest of P stays), and the adaptation still beats the
-// fixed pair from the same (U_0, P_0) (same 0.5 bar as above; measured: 0.021 against 0.997, with
-// 34 rows moved over the run).
 // max |U^T U - I| of the model's current DEIM basis (collective).
 double orthonormalityError(const GpAdeimModel& model) {
   const MultiVector& U = model.deimBasis();
@@ -302,6 +298,10 @@ TEST_F(GpAdeim, UpdatedBasisIsOrthonormal) {
   }
 }
 
+// Peher15's partial point update (adeim.indices = partial): each update re-chooses at most
+// pointUpdates interpolation rows (the rest of P stays), and the adaptation still beats the
+// fixed pair from the same (U_0, P_0) (same 0.5 bar as above; measured: 0.021 against 0.997, with
+// 34 rows moved over the run).
 TEST_F(GpAdeim, PartialPointUpdateMovesFewRowsAndStillAdapts) {
   auto& hc = nls();
   GalerkinRom rom(hc.test.system, hc.basis.A);

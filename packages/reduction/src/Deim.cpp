@@ -263,9 +263,8 @@ DeimWeights computeDeimWeights(const MultiVector& U, const std::vector<GO>& indi
   const std::vector<double> rows = gatherRows(U, indices);  // (P^T U)(i, j) = rows[i * nc + j]
   std::vector<double> B = pointRows(rows, m, nc);
   DeimWeights out;
-  Lapack lapack;
-  double norm1 = 0.0;  // ||B||_1, the max column sum (Teuchos::LAPACK does not wrap LANGE)
-  for (int j = 0; j < m; ++j) {
+  double norm1 = 0.0;  // ||B||_1 before the LU overwrites B: the max column sum (Teuchos::LAPACK has no LANGE)
+  for (int j = 0; j < m && estimateCondition; ++j) {
     double col = 0.0;
     for (int i = 0; i < m; ++i) col += std::abs(B[i + static_cast<size_t>(m) * j]);
     norm1 = std::max(norm1, col);
@@ -276,6 +275,7 @@ DeimWeights computeDeimWeights(const MultiVector& U, const std::vector<GO>& indi
   for (int j = 0; j < m; ++j) out.weights[j] = c(j, 0);
   luSolve(B, m, out.weights, 'T', "DEIM weights");  // (P^T U)^T x = U^T v; B now holds the LU
   if (estimateCondition) {
+    Lapack lapack;
     double rcond = 0.0;
     std::vector<double> work(4 * m);
     std::vector<int> iwork(m);

@@ -1,7 +1,7 @@
 #include "gphr/reduction/PivotedCholesky.hpp"
 
 #include <Teuchos_LAPACK.hpp>
-#include <algorithm>
+#include <vector>
 
 #include "gphr/core/Error.hpp"
 

@@ -89,8 +89,8 @@ TEST(GreedyDeim, EqualsTheTextbookAlgorithmOnAnyRankCount) {
 }
 
 // The gather of a row-major array of each rank's own rows (what LocalRows, GP-ADEIM's copy of
-// A's rows for its moving sample meshes, gathers through) equals the MultiVector gather of the same rows, in any order, on any rank count;
-// an id no rank owns is refused by name.
+// A's rows for its moving sample meshes, gathers through) equals the MultiVector gather of the
+// same rows, in any order, on any rank count; an id no rank owns is refused by name.
 TEST(ReplicatedGather, RowsOfALocalArrayEqualTheMultiVectorGather) {
   const int nc = 5;
   const auto U = basis(23, nc, 6);
