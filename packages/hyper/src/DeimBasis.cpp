@@ -5,9 +5,12 @@
 #include <Teuchos_LAPACK.hpp>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/reduction/DenseQr.hpp"
+#include "gphr/reduction/DenseSvd.hpp"
 #include "gphr/reduction/ReducedRowKernel.hpp"
 #include "gphr/reduction/StreamingPod.hpp"
 #include "gphr/reduction/SymmetricEigen.hpp"
@@ -123,36 +126,74 @@ DeimBasis randomizedDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& s
     Q = orth();
   }
   const int cols = static_cast<int>(Q->getNumVectors());
-  std::vector<Scalar> G(static_cast<size_t>(cols) * cols, 0.0);
+  DeimBasis out;
   double energy = 0.0;
-  forEachJacobianSnapshot(systems, states, A, opt.snapshotEvery, jac, [&](const auto& J, long) {
-    project(*Q, J);
-    blas.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, cols, cols, r, 1.0, ctSum.data(), r, ctSum.data(), r, 1.0, G.data(), cols);
-    double local = 0.0;
+  auto addEnergy = [&](const std::vector<Scalar>& J) {
+    double local = 0.0, global = 0.0;
     for (double x : J) local += x * x;
-    double global = 0.0;
     Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, local, Teuchos::outArg(global));
     energy += global;
-  });
-  const std::vector<double> lambda = symmetricEigen(cols, G.data(), true, "DEIM basis");
-  DeimBasis out;
-  const double floor = 1e-7 * std::sqrt(std::max(lambda[cols - 1], 0.0));  // Gram: sqrt(eps) resolution
-  auto local = rcp(new Map(cols, 0, rowMap->getComm(), Tpetra::LocallyReplicated));
-  for (int j = cols - 1; j >= 0 && static_cast<int>(out.singularValues.size()) < maxRank; --j) {
-    const double sigma = std::sqrt(std::max(lambda[j], 0.0));
-    if (sigma <= floor || sigma == 0.0) break;
-    out.singularValues.push_back(sigma);
+  };
+  std::vector<Scalar> W(static_cast<size_t>(cols) * cols);  // B's left singular vectors, column-major
+  if (opt.gramProjection) {
+    // B B^T = sum_s (Q^T J_s)(Q^T J_s)^T (cols x cols, LAPACK SYEVD: small and dense): sigma = sqrt(lambda).
+    std::vector<Scalar> G(static_cast<size_t>(cols) * cols, 0.0);
+    forEachJacobianSnapshot(systems, states, A, opt.snapshotEvery, jac, [&](const auto& J, long) {
+      project(*Q, J);
+      blas.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, cols, cols, r, 1.0, ctSum.data(), r, ctSum.data(), r, 1.0, G.data(),
+                cols);
+      addEnergy(J);
+    });
+    const std::vector<double> lambda = symmetricEigen(cols, G.data(), true, "DEIM basis");
+    const double floor = 1e-7 * std::sqrt(std::max(lambda[cols - 1], 0.0));  // Gram: sqrt(eps) resolution
+    for (int j = cols - 1; j >= 0 && static_cast<int>(out.singularValues.size()) < maxRank; --j) {
+      const double sigma = std::sqrt(std::max(lambda[j], 0.0));
+      if (sigma <= floor || sigma == 0.0) break;
+      out.singularValues.push_back(sigma);
+      std::copy_n(G.data() + static_cast<size_t>(cols) * j, cols, W.data() + static_cast<size_t>(cols) * (cols - 1 - j));
+    }
+  } else {
+    // B^T = [J_1^T Q; J_2^T Q; ...] = Q_B R, its R accumulated by a blocked QR of [R; the next
+    // snapshots' rows] (denseQrFactorR), and B = R^T Q_B^T: B's singular values are R's and its left
+    // singular vectors R's right ones. Resolves sigma to ~eps sigma_1, where B B^T stops at sqrt(eps).
+    const int batch = std::max(1, 4 * cols / std::max(r, 1)), ld = cols + batch * r;
+    std::vector<Scalar> stack(static_cast<size_t>(ld) * cols, 0.0), R(static_cast<size_t>(cols) * cols, 0.0);
+    int filled = 0;
+    auto fold = [&] {  // R <- the R factor of [R; the filled rows]
+      const int rows = cols + filled * r;
+      for (int j = 0; j < cols; ++j) std::copy_n(R.data() + static_cast<size_t>(cols) * j, cols, stack.data() + static_cast<size_t>(ld) * j);
+      denseQrFactorR(rows, cols, stack.data(), ld, R.data(), cols, "DEIM basis");
+      filled = 0;
+    };
+    forEachJacobianSnapshot(systems, states, A, opt.snapshotEvery, jac, [&](const auto& J, long) {
+      project(*Q, J);
+      for (int j = 0; j < cols; ++j)  // ctSum = J^T Q, r x cols, column-major: the next r rows of B^T
+        std::copy_n(ctSum.data() + static_cast<size_t>(r) * j, r,
+                    stack.data() + static_cast<size_t>(ld) * j + cols + static_cast<size_t>(filled) * r);
+      if (++filled == batch) fold();
+      addEnergy(J);
+    });
+    if (filled > 0) fold();
+    std::vector<double> sigma(cols), U(static_cast<size_t>(cols) * cols), Vt(static_cast<size_t>(cols) * cols);
+    denseThinSvd(cols, cols, R.data(), cols, sigma.data(), U.data(), cols, Vt.data(), cols, true, "DEIM basis");
+    const double floor = std::max(cols, r) * std::numeric_limits<double>::epsilon() * sigma[0];
+    for (int j = 0; j < cols && static_cast<int>(out.singularValues.size()) < maxRank; ++j) {
+      if (sigma[j] <= floor || sigma[j] == 0.0) break;
+      out.singularValues.push_back(sigma[j]);
+      for (int a = 0; a < cols; ++a) W[a + static_cast<size_t>(cols) * j] = Vt[j + static_cast<size_t>(cols) * a];
+    }
   }
   const int keep = static_cast<int>(out.singularValues.size());
   requireNonzero(used, keep);
-  MultiVector W(local, keep);
+  auto local = rcp(new Map(cols, 0, rowMap->getComm(), Tpetra::LocallyReplicated));
+  MultiVector Wk(local, keep);
   {
-    auto w = W.getLocalViewHost(Tpetra::Access::OverwriteAll);
+    auto w = Wk.getLocalViewHost(Tpetra::Access::OverwriteAll);
     for (int c = 0; c < keep; ++c)
-      for (int a = 0; a < cols; ++a) w(a, c) = G[a + static_cast<size_t>(cols) * (cols - 1 - c)];
+      for (int a = 0; a < cols; ++a) w(a, c) = W[a + static_cast<size_t>(cols) * c];
   }
   out.U = rcp(new MultiVector(rowMap, keep));
-  out.U->multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, *Q, W, 0.0);
+  out.U->multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, *Q, Wk, 0.0);
   out.snapshots = used;
   out.energy = energy;
   return out;

@@ -434,7 +434,9 @@ RCP<MultiVector> initialAdeimBasis(RCP<const HamiltonianSystem> system, const Ve
   });
   DeimBasisOptions opt;
   opt.maxRank = m;
-  opt.svd = "exact";
+  opt.svd = "randomized";
+  opt.gramProjection = false;
+  opt.powerIterations = 0;
   const DeimBasis basis = computeDeimBasis({system}, {states}, A, opt);
   GPHR_REQUIRE(static_cast<int>(basis.U->getNumVectors()) >= m, InputError, "GP-ADEIM: the first ", delta0,
                " full-model steps give ", basis.U->getNumVectors(), " independent reduced-Jacobian directions, fewer than m = ",

@@ -287,6 +287,31 @@ TEST(GpDeim, RandomizedDeimBasisMatchesTheExactOne) {
   EXPECT_NEAR(f2, 8.0, 1e-6);
 }
 
+TEST(GpDeim, RandomizedQrProjectionResolvesBelowTheGramFloor) {
+  // maxRank = d = 64: the exact route truncates nothing, and the range finder (ell = min(d,
+  // maxRank + 10) = d columns) spans all of R^d, so B = Q^T M_J has exactly M_J's singular values.
+  // The Gram route (B B^T) resolves them only to ~1e-7 sigma_1 and cuts there (41 of 64 kept);
+  // the QR route (R of the stacked B^T) is backward stable: measured |error| <= 1.9e-15 sigma_1,
+  // so 1e-12 sigma_1 leaves three decades of margin.
+  const auto [tr, snaps, basis] = trainedBasis(Nls1d(64, 5.0), 60, 4);
+  DeimBasisOptions opt;
+  opt.maxRank = 64;
+  const auto exact = computeDeimBasis({tr.system}, {snaps}, *basis.A, opt);
+  opt.svd = "randomized";
+  opt.powerIterations = 0;  // a power pass squares the spectrum: its orth would cut at sqrt(eps) too
+  const auto gram = computeDeimBasis({tr.system}, {snaps}, *basis.A, opt);
+  opt.gramProjection = false;
+  const auto qr = computeDeimBasis({tr.system}, {snaps}, *basis.A, opt);
+  const double s1 = exact.singularValues[0];
+  size_t resolved = 0;  // exact values above 1e-10 sigma_1: far below the Gram floor
+  while (resolved < exact.singularValues.size() && exact.singularValues[resolved] > 1e-10 * s1) ++resolved;
+  ASSERT_GE(qr.singularValues.size(), resolved);
+  for (size_t j = 0; j < resolved; ++j)
+    EXPECT_NEAR(qr.singularValues[j], exact.singularValues[j], 1e-12 * s1) << "j = " << j;
+  EXPECT_LT(gram.singularValues.size(), resolved) << "the Gram route was expected to stop near 1e-7 sigma_1";
+  EXPECT_GT(exact.singularValues[gram.singularValues.size()], 1e-10 * s1);
+}
+
 TEST(GpDeim, DuplicatedSnapshotsGiveTheSameDeimPair) {
   const auto [tr, snaps, basis] = trainedBasis(Nls1d(32), 40, 3);
   DeimBasisOptions dopt;

@@ -20,6 +20,11 @@ struct DeimBasisOptions {
   std::string podRoute = "auto";  // exact: the StreamingPod's step route (auto | tsqr | replicated)
   int oversampling = 10;
   int powerIterations = 1;
+  // randomized, its last pass (B = Q^T M_J): true, by the Gram matrix B B^T (one small GEMM per
+  // snapshot; resolves sigma down to ~1e-7 sigma_1, enough for the DEIM sizes worth using);
+  // false, by a blocked QR of the stacked B^T (~eps sigma_1; a few times the Gram's cost), for a
+  // basis that must keep directions far down the spectrum (GP-ADEIM's initial U_0: m of them).
+  bool gramProjection = true;
   unsigned long long seed = 20231122;
 };
 

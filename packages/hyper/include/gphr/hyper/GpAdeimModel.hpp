@@ -107,8 +107,12 @@ class GpAdeimModel final : public ReducedHamiltonian {
 };
 
 // (U_0, P_0)'s basis from the first delta0 full-model steps at the test parameter (alg:SP-ADEIM
-// line 2): the reduced-Jacobian snapshots J_G(y0 + A A^T y^l) A, l = 0..delta0, and their exact
-// POD (d x m). `system`: the shifted system, `y0`: its initial state. Collective.
+// line 2): the reduced-Jacobian snapshots J_G(y0 + A A^T y^l) A, l = 0..delta0, and their POD
+// (d x m) by the randomized range finder (m + 10 columns) with the QR projection, without power
+// passes: those square the spectrum, and so would the Gram projection, while these snapshots
+// carry only ~57 directions above 1e-7 sigma_1 at the paper's NLS (2k = 400): both cut below
+// m = 100. On that run 0.22 s against 0.87 s for the exact streaming POD (2 ranks).
+// `system`: the shifted system, `y0`: its initial state. Collective.
 RCP<MultiVector> initialAdeimBasis(RCP<const HamiltonianSystem> system, const Vector& y0, const MultiVector& A,
                                    const Teuchos::ParameterList& integrator, double dt, int delta0, int m);
 
