@@ -66,8 +66,9 @@ bool allFinite(const DenseMatrix& A) {
   return true;
 }
 
+// op(A) op(B); C is not zero-filled first (GEMM with beta = 0 overwrites it).
 DenseMatrix product(Teuchos::ETransp ta, Teuchos::ETransp tb, const DenseMatrix& A, const DenseMatrix& B) {
-  DenseMatrix C(ta == NO_TRANS ? A.numRows() : A.numCols(), tb == NO_TRANS ? B.numCols() : B.numRows());
+  DenseMatrix C(ta == NO_TRANS ? A.numRows() : A.numCols(), tb == NO_TRANS ? B.numCols() : B.numRows(), false);
   C.multiply(ta, tb, 1.0, A, B, 0.0);
   return C;
 }
@@ -109,7 +110,7 @@ CoefficientFactor factorCoefficients(const DenseMatrix& PtU, const DenseMatrix& 
   CoefficientFactor f;
   f.C = deimCoefficients(PtU, PtF);
   const int m = f.C.numRows(), wbar = f.C.numCols(), k = std::min(m, wbar);
-  DenseMatrix Ct(wbar, m);
+  DenseMatrix Ct(wbar, m, false);  // every entry written below
   for (int j = 0; j < wbar; ++j)
     for (int i = 0; i < m; ++i) Ct(j, i) = f.C(i, j);
   std::vector<int> jpvt(m, 0);

@@ -96,7 +96,7 @@ Teuchos::Time& phase(const char* name) {
 }
 
 DenseMatrix toDense(const std::vector<double>& rowMajor, int rows, int cols) {
-  DenseMatrix M(rows, cols);
+  DenseMatrix M(rows, cols, false);  // every entry written below
   for (int i = 0; i < rows; ++i)
     for (int j = 0; j < cols; ++j) M(i, j) = rowMajor[static_cast<size_t>(i) * cols + j];
   return M;
@@ -212,7 +212,7 @@ bool GpAdeimModel::afterStep(long step, const DenseVector& z) {
   rec.sampledAfter = up.residualAfter;
   if (opt_.monitorResidual) {
     Teuchos::TimeMonitor tm(phase("residual monitor"));
-    rec.fullResidual = fullResidual(up.C);
+    rec.fullResidual = fullResidual(cf);
   }
   if (up.rank > 0) {
     const std::vector<double> rotation = opt_.indices == "partial" ? columnRotations(up) : std::vector<double>();
@@ -276,11 +276,11 @@ AdeimUpdate GpAdeimModel::updateSampledRows(const CoefficientFactor& cf, int wba
 // Per own row, the residual norms of the DEIM fit (projected on V, or plain), reading U's local
 // column-major view in place.
 namespace {
-std::vector<double> ownRowScores(const MultiVector& U, const std::vector<double>& F, int rows, const DenseMatrix& C,
-                                 const DenseMatrix* V) {
+std::vector<double> ownRowScores(const MultiVector& U, const std::vector<double>& F, int rows,
+                                 const CoefficientFactor& cf, bool projected) {
   auto u = U.getLocalViewHost(Tpetra::Access::ReadOnly);
   const int ld = std::max<int>(1, static_cast<int>(u.stride(1)));
-  return residualRowNorms(u.data(), ld, F, rows, C, V);
+  return residualRowNorms(u.data(), ld, F, rows, cf, projected);
 }
 }  // namespace
 
@@ -297,7 +297,7 @@ void GpAdeimModel::resample(const CoefficientFactor& cf, long updateNo) {
     std::vector<double> scores;
     {
       Teuchos::TimeMonitor tm(phase("resampling: row scores"));
-      scores = ownRowScores(*U_, ownedF_, owned_->numRows(), cf.C, opt_.sampling == "projected" ? &cf.Q : nullptr);
+      scores = ownRowScores(*U_, ownedF_, owned_->numRows(), cf, opt_.sampling == "projected");
     }
     SampleCount count;
     count.fixed = opt_.numSamples;
@@ -326,12 +326,12 @@ ReducedRowKernel& GpAdeimModel::samplingKernel() {
   return *sampling_;
 }
 
-double GpAdeimModel::fullResidual(const DenseMatrix& C) {
+double GpAdeimModel::fullResidual(const CoefficientFactor& cf) {
   if (!ownedFValid_) {
     windowSnapshots(*owned_, ownedF_);
     ownedFValid_ = true;
   }
-  const auto norms = ownRowScores(*U_, ownedF_, owned_->numRows(), C, nullptr);
+  const auto norms = ownRowScores(*U_, ownedF_, owned_->numRows(), cf, false);
   double local = 0.0, global = 0.0;
   for (double v : norms) local += v * v;
   Teuchos::reduceAll(*U_->getMap()->getComm(), Teuchos::REDUCE_SUM, 1, &local, &global);

@@ -361,8 +361,8 @@ TEST(AdeimUpdate, ProjectedScoresAreRowNormsOfRCbar) {
   Teuchos::LAPACK<int, double>().POSV('U', kM, kW, G.values(), G.stride(), Y.values(), Y.stride(), &info);
   ASSERT_EQ(info, 0);
   const DenseMatrix RCbar = mul(NO_TRANS, NO_TRANS, R, mul(TRANS, NO_TRANS, f.C, Y));
-  const std::vector<double> projected = residualRowNorms(U.values(), U.stride(), Fl, rows, f.C, &f.Q);
-  const std::vector<double> plain = residualRowNorms(U.values(), U.stride(), Fl, rows, f.C, nullptr);
+  const std::vector<double> projected = residualRowNorms(U.values(), U.stride(), Fl, rows, f, true);
+  const std::vector<double> plain = residualRowNorms(U.values(), U.stride(), Fl, rows, f, false);
   double scale = 0.0;
   for (int i = 0; i < rows; ++i) {
     double a = 0.0;

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "gphr/core/Error.hpp"
 #include "gphr/core/ReplicatedGather.hpp"
@@ -45,7 +46,9 @@ std::vector<GO> greedyDeim(const MultiVector& U, int m) {
   const Map& map = *U.getMap();
   const LO nl = static_cast<LO>(map.getNodeNumElements());
   const int np = map.getComm()->getSize(), ld = std::max<LO>(nl, 1);
-  std::vector<double> W(static_cast<size_t>(ld) * m);  // this rank's rows of U, column-major
+  // This rank's rows of U, column-major; every entry is copied in below, so not zero-filled.
+  const std::unique_ptr<double[]> Wbuf(new double[static_cast<size_t>(ld) * m]);
+  double* W = Wbuf.get();
   std::vector<GO> gid(nl);
   {
     auto u = U.getLocalViewHost(Tpetra::Access::ReadOnly);
@@ -53,7 +56,7 @@ std::vector<GO> greedyDeim(const MultiVector& U, int m) {
       for (LO i = 0; i < nl; ++i) W[i + static_cast<size_t>(ld) * j] = u(i, j);
     for (LO i = 0; i < nl; ++i) gid[i] = map.getGlobalElement(i);
   }
-  auto col = [&](int j) { return W.data() + static_cast<size_t>(ld) * j; };
+  auto col = [&](int j) { return W + static_cast<size_t>(ld) * j; };
   std::vector<double> colMax(m, 0.0), globalMax(m, 0.0);  // max_i |U(i, l)|: the scale of column l's residual
   for (int j = 0; j < m; ++j)
     for (LO i = 0; i < nl; ++i) colMax[j] = std::max(colMax[j], std::abs(col(j)[i]));

@@ -12,14 +12,15 @@
 
 #include "gphr/timeint/DenseBackend.hpp"
 #include "gphr/core/Types.hpp"
+#include "gphr/hyper/AdeimUpdate.hpp"
 
 namespace gphr {
 
-// Per local row i: ||(U_i C - F_i) V||  (V = C's row-space basis, wbar x r_C; projected rule) or
-// ||U_i C - F_i|| (V null; residual rule). U: local rows x m, column-major with leading dimension
+// Per local row i: ||(U_i C - F_i) Q_1|| (projected rule; Q_1 = cf.Q, C's row-space basis) or
+// ||U_i C - F_i|| (residual rule), C = cf.C. U: local rows x m, column-major with leading dimension
 // ldU (a MultiVector's local view, read in place); Fl: local rows x wbar, row-major.
 std::vector<double> residualRowNorms(const double* U, int ldU, const std::vector<double>& Fl, int rows,
-                                     const DenseMatrix& C, const DenseMatrix* V);
+                                     const CoefficientFactor& cf, bool projected);
 
 struct SampleCount {
   int fixed = 0;           // m_s > 0: exactly this many (fewer if the rows run out)

@@ -84,7 +84,7 @@ class GpAdeimModel final : public ReducedHamiltonian {
   void resample(const CoefficientFactor& cf, long updateNo);
   ReducedRowKernel& samplingKernel();  // the sample mesh of S, built on demand
   AdeimUpdate updateSampledRows(const CoefficientFactor& cf, int wbar, std::vector<double>& F);
-  double fullResidual(const DenseMatrix& C);
+  double fullResidual(const CoefficientFactor& cf);
   double moveInterpolationRows(const std::vector<double>& rotation);  // returns cond(P^T U)
   std::vector<double> columnRotations(const AdeimUpdate& up) const;  // ||(U_{j+1} - U_j) e_i|| / ||U_{j+1} e_i||
   void orthonormalizeBasis();
