@@ -109,20 +109,21 @@ std::vector<GO> timedIndices(const MultiVector& U, int m, const std::string& met
 }
 
 // The GP-DEIM row kernel of (U, P): the weights and the sample mesh of P (`known`: the previous
-// sample, whose rows need no new gather). Collective.
+// sample, whose rows need no new gather). `info`: the weights' cond(P^T U) and P^T U. Collective.
 template <class Basis>
 RCP<ReducedRowKernel> interpolationKernel(const HamiltonianSystem& system, const Basis& A, const MultiVector& U,
                                           const std::vector<GO>& P, const RowSample& known = RowSample(),
-                                          double* cond = nullptr) {
+                                          DeimWeights* info = nullptr) {
   DeimWeights w;
   {
     Teuchos::TimeMonitor tm(phase("indices: weights"));
     w = computeDeimWeights(U, P, *system.nonlinearTerm().weights(), true);
   }
-  if (cond) *cond = w.conditionNumber;
   Teuchos::TimeMonitor tm(phase("indices: sample mesh of P"));
-  return rcp(
+  auto kernel = rcp(
       new ReducedRowKernel(system.nonlinearTermPtr(), gatherRowSample(system, A, P, w.weights, known), Teuchos::null));
+  if (info) *info = std::move(w);
+  return kernel;
 }
 
 RCP<MultiVector> leadingColumns(const MultiVector& U, int m) {
@@ -189,7 +190,8 @@ bool GpAdeimModel::afterStep(long step, const DenseVector& z) {
     Teuchos::TimeMonitor tm(phase("window at P"));
     windowSnapshots(rows(), F);
     forgetEvaluation();
-    cf = factorCoefficients(toDense(gatherRows(*U_, P_), m_, m_), toDense(F, m_, wbar), opt_.update.coefficientTol);
+    if (PtU_.numRows() != m_) PtU_ = toDense(gatherRows(*U_, P_), m_, m_);  // the first update only
+    cf = factorCoefficients(PtU_, toDense(F, m_, wbar), opt_.update.coefficientTol);
   }
   ownedFValid_ = false;
   const long updateNo = (step - opt_.initialWindow) / opt_.updateEvery;
@@ -352,10 +354,15 @@ double GpAdeimModel::moveInterpolationRows(const std::vector<double>& rotation) 
   } else {
     P = timedIndices(*U_, m_, opt_.indices);
   }
-  double cond = 0.0;
-  replaceRows(interpolationKernel(*system_, *Arows_, *U_, P, rows().sample(), &cond));
+  DeimWeights info;
+  replaceRows(interpolationKernel(*system_, *Arows_, *U_, P, rows().sample(), &info));
   P_ = rows().sample().rows;
-  return cond;
+  // P_{j+1}^T U_{j+1}, gathered for the weights: the next update's interpolation matrix (U and P
+  // do not change in between), so that update needs no gather of its own.
+  PtU_.shape(m_, m_);
+  for (int j = 0; j < m_; ++j)
+    for (int i = 0; i < m_; ++i) PtU_(i, j) = info.pointRows[i + static_cast<size_t>(m_) * j];
+  return info.conditionNumber;
 }
 
 // The update moved column i of U by S a b_i^T (b_i the i-th row of b, only the rows S change):

@@ -266,6 +266,7 @@ DeimWeights computeDeimWeights(const MultiVector& U, const std::vector<GO>& indi
   const std::vector<double> rows = gatherRows(U, indices);  // (P^T U)(i, j) = rows[i * nc + j]
   std::vector<double> B = pointRows(rows, m, nc);
   DeimWeights out;
+  out.pointRows = B;
   double norm1 = 0.0;  // ||B||_1 before the LU overwrites B: the max column sum (Teuchos::LAPACK has no LANGE)
   for (int j = 0; j < m && estimateCondition; ++j) {
     double col = 0.0;

@@ -97,6 +97,7 @@ class GpAdeimModel final : public ReducedHamiltonian {
   int m_;
   AdeimOptions opt_;
   std::vector<GO> P_, S_;
+  DenseMatrix PtU_;                 // P_^T U_ (m x m) once gathered; empty before the first update
   RCP<ReducedRowKernel> sampling_;  // the rows S (built on demand: samplingKernel)
   bool samplingStale_ = true;       // S_ changed since sampling_ was built
   RCP<ReducedRowKernel> owned_;     // this rank's rows of G (resampling, monitoring)

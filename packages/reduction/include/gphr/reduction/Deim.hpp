@@ -31,6 +31,7 @@ std::vector<GO> replaceDeimIndices(const MultiVector& U, std::vector<GO> P, cons
 struct DeimWeights {
   std::vector<double> weights;    // (U^T P)^{-1} U^T v, one per index
   double conditionNumber = 0.0;   // cond_2(P^T U), or its 1-norm estimate: the DEIM error amplification
+  std::vector<double> pointRows;  // P^T U as gathered (m x m, column-major): reusable while U and P stay
 };
 // cond_2(P^T U) of U's first indices.size() columns (LAPACK SVD of the m x m matrix). Collective.
 double deimConditionNumber(const MultiVector& U, const std::vector<GO>& indices);
