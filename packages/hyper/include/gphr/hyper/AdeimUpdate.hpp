@@ -44,8 +44,11 @@ struct AdeimUpdateOptions {
 
 struct AdeimUpdate {
   DenseMatrix C;                    // DEIM coefficients C_j (m x wbar)
-  DenseMatrix a;                    // m_s x r: the update of the rows S (eq:ai_from_bi)
-  DenseMatrix b;                    // m x r   (eq:gen_eval)
+  // U_{j+1} = U_j + S a b^T. With r < r_C the columns are eq:gen_eval's eigenvectors b_i and
+  // eq:ai_from_bi's a_i; with r = r_C (every direction of C kept) only a b^T is defined by the
+  // update, and (a, b) = (-S^T R Q_1, T^+) is returned without the eigenvectors.
+  DenseMatrix a;                    // m_s x r: the update of the rows S
+  DenseMatrix b;                    // m x r
   std::vector<double> eigenvalues;  // all non-zero lambda of eq:gen_eval, descending (r-bar of them)
   int rank = 0;                     // r used (0: no update, the residual is zero)
   int coefficientRank = 0;          // numerical rank of C kept
