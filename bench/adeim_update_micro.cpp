@@ -1,7 +1,8 @@
 // Micro-benchmark of one GP-ADEIM update's dense algebra at the paper's NLS size (m = 100,
 // wbar = 2k w = 400, m_s = 250, one rank): factorCoefficients (C_j and its rank-revealing factor)
-// and computeAdeimUpdate (the rank-r update, r by tau_r = 1e-12), on random data. CPU time per
-// call, the median of repeated calls, printed side by side.
+// and computeAdeimUpdate (the rank-r update, r by tau_r = 1e-12), on random data. Wall time per
+// call, the median of repeated calls (run it with OPENBLAS_NUM_THREADS=1 for the benchmark's
+// setting), printed side by side.
 // usage: adeim_update_micro [REPEATS]
 #include <algorithm>
 #include <chrono>
