@@ -63,13 +63,78 @@ void requireNonzero(long used, int rank) {
                " reduced-Jacobian snapshots are all zero (a linear problem, e.g. eps = 0, has nothing to hyper-reduce)");
 }
 
+// B = Q^T M_J's leading singular values (descending, at most maxRank, above the route's floor) and
+// left singular vectors W (cols x kept, column-major), from C_s = J_s^T Q (r x cols, column-major,
+// replicated), which each(use) hands to use(C_s) one snapshot at a time.
+struct Projection {
+  std::vector<double> sigma;
+  std::vector<Scalar> W;
+};
+
+// B B^T = sum_s C_s^T C_s (cols x cols, LAPACK SYEVD: small and dense), sigma = sqrt(lambda):
+// one small GEMM per snapshot, but the Gram matrix resolves sigma only to ~1e-7 sigma_1.
+template <class Each>
+Projection gramProjection(int cols, int r, int maxRank, Each&& each) {
+  Teuchos::BLAS<int, double> blas;
+  std::vector<Scalar> G(static_cast<size_t>(cols) * cols, 0.0);
+  each([&](const std::vector<Scalar>& C) {
+    blas.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, cols, cols, r, 1.0, C.data(), r, C.data(), r, 1.0, G.data(), cols);
+  });
+  const std::vector<double> lambda = symmetricEigen(cols, G.data(), true, "DEIM basis");
+  const double floor = 1e-7 * std::sqrt(std::max(lambda[cols - 1], 0.0));  // Gram: sqrt(eps) resolution
+  Projection p;
+  p.W.resize(static_cast<size_t>(cols) * cols);
+  for (int j = cols - 1; j >= 0 && static_cast<int>(p.sigma.size()) < maxRank; --j) {
+    const double sigma = std::sqrt(std::max(lambda[j], 0.0));
+    if (sigma <= floor || sigma == 0.0) break;
+    std::copy_n(G.data() + static_cast<size_t>(cols) * j, cols, p.W.data() + static_cast<size_t>(cols) * p.sigma.size());
+    p.sigma.push_back(sigma);
+  }
+  return p;
+}
+
+// B^T = [C_1; C_2; ...] = Q_B R, its R accumulated by a blocked QR of [R; the next snapshots'
+// rows] (denseQrFactorR, ~4 cols rows at a time), and B = R^T Q_B^T: B's singular values are R's
+// and its left singular vectors R's right ones. Resolves sigma to ~eps sigma_1; the floor is the
+// exact route's, (number of columns) eps sigma_1.
+template <class Each>
+Projection qrProjection(int cols, int r, int maxRank, Each&& each) {
+  const int batch = std::max(1, 4 * cols / std::max(r, 1)), ld = cols + batch * r;
+  std::vector<Scalar> stack(static_cast<size_t>(ld) * cols, 0.0), R(static_cast<size_t>(cols) * cols, 0.0);
+  int filled = 0;
+  auto fold = [&] {  // R <- the R factor of [R; the filled rows]
+    for (int j = 0; j < cols; ++j)
+      std::copy_n(R.data() + static_cast<size_t>(cols) * j, cols, stack.data() + static_cast<size_t>(ld) * j);
+    denseQrFactorR(cols + filled * r, cols, stack.data(), ld, R.data(), cols, "DEIM basis");
+    filled = 0;
+  };
+  each([&](const std::vector<Scalar>& C) {
+    for (int j = 0; j < cols; ++j)  // the next r rows of B^T
+      std::copy_n(C.data() + static_cast<size_t>(r) * j, r,
+                  stack.data() + static_cast<size_t>(ld) * j + cols + static_cast<size_t>(filled) * r);
+    if (++filled == batch) fold();
+  });
+  if (filled > 0) fold();
+  std::vector<double> sigma(cols), U(static_cast<size_t>(cols) * cols), Vt(static_cast<size_t>(cols) * cols);
+  denseThinSvd(cols, cols, R.data(), cols, sigma.data(), U.data(), cols, Vt.data(), cols, true, "DEIM basis");
+  const double floor = std::max(cols, r) * std::numeric_limits<double>::epsilon() * sigma[0];
+  Projection p;
+  p.W.resize(static_cast<size_t>(cols) * cols);
+  for (int j = 0; j < cols && static_cast<int>(p.sigma.size()) < maxRank; ++j) {
+    if (sigma[j] <= floor || sigma[j] == 0.0) break;
+    for (int a = 0; a < cols; ++a) p.W[a + static_cast<size_t>(cols) * j] = Vt[j + static_cast<size_t>(cols) * a];
+    p.sigma.push_back(sigma[j]);
+  }
+  return p;
+}
+
 // Randomized range finder (Halko, Martinsson & Tropp 2011, Alg. 4.3/4.4) over the streamed M_J:
 //   Y = M_J Omega (Omega of random signs, regenerated per snapshot from a seed: the same on any rank
-//   count), q power passes Y = M_J M_J^T Q, Q = orth(Y), then B B^T = sum_s (Q^T J_s)(Q^T J_s)^T
-//   (ell x ell, LAPACK SYEVD: small and dense), U = Q W, sigma = sqrt(lambda).
+//   count), q power passes Y = M_J M_J^T Q, Q = orth(Y), then the SVD of B = Q^T M_J by its Gram
+//   matrix or by the R factor of B^T (gramProjection, qrProjection above), U = Q W.
 // Each pass regenerates the snapshots (cheap: one kernel evaluation each); nothing of size
-// d x (2k states) is held. The Gram matrix squares sigma: values below ~1e-7 sigma_1 are not
-// resolved, far below the DEIM sizes worth using.
+// d x (2k states) is held. A power pass and the Gram matrix each square sigma: values below ~1e-7
+// sigma_1 are then not resolved, far below the DEIM sizes worth using for a training basis.
 DeimBasis randomizedDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& systems,
                               const std::vector<RCP<const MultiVector>>& states, const MultiVector& A,
                               const DeimBasisOptions& opt, int maxRank) {
@@ -134,55 +199,18 @@ DeimBasis randomizedDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& s
     Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, local, Teuchos::outArg(global));
     energy += global;
   };
-  std::vector<Scalar> W(static_cast<size_t>(cols) * cols);  // B's left singular vectors, column-major
-  if (opt.gramProjection) {
-    // B B^T = sum_s (Q^T J_s)(Q^T J_s)^T (cols x cols, LAPACK SYEVD: small and dense): sigma = sqrt(lambda).
-    std::vector<Scalar> G(static_cast<size_t>(cols) * cols, 0.0);
+  // The last pass: C_s = J_s^T Q for every snapshot (and M_J's energy), handed to the projection.
+  auto eachProjection = [&](auto&& use) {
     forEachJacobianSnapshot(systems, states, A, opt.snapshotEvery, jac, [&](const auto& J, long) {
       project(*Q, J);
-      blas.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, cols, cols, r, 1.0, ctSum.data(), r, ctSum.data(), r, 1.0, G.data(),
-                cols);
+      use(ctSum);
       addEnergy(J);
     });
-    const std::vector<double> lambda = symmetricEigen(cols, G.data(), true, "DEIM basis");
-    const double floor = 1e-7 * std::sqrt(std::max(lambda[cols - 1], 0.0));  // Gram: sqrt(eps) resolution
-    for (int j = cols - 1; j >= 0 && static_cast<int>(out.singularValues.size()) < maxRank; --j) {
-      const double sigma = std::sqrt(std::max(lambda[j], 0.0));
-      if (sigma <= floor || sigma == 0.0) break;
-      out.singularValues.push_back(sigma);
-      std::copy_n(G.data() + static_cast<size_t>(cols) * j, cols, W.data() + static_cast<size_t>(cols) * (cols - 1 - j));
-    }
-  } else {
-    // B^T = [J_1^T Q; J_2^T Q; ...] = Q_B R, its R accumulated by a blocked QR of [R; the next
-    // snapshots' rows] (denseQrFactorR), and B = R^T Q_B^T: B's singular values are R's and its left
-    // singular vectors R's right ones. Resolves sigma to ~eps sigma_1, where B B^T stops at sqrt(eps).
-    const int batch = std::max(1, 4 * cols / std::max(r, 1)), ld = cols + batch * r;
-    std::vector<Scalar> stack(static_cast<size_t>(ld) * cols, 0.0), R(static_cast<size_t>(cols) * cols, 0.0);
-    int filled = 0;
-    auto fold = [&] {  // R <- the R factor of [R; the filled rows]
-      const int rows = cols + filled * r;
-      for (int j = 0; j < cols; ++j) std::copy_n(R.data() + static_cast<size_t>(cols) * j, cols, stack.data() + static_cast<size_t>(ld) * j);
-      denseQrFactorR(rows, cols, stack.data(), ld, R.data(), cols, "DEIM basis");
-      filled = 0;
-    };
-    forEachJacobianSnapshot(systems, states, A, opt.snapshotEvery, jac, [&](const auto& J, long) {
-      project(*Q, J);
-      for (int j = 0; j < cols; ++j)  // ctSum = J^T Q, r x cols, column-major: the next r rows of B^T
-        std::copy_n(ctSum.data() + static_cast<size_t>(r) * j, r,
-                    stack.data() + static_cast<size_t>(ld) * j + cols + static_cast<size_t>(filled) * r);
-      if (++filled == batch) fold();
-      addEnergy(J);
-    });
-    if (filled > 0) fold();
-    std::vector<double> sigma(cols), U(static_cast<size_t>(cols) * cols), Vt(static_cast<size_t>(cols) * cols);
-    denseThinSvd(cols, cols, R.data(), cols, sigma.data(), U.data(), cols, Vt.data(), cols, true, "DEIM basis");
-    const double floor = std::max(cols, r) * std::numeric_limits<double>::epsilon() * sigma[0];
-    for (int j = 0; j < cols && static_cast<int>(out.singularValues.size()) < maxRank; ++j) {
-      if (sigma[j] <= floor || sigma[j] == 0.0) break;
-      out.singularValues.push_back(sigma[j]);
-      for (int a = 0; a < cols; ++a) W[a + static_cast<size_t>(cols) * j] = Vt[j + static_cast<size_t>(cols) * a];
-    }
-  }
+  };
+  const Projection p = opt.gramProjection ? gramProjection(cols, r, maxRank, eachProjection)
+                                          : qrProjection(cols, r, maxRank, eachProjection);
+  out.singularValues = p.sigma;
+  const std::vector<Scalar>& W = p.W;
   const int keep = static_cast<int>(out.singularValues.size());
   requireNonzero(used, keep);
   auto local = rcp(new Map(cols, 0, rowMap->getComm(), Tpetra::LocallyReplicated));
