@@ -9,8 +9,8 @@
 # error is within 10% of the ROM's (measured ratio 1.0000); GP-ADEIM (the same m) runs its 100
 # updates, conserves each local H_hr, and at m = 10 is within 10% of the ROM (measured 0.990 on
 # 2026-11-23 with the randomized initial basis, 0.992 with the exact POD before it, 0.98 before
-# the defaults tau_r = 1e-12, coefficientTol 1e-10) where
-# GP-DEIM's error is 27x the ROM's; the report files exist. The report cautions about the one
+# the defaults tau_r = 1e-12, coefficientTol 1e-10) where GP-DEIM's error is 27x the ROM's; the
+# report files exist. The report cautions about the one
 # GP-ADEIM run whose window is narrower than its DEIM basis (2k w = 20 < m = 40), and only that one.
 set -eu
 gphr=$1

@@ -290,10 +290,11 @@ TEST_F(GpAdeim, UpdatedBasisIsOrthonormal) {
       });
       std::printf("orthonormalize %d, %s: %d updates, max |U^T U - I| = %.2e\n", on, indices.c_str(), updated, worst);
       EXPECT_GT(updated, 5) << indices;
-      if (on)
+      if (on) {
         EXPECT_LE(worst, 1e-10) << indices;
-      else
+      } else {
         EXPECT_GT(worst, 1e-3) << indices;
+      }
     }
   }
 }
