@@ -19,7 +19,7 @@ DenseModelIntegrator::DenseModelIntegrator(DenseHamiltonian& model, Teuchos::Par
 
 RunStats DenseModelIntegrator::run(DenseVector& z, double dt, long steps, const StepObserver<DenseVector>& observer) {
   Teuchos::TimeMonitor tm(*Teuchos::TimeMonitor::getNewCounter("gphr: dense model time stepping"));
-  return integrate(scheme_, backend_, z, dt, steps, observer);
+  return integrate(scheme_, backend_, z, dt, steps, observer, scheme_.options().predictorOrder);
 }
 
 }  // namespace gphr

@@ -30,7 +30,7 @@ StepReport FullModelIntegrator::step(const Vector& y0, Vector& y1, double dt, lo
 RunStats FullModelIntegrator::run(Vector& y, double dt, long steps, const StepObserver<Vector>& observer,
                                   double t0, long firstStep) {
   Teuchos::TimeMonitor tm(*Teuchos::TimeMonitor::getNewCounter("gphr: full model time stepping"));
-  return integrate(*this, backend_, y, dt, steps, observer, t0, firstStep);
+  return integrate(*this, backend_, y, dt, steps, observer, scheme_.options().predictorOrder, t0, firstStep);
 }
 
 }  // namespace gphr

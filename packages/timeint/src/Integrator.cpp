@@ -22,6 +22,10 @@ Teuchos::ParameterList integratorValidParameters() {
   setDoubleParameter(pl, "jacobianLagRate", 0.3, 1e-3, 0.99,
                      "with jacobianLag: re-assemble when ||R|| shrinks by less than this factor in one iteration");
   setIntParameter(pl, "jacobianLagMaxSteps", 20, 1, 1000000, "with jacobianLag: re-assemble at least every N steps");
+  setIntParameter(pl, "newtonPredictor", 3, 0, kMaxPredictorOrder,
+                  "Newton's initial guess: the polynomial through the last p + 1 states extrapolated one step (0: "
+                  "the last state, 1: linear, 3: cubic; higher orders need fewer Newton iterations on smooth "
+                  "trajectories, same tolerance)");
   setChoiceParameter(pl, "newtonSolver", "gphr", Teuchos::tuple<std::string>("gphr", "nox"),
                      "Newton driver of the full model's steps: gphr (GPHR's own loop) or nox (NOX::Thyra, configured "
                      "by the nox section: line searches, trust regions; same iterates with its defaults, ~15-25% more "
@@ -62,6 +66,7 @@ NewtonOptions newtonOptionsFrom(const Teuchos::ParameterList& pl) {
   o.lagJacobian = pl.get<bool>("jacobianLag");
   o.lagRate = pl.get<double>("jacobianLagRate");
   o.lagMaxSteps = pl.get<int>("jacobianLagMaxSteps");
+  o.predictorOrder = pl.get<int>("newtonPredictor");
   return o;
 }
 

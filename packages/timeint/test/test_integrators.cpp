@@ -5,6 +5,10 @@
 //  - IMR conserves the quadratic invariant sum(q^2 + p^2) of the NLS.
 //  - Both schemes have order 2.
 //  - eps = 0 (linear NLS): both equal the dense Cayley recurrence of y' = J L y.
+//  - The Newton predictor (integrator.newtonPredictor = p): integrate() hands the stepper the
+//    extrapolation through the last p + 1 states, exact for states polynomial of degree <= p in
+//    the step index and not for degree p + 1; on the NLS, a higher order takes fewer Newton
+//    iterations to the same tolerance and the same states (to the Newton tolerance).
 // These run with the default Newton driver (GPHR's loop), the AVF conservation also with NOX (whose
 // last residual evaluation of a step must be that of the accepted y1, for averageGradient());
 // test_nox compares the two drivers.
@@ -12,6 +16,8 @@
 
 #include <Teuchos_LAPACK.hpp>
 #include <Teuchos_SerialDenseMatrix.hpp>
+#include <cmath>
+#include <vector>
 
 #include "TestUtils.hpp"
 #include "gphr/models/Scene.hpp"
@@ -182,6 +188,97 @@ TEST(Newton, NonConvergenceNamesStepTimeAndResidual) {
       EXPECT_NE(msg.find("residual norm"), std::string::npos) << msg;
       EXPECT_NE(msg.find("after 1 iterations"), std::string::npos) << msg;
     }
+  }
+}
+
+// A stepper that records the guess integrate() hands it and accepts the state poly(step) (a
+// polynomial of the step index in every entry), with a backend on std::vector<double>.
+struct VectorBackend {
+  using Vector = std::vector<double>;
+  Vector create() const { return Vector(3, 0.0); }
+  static void update(Vector& y, double a, const Vector& x, double b) {
+    for (size_t i = 0; i < y.size(); ++i) y[i] = a * x[i] + b * y[i];
+  }
+  static void update(Vector& y, double a, const Vector& x, double b, const Vector& z, double c) {
+    for (size_t i = 0; i < y.size(); ++i) y[i] = a * x[i] + b * z[i] + c * y[i];
+  }
+  static void assign(Vector& y, const Vector& x) { y = x; }
+};
+
+struct PolynomialStepper {
+  int degree;
+  std::vector<std::vector<double>> guesses;  // guesses[j] = the guess for y^{j+1}
+  std::vector<double> state(long step) const {  // entry e: sum_k (e + 1)^k (step / 4)^k, k <= degree
+    std::vector<double> y(3, 0.0);
+    for (int e = 0; e < 3; ++e)
+      for (int k = 0; k <= degree; ++k) y[e] += std::pow(e + 1.0, k) * std::pow(step / 4.0, k);
+    return y;
+  }
+  StepReport step(const std::vector<double>&, std::vector<double>& y1, double, long stepNo, double) {
+    guesses.push_back(y1);
+    y1 = state(stepNo);
+    return StepReport{};
+  }
+};
+
+// Largest |guess - y^{j+1}| over the steps from `from` on.
+double guessError(int order, int degree, long steps, long from) {
+  VectorBackend be;
+  PolynomialStepper st{degree, {}};
+  std::vector<double> y = st.state(0);
+  integrate(st, be, y, 0.1, steps, nullptr, order);
+  double err = 0.0;
+  for (long j = from; j < steps; ++j) {
+    const std::vector<double> exact = st.state(j + 1);
+    for (int e = 0; e < 3; ++e) err = std::max(err, std::abs(st.guesses[j][e] - exact[e]));
+  }
+  return err;
+}
+
+TEST(Predictor, ExactForPolynomialsOfItsOrderOnly) {
+  for (int order = 0; order <= kMaxPredictorOrder; ++order) {
+    // From step `order` on, `order` past states are at hand. States reach ~ (3 * 12 / 4)^3 = 729:
+    // round-off of the <= 15-term extrapolation stays below 1e-10.
+    EXPECT_LE(guessError(order, order, 12, order), 1e-10) << "order " << order;
+    // Degree order + 1: the guess misses by (order + 1)! * leading coefficient * (1/4)^(order + 1)
+    // per entry (the finite-difference identity), at least (order + 1)! 4^-(order + 1) >= 0.09.
+    EXPECT_GE(guessError(order, order + 1, 12, order), 0.09) << "order " << order;
+  }
+  // The first steps use the orders their history allows: step j (0-based) is exact for degree j.
+  EXPECT_LE(guessError(3, 1, 2, 1), 1e-12);
+  EXPECT_GE(guessError(3, 2, 2, 1), 0.09);
+  VectorBackend be;
+  PolynomialStepper st{1, {}};
+  std::vector<double> y = st.state(0);
+  EXPECT_THROW(integrate(st, be, y, 0.1, 1, nullptr, kMaxPredictorOrder + 1), InputError);
+}
+
+// On the NLS full model: each order takes fewer Newton iterations than the one below, and every
+// order reaches the same states. Each step is solved to ||R|| <= 1e-12 whatever the guess, and
+// AVF's step map is near-isometric (it conserves H), so after 40 steps the states differ by a
+// few 40 x 1e-12 (bounded here by 1e-9 relative).
+TEST(Predictor, HigherOrdersTakeFewerNewtonIterationsToTheSameStates) {
+  Nls1d scene(64);
+  auto s = scene.instantiate(test::comm(), {1.0}, false);
+  std::vector<long> iterations;
+  std::vector<Vector> finals;
+  for (int order : {0, 1, 3}) {
+    auto pl = integratorParams("avf", 1e-12);
+    pl.set("newtonPredictor", order);
+    pl.set("jacobianLag", true);  // the lagged matrix converges linearly (as in the benchmarks), so each order counts
+    FullModelIntegrator integ(s.system, pl);
+    Vector y(*s.y0, Teuchos::Copy);
+    iterations.push_back(integ.run(y, 0.01, 40).newtonIterations);
+    finals.push_back(y);
+  }
+  std::cerr << "Newton iterations over 40 steps, predictor 0 / 1 / 3: " << iterations[0] << " / " << iterations[1]
+            << " / " << iterations[2] << "\n";
+  EXPECT_LT(iterations[1], iterations[0]);
+  EXPECT_LT(iterations[2], iterations[1]);
+  for (size_t i = 1; i < finals.size(); ++i) {
+    Vector d(finals[0], Teuchos::Copy);
+    d.update(1.0, finals[i], -1.0);
+    EXPECT_LE(d.norm2(), 1e-9 * finals[0].norm2()) << "predictor run " << i;
   }
 }
 

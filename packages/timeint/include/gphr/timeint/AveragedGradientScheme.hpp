@@ -60,7 +60,14 @@ struct NewtonOptions {
   bool lagJacobian = false;
   double lagRate = 0.3;
   int lagMaxSteps = 20;
+  // Newton's initial guess for y^{j+1}: the polynomial through the last predictorOrder + 1 states
+  // extrapolated one step (integrate(), extrapolatedGuess()). 3 (cubic) by default: on the
+  // paper's NLS set-up (n = 2048, dt = 0.01, AVF) the full model takes 1.95 Newton iterations per
+  // step against 2.94 with the linear guess, the GP-ADEIM model 2.52 against 2.96.
+  int predictorOrder = 3;
 };
+
+constexpr int kMaxPredictorOrder = 3;
 
 // The one failure message of both Newton drivers (GPHR's loop and NOX): where and how far.
 inline std::string newtonFailureMessage(const NewtonOptions& o, long step, double time, const StepReport& rep,

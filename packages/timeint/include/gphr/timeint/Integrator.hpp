@@ -2,15 +2,18 @@
 // Integrator configuration (IMR / AVF, Newton) and the generic time loop over
 // AveragedGradientScheme, shared by the full, reduced and hyper-reduced models.
 #include <Teuchos_ParameterList.hpp>
+#include <algorithm>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "gphr/timeint/AveragedGradientScheme.hpp"
 
 namespace gphr {
 
 // Valid keys: scheme (imr|avf), quadraturePoints (0 = from G's degree), newtonTolerance,
-// maxNewtonIterations, jacobianReuse, newtonSolver (nox|gphr, full model only), and the sections
+// maxNewtonIterations, jacobianReuse, jacobianLag (with jacobianLagRate, jacobianLagMaxSteps),
+// newtonPredictor (0 .. 3), newtonSolver (nox|gphr, full model only), and the sections
 // linearSolver (FullModelBackend::validParameters()) and nox (noxValidParameters()).
 Teuchos::ParameterList integratorValidParameters();
 
@@ -36,24 +39,57 @@ struct RunStats {
 template <class Vector>
 using StepObserver = std::function<void(long, double, const Vector&, const StepReport&)>;
 
-// Advance y by `steps` steps of size dt from time t0. The Newton guess for y^{j+1} is the linear
-// extrapolation 2 y^j - y^{j-1} (y^0 for the first step). Stepper: AveragedGradientScheme (GPHR's
-// Newton loop) or NoxNewtonSolver, both with step(y0, y1, dt, stepNo, t) -> StepReport.
+// The Newton guess for y^{j+1}: the polynomial through y^j and the p previous states past[0] =
+// y^{j-1}, ..., past[p-1] = y^{j-p}, extrapolated one step, sum_{i=0..p} (-1)^i binom(p+1, i+1)
+// y^{j-i} (p = 0: y^j; 1: 2 y^j - y^{j-1}; 3: 4 y^j - 6 y^{j-1} + 4 y^{j-2} - y^{j-3}). Exact
+// for states that are polynomials of degree <= p in the step index; on a smooth trajectory the
+// guess is O(dt^{p+1}) from y^{j+1}, so fewer Newton iterations reach the same tolerance.
+template <class Backend, class PastState>
+void extrapolatedGuess(const typename Backend::Vector& y, int p, const PastState& past,
+                       typename Backend::Vector& next) {
+  if (p == 0) {
+    Backend::assign(next, y);
+    return;
+  }
+  double binom = p + 1;  // binom(p + 1, i + 1), i = 0
+  auto coefficient = [&](int i) {  // (-1)^i binom(p + 1, i + 1), called for i = 1, 2, ... in order
+    binom = binom * (p + 1 - i) / (i + 1);
+    return (i % 2 ? -1.0 : 1.0) * binom;
+  };
+  const double c0 = binom;
+  Backend::update(next, c0, y, coefficient(1), past(0), 0.0);
+  for (int i = 2; i <= p; ++i) Backend::update(next, coefficient(i), past(i - 1), 1.0);
+}
+
+// Advance y by `steps` steps of size dt from time t0. The Newton guess for y^{j+1} is
+// extrapolatedGuess of order min(predictorOrder, states at hand): a run (or a resumed run) starts
+// from y^0, then linear, quadratic, ... Stepper: AveragedGradientScheme (GPHR's Newton loop) or
+// NoxNewtonSolver, both with step(y0, y1, dt, stepNo, t) -> StepReport.
 template <class Stepper, class Backend>
-RunStats integrate(Stepper& scheme, Backend& backend, typename Backend::Vector& y,
-                   double dt, long steps, const StepObserver<typename Backend::Vector>& observer,
-                   double t0 = 0.0, long firstStep = 0) {
+RunStats integrate(Stepper& scheme, Backend& backend, typename Backend::Vector& y, double dt, long steps,
+                   const StepObserver<typename Backend::Vector>& observer, int predictorOrder, double t0 = 0.0,
+                   long firstStep = 0) {
   using V = typename Backend::Vector;
+  GPHR_REQUIRE(predictorOrder >= 0 && predictorOrder <= kMaxPredictorOrder, InputError, "Newton predictor order ",
+               predictorOrder, " is not allowed (0 to ", kMaxPredictorOrder, ")");
   RunStats stats;
-  V prev = backend.create(), next = backend.create();
-  Backend::assign(prev, y);
+  // The last predictorOrder states in a ring (no copies but the one of the accepted state).
+  std::vector<V> ring;
+  for (int i = 0; i < predictorOrder; ++i) ring.push_back(backend.create());
+  int head = -1, have = 0;  // ring[head] = y^{j-1}, ring[head - 1] = y^{j-2}, ... (mod order)
+  auto past = [&](int i) -> const V& { return ring[(head - i + predictorOrder) % predictorOrder]; };
+  V next = backend.create();
   if (observer) observer(firstStep, t0, y, StepReport{});
   for (long j = 0; j < steps; ++j) {
-    Backend::update(next, 2.0, y, -1.0, prev, 0.0);
+    extrapolatedGuess<Backend>(y, std::min(predictorOrder, have), past, next);
     const long stepNo = firstStep + j + 1;
     const double t = t0 + (j + 1) * dt;
     const StepReport rep = scheme.step(y, next, dt, stepNo, t);
-    Backend::assign(prev, y);
+    if (predictorOrder > 0) {
+      head = (head + 1) % predictorOrder;
+      Backend::assign(ring[head], y);
+      have = std::min(have + 1, predictorOrder);
+    }
     Backend::assign(y, next);
     stats.steps++;
     stats.newtonIterations += rep.newtonIterations;
