@@ -39,14 +39,21 @@ YAML
   printf '%s\n' "$@"
 }
 
+# CPU ticks (all, and stolen by the hypervisor) from /proc/stat: the steal share during a run says
+# how much of the machine another guest took, which moves every time printed here.
+cpu_ticks() { awk '/^cpu /{s = 0; for (i = 2; i <= 9; i++) s += $i; print s, $9}' /proc/stat; }
+
 run() {  # run NAME YAML_LINES...: one gphr run in bench-out/adeim_<case>_np<R>/NAME, artifacts from base
   local name=$1; shift
   local out=bench-out/adeim_${case}_np$np/$name
   mkdir -p "$out"
   config "$@" > "$out/config.yaml"
   [ -s "$base/artifacts.h5" ] && cp "$base/artifacts.h5" "$out/artifacts.h5"
+  local before after
+  before=$(cpu_ticks)
   if [ "$np" -eq 1 ]; then "$gphr" run "$out/config.yaml" --output "$out" > "$out/run.log" 2>&1
   else mpirun --oversubscribe -np "$np" "$gphr" run "$out/config.yaml" --output "$out" > "$out/run.log" 2>&1; fi
+  after=$(cpu_ticks)
   [ -s "$base/artifacts.h5" ] || cp "$out/artifacts.h5" "$base/artifacts.h5"
   python3 - "$out/summary.json" "$name" <<'PY'
 import json, sys
@@ -63,6 +70,7 @@ for r in s["runs"][1:]:
           % (name, r["method"], 2 * r["k"], r.get("m", "-"), r["status"], g("E_L2"), g("H_err_final"),
              g("t_hyper_offline_s"), g("t_online_s"), g("t_total_s"), fom["t_online_s"], extra))
 PY
+  echo "$before $after" | awk -v n="$name" '{t = $3 - $1; if (t > 0) printf "%-14s machine: %.1f%% of the CPU time stolen by the hypervisor during this run\n", n, 100 * ($4 - $2) / t}'
 }
 
 adeim() {  # adeim "KEY: VALUE, ..." -> the adeim section: the paper's settings, the given keys instead
@@ -70,6 +78,16 @@ adeim() {  # adeim "KEY: VALUE, ..." -> the adeim section: the paper's settings,
   for k in $(echo "$1" | grep -o '[A-Za-z]*:' | tr -d :); do d=$(echo "$d" | sed -E "s/(^|, )$k: [^,]*//; s/^, //"); done
   echo "  adeim: {$d, $1}"
 }
+
+# The machine's speed at the update's dense algebra, before and after the case: this machine's
+# speed has swung by half from hour to hour (shared host), and the adaptive runs' times with it.
+# The same code printed factorCoefficients 2.35-3.18 ms and computeAdeimUpdate 3.54-3.62 ms in the
+# eighth session, when the paper run took 10.9-15.3 s; 3.4 and 6.0 ms in a slow hour of the ninth.
+calibrate() {
+  if [ -x "$build/bench/adeim_update_micro" ]; then echo "calibration ($1): $("$build/bench/adeim_update_micro" 100)"; fi
+}
+calibrate before
+trap 'calibrate after' EXIT
 
 case $case in
   nls) run main "  pipeline: {rom: true, methods: [rom, gp-deim, gp-adeim], m: [100]}" "$(adeim "sampling: projected")" ;;
