@@ -73,7 +73,7 @@ RunStats integrate(Stepper& scheme, Backend& backend, typename Backend::Vector& 
   GPHR_REQUIRE(predictorOrder >= 0 && predictorOrder <= kMaxPredictorOrder, InputError, "Newton predictor order ",
                predictorOrder, " is not allowed (0 to ", kMaxPredictorOrder, ")");
   RunStats stats;
-  // The last predictorOrder states in a ring (no copies but the one of the accepted state).
+  // The last predictorOrder states in a ring: one copy per step (of the state being left).
   std::vector<V> ring;
   for (int i = 0; i < predictorOrder; ++i) ring.push_back(backend.create());
   int head = -1, have = 0;  // ring[head] = y^{j-1}, ring[head - 1] = y^{j-2}, ... (mod order)
