@@ -47,18 +47,16 @@ using StepObserver = std::function<void(long, double, const Vector&, const StepR
 template <class Backend, class PastState>
 void extrapolatedGuess(const typename Backend::Vector& y, int p, const PastState& past,
                        typename Backend::Vector& next) {
+  // Row p: (-1)^i binom(p + 1, i + 1), i = 0 .. p.
+  static constexpr double kCoefficients[kMaxPredictorOrder + 1][kMaxPredictorOrder + 1] = {
+      {1.0}, {2.0, -1.0}, {3.0, -3.0, 1.0}, {4.0, -6.0, 4.0, -1.0}};
   if (p == 0) {
     Backend::assign(next, y);
     return;
   }
-  double binom = p + 1;  // binom(p + 1, i + 1), i = 0
-  auto coefficient = [&](int i) {  // (-1)^i binom(p + 1, i + 1), called for i = 1, 2, ... in order
-    binom = binom * (p + 1 - i) / (i + 1);
-    return (i % 2 ? -1.0 : 1.0) * binom;
-  };
-  const double c0 = binom;
-  Backend::update(next, c0, y, coefficient(1), past(0), 0.0);
-  for (int i = 2; i <= p; ++i) Backend::update(next, coefficient(i), past(i - 1), 1.0);
+  const double* c = kCoefficients[p];
+  Backend::update(next, c[0], y, c[1], past(0), 0.0);
+  for (int i = 2; i <= p; ++i) Backend::update(next, c[i], past(i - 1), 1.0);
 }
 
 // Advance y by `steps` steps of size dt from time t0. The Newton guess for y^{j+1} is
