@@ -8,6 +8,11 @@
       integrator.newtonTolerance), H stayed within --H-rel-max of H0 (default,
       for AVF: 1e-9), and, with --rom-k, the Galerkin ROM ran with 2k = reducedDim, conserved its
       H_r like the full model and has E_L2 in [LO, HI].
+  check_summary.py adeim-updates SUMMARY CSV
+      adeim_updates.csv against the summary: one row per update of every gp-adeim run, the
+      documented columns, rank <= coefficient_rank <= m <= m_s, the residual at S not raised by
+      an update, the full-row residual (when monitored) at least the one at S, and each run's
+      t_total_s = t_hyper_offline_s + t_online_s.
   check_summary.py same SUMMARY_A SUMMARY_B
       the ROM of two runs (e.g. on 1 and 2 ranks) has the same E_L2, E_fin, energy_captured and
       the same (round-off level) H_err_max; see same() for the tolerances.
@@ -138,6 +143,50 @@ def check_gp_adeim(s, rom, a):
     return "gp-adeim m=%s E_L2(m=%d)/E_L2(rom)=%.4f" % (want, low["m"], low["E_L2"] / rom["E_L2"])
 
 
+ADEIM_COLUMNS = ("run", "k", "m", "update", "step", "t", "rank", "coefficient_rank", "m_s", "resampled",
+                 "sampled_residual_before", "sampled_residual_after", "full_residual", "cond1_PtU", "update_s",
+                 "dH_total", "eps_fom", "eps_hr", "deim_end", "deim_start", "bound", "paper_bound")
+
+
+def adeim_updates(a):
+    """The per-update CSV of the report. The residuals: an update minimizes ||S^T (U C - F)||_F
+    over rank-r corrections including zero, so it never raises it (1e-12 relative: round-off of
+    a norm of ~1e3 terms); the rows S are a subset of all d rows, so ||U_{j+1} C_j - F_j||_F over
+    all rows is at least the part at S (same round-off allowance). bound adds to paper_bound the
+    non-negative deim_start terms, and dH_total <= bound is the triangle inequality: these two
+    fail only if the columns are mis-assembled."""
+    import csv
+    s = json.load(open(a.summary))
+    rows = list(csv.DictReader(open(a.csv)))
+    require(rows, "no rows in %s" % a.csv)
+    require(tuple(rows[0].keys()) == ADEIM_COLUMNS, "columns %s, expected %s" % (list(rows[0].keys()), ADEIM_COLUMNS))
+    runs = [r for r in s["runs"] if r.get("method") == "gp-adeim"]
+    require(runs, "no gp-adeim run in the summary")
+    monitored = 0
+    for r in runs:
+        total = r["t_hyper_offline_s"] + r["t_online_s"]
+        require(abs(r["t_total_s"] - total) <= 1e-9 * total,
+                "gp-adeim m=%d: t_total_s %r != t_hyper_offline_s + t_online_s = %r" % (r["m"], r["t_total_s"], total))
+        mine = [x for x in rows if int(x["k"]) == r["k"] and int(x["m"]) == r["m"]]
+        require(len(mine) == r["updates"], "gp-adeim m=%d: %d CSV rows for %d updates" % (r["m"], len(mine), r["updates"]))
+        for x in mine:
+            f = {k: float(v) for k, v in x.items() if k != "run"}
+            where = "gp-adeim m=%d update %d" % (r["m"], f["update"])
+            require(0 <= f["rank"] <= f["coefficient_rank"] <= r["m"] <= f["m_s"],
+                    "%s: rank %g, coefficient rank %g, m %d, m_s %g" % (where, f["rank"], f["coefficient_rank"], r["m"], f["m_s"]))
+            require(f["sampled_residual_after"] <= f["sampled_residual_before"] * (1 + 1e-12),
+                    "%s: the residual at S rose from %g to %g" % (where, f["sampled_residual_before"], f["sampled_residual_after"]))
+            if f["full_residual"] >= 0:
+                monitored += 1
+                require(f["full_residual"] >= f["sampled_residual_after"] * (1 - 1e-12),
+                        "%s: full residual %g below the one at S %g" % (where, f["full_residual"], f["sampled_residual_after"]))
+            require(f["paper_bound"] <= f["bound"] and f["dH_total"] <= f["bound"] * (1 + 1e-12),
+                    "%s: dH_total %g, paper_bound %g, bound %g" % (where, f["dH_total"], f["paper_bound"], f["bound"]))
+    if a.monitored:
+        require(monitored == len(rows), "full_residual recorded at %d of %d updates" % (monitored, len(rows)))
+    return "%d update rows of %d gp-adeim runs, %d with the full residual" % (len(rows), len(runs), monitored)
+
+
 def same(a):
     """Same ROM results from two runs of one config (1 and 2 ranks).
 
@@ -180,6 +229,11 @@ def main():
     c.add_argument("--gp-adeim", type=float, nargs="+", metavar="M",
                    help="m values of the gp-adeim runs, then the allowed E_L2 ratio to the rom at the smallest m")
     c.set_defaults(fn=check)
+    u = sub.add_parser("adeim-updates")
+    u.add_argument("summary")
+    u.add_argument("csv")
+    u.add_argument("--monitored", action="store_true", help="every update recorded the full-row residual")
+    u.set_defaults(fn=adeim_updates)
     d = sub.add_parser("same")
     d.add_argument("a")
     d.add_argument("b")

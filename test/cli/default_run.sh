@@ -10,7 +10,9 @@
 # updates, conserves each local H_hr, and at m = 10 is within 10% of the ROM (measured 0.990 on
 # 2026-11-23 with the randomized initial basis, 0.992 with the exact POD before it, 0.98 before
 # the defaults tau_r = 1e-12, coefficientTol 1e-10) where GP-DEIM's error is 27x the ROM's; the
-# report files exist. The report cautions about the one
+# report files exist, the PNGs among them, and adeim_updates.csv agrees with the summary (one row
+# per update, rank <= rank(C) <= m <= m_s, residuals consistent: check_summary.py adeim-updates)
+# with the full-row residual at every update (adeim.monitorResidual is on by default). The report cautions about the one
 # GP-ADEIM run whose window is narrower than its DEIM basis (2k w = 20 < m = 40), and only that one.
 set -eu
 gphr=$1
@@ -20,6 +22,8 @@ work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 for f in artifacts.h5 summary.json fom_history.csv rom_history.csv; do [ -s "$work/out/$f" ] || { echo "missing $f"; exit 1; }; done
 python3 "$here/check_summary.py" check "$work/out/summary.json" --scene nls1d --scheme avf --n 256 --steps 500 \
   --rom-k 10 --rom-E-L2 0.012 0.048 --gp-deim 10 20 40 1.1 --gp-adeim 10 20 40 1.1
-for f in report.md runs.csv deim_singular_values.csv adeim_updates.csv; do [ -s "$work/out/$f" ] || { echo "missing $f"; exit 1; }; done
+for f in report.md runs.csv deim_singular_values.csv adeim_updates.csv adeim_updates.png error_vs_total_time.png \
+         error_vs_m.png; do [ -s "$work/out/$f" ] || { echo "missing $f"; exit 1; }; done
+python3 "$here/check_summary.py" adeim-updates "$work/out/summary.json" "$work/out/adeim_updates.csv" --monitored
 grep -qx -- "- gp-adeim k=10 m=40: 2k w = 20 < m = 40 (window >= 2, initialWindow > 2)" "$work/out/report.md" || { echo "no window caution for m = 40"; exit 1; }
 if grep -q -- "^- gp-adeim k=10 m=[12]0:" "$work/out/report.md"; then echo "window caution for m <= 2k w"; exit 1; fi

@@ -33,11 +33,13 @@ Result run(const RCP<const Comm>& c, const std::string& rule) {
 
 TEST(GpAdeimRanks, SameTrajectoryAndRowsAsSerial) {
   ASSERT_GT(test::comm()->getSize(), 1) << "register this test on 2 or more ranks";
-  for (const std::string rule : {"projected", "random"}) {
+  for (const std::string rule : {"projected", "residual", "random"}) {
     const Result parallel = run(test::comm(), rule);
     auto serial = test::serialComm();
     if (serial.is_null()) continue;  // ranks > 0 took part in the parallel run only
     const Result ref = run(serial, rule);
+    ASSERT_EQ(parallel.z.size(), 101u) << rule;
+    ASSERT_EQ(ref.z.size(), parallel.z.size()) << rule;
     EXPECT_EQ(parallel.ranks, ref.ranks) << rule;
     EXPECT_EQ(parallel.P, ref.P) << rule;
     EXPECT_EQ(parallel.S, ref.S) << rule;
