@@ -17,13 +17,18 @@
 # again). Each run prints one line per GP-DEIM / GP-ADEIM model: E_L2, Delta H at the final time,
 # t_off, t_on, t_tot (the paper's columns).
 # usage: bash bench/adeim_paper.sh CASE [RANKS] [BUILD_DIR]
+#   GPHR_BASE_RANKS=R2: take the cached training, basis and DEIM basis of R2 ranks (trained there
+#   once) for a run on RANKS, so that only the online phase changes rank count; the outputs then go
+#   to bench-out/adeim_<case>_np<RANKS>_base<R2>.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 case=$1; np=${2:-2}; build=${3:-build}
 gphr=$build/packages/driver/gphr
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=1
-echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores; $(date -u +%F); ranks $np; case $case"
-base=bench-out/adeim_base_np$np
+echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores; $(date -u +%F); ranks $np; case $case${GPHR_BASE_RANKS:+; offline artifacts of $GPHR_BASE_RANKS ranks}"
+baseNp=${GPHR_BASE_RANKS:-$np}
+base=bench-out/adeim_base_np$baseNp
+suffix=$([ "$baseNp" = "$np" ] && echo "" || echo "_base$baseNp")
 mkdir -p "$base"
 
 # config BODY_YAML_LINES -> stdout: the paper's NLS set-up plus the given lines (under gphr:)
@@ -46,7 +51,7 @@ cpu_ticks() { awk '/^cpu /{s = 0; for (i = 2; i <= 9; i++) s += $i; print s, $9}
 
 run() {  # run NAME YAML_LINES...: one gphr run in bench-out/adeim_<case>_np<R>/NAME, artifacts from base
   local name=$1; shift
-  local out=bench-out/adeim_${case}_np$np/$name
+  local out=bench-out/adeim_${case}_np$np$suffix/$name
   mkdir -p "$out"
   config "$@" > "$out/config.yaml"
   [ -s "$base/artifacts.h5" ] && cp "$base/artifacts.h5" "$out/artifacts.h5"
@@ -56,8 +61,9 @@ run() {  # run NAME YAML_LINES...: one gphr run in bench-out/adeim_<case>_np<R>/
   else mpirun --oversubscribe -np "$np" "$gphr" run "$out/config.yaml" --output "$out" > "$out/run.log" 2>&1; fi
   after=$(cpu_ticks)
   # A run that had to train again (the training or integrator config differs from the cached
-  # artifacts', e.g. after a new integrator default) refreshes the cache for the runs after it.
-  if [ ! -s "$base/artifacts.h5" ] || grep -q "training again" "$out/run.log"; then
+  # artifacts', e.g. after a new integrator default) refreshes the cache for the runs after it
+  # (the cache of its own rank count only: one borrowed by GPHR_BASE_RANKS stays as it was).
+  if [ -z "$suffix" ] && { [ ! -s "$base/artifacts.h5" ] || grep -q "training again" "$out/run.log"; }; then
     cp "$out/artifacts.h5" "$base/artifacts.h5"
   fi
   python3 - "$out/summary.json" "$name" <<'PY'

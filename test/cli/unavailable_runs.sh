@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
-# A DEIM size the offline data cannot support (m = d = 64 on NLS n = 32: more than the DEIM basis
-# from the training snapshots, and than the first delta0 full-model steps give GP-ADEIM) is an
-# `unavailable` run with its reason, beside the runs that can be made; gphr exits 0 and writes the
+# A DEIM size the offline data cannot support (m = 64 on NLS n = 32: more than the DEIM basis from
+# the training snapshots has vectors, and more than G's d = 32 rows, which GP-ADEIM's message
+# names) is an `unavailable` run with its reason, beside the runs that can be made; gphr exits 0 and writes the
 # whole report (artifacts.h5 included: an unavailable run has no trajectory to store). The report's
 # caution about GP-ADEIM windows narrower than the basis (2k w < m, here 2k = 8) lists m = 9 (the
 # most the offline data supports) at w = 1 (8 < 9) but not at w = 2 (16), and never the
-# unavailable m = 64, which did not run; the tables call m = 64 unavailable, not diverged.
+# unavailable m = 64, which did not run; the tables call m = 64 unavailable, not diverged, with
+# no error or time (nan in runs.csv, '-' in report.md). A run with adeim.initialWindow beyond its
+# steps never adapts, and the report says so.
 # usage: unavailable_runs.sh GPHR
 set -u
 gphr=$1
@@ -18,6 +20,14 @@ grep -q -- "^- gp-adeim k=4 m=9: 2k w = 8 < m = 9" "$work/out1/report.md" || { e
 if grep -q -- "^- gp-adeim k=4 m=\(9\|64\):" "$work/out2/report.md"; then echo "FAIL: caution at w = 2 (2k w = 16)"; exit 1; fi
 grep -q -- "^| gp-adeim | 4 | 64 | unavailable |" "$work/out1/report.md" || { echo "FAIL: m = 64 not shown as unavailable"; exit 1; }
 if grep -q -- "^- gp-adeim k=4 m=64:" "$work/out1/report.md"; then echo "FAIL: caution for the unavailable m = 64"; exit 1; fi
+# runs.csv and report.md give an unavailable run no error and no time (not 0, which would read as exact)
+grep -qx -- "gp-adeim,4,64,unavailable,nan,nan,nan,[^,]*,nan" "$work/out1/runs.csv" || { echo "FAIL: runs.csv row of m = 64"; cat "$work/out1/runs.csv"; exit 1; }
+grep -q -- "^| gp-adeim | 4 | 64 | unavailable | - | - | - |" "$work/out1/report.md" || { echo "FAIL: report row of m = 64"; exit 1; }
+# a run whose first update would come after its last step is reported as not adapted
+printf 'gphr:\n  scene: {name: nls1d, n: 32}\n  time: {T: 0.2, dt: 0.01}\n  training: {points: [2]}\n  reduction: {k: 4}\n  pipeline: {rom: true, methods: [gp-adeim], m: [4]}\n  adeim: {initialWindow: 30}\n  output: {plots: false}\n' > "$work/late.yaml"
+"$gphr" run "$work/late.yaml" --output "$work/late" > /dev/null 2> "$work/err" || { echo "FAIL: exit $?"; cat "$work/err"; exit 1; }
+grep -q "^No update ran in gp-adeim k=4 m=4: adeim.initialWindow = 30 exceeds the 20 steps" "$work/late/report.md" || { echo "FAIL: no 'no update ran' note"; exit 1; }
+if grep -q "^No update ran" "$work/out1/report.md"; then echo "FAIL: 'no update ran' for runs that adapted"; exit 1; fi
 python3 - "$work/out1/summary.json" <<'PY'
 import json, sys
 runs = {(r["method"], r.get("m")): r for r in json.load(open(sys.argv[1]))["runs"]}
@@ -26,6 +36,6 @@ for method in ("gp-deim", "gp-adeim"):
     assert ok["status"] == "ok" and ok["E_L2"] is not None, (method, ok)
     assert runs[(method, 9)]["status"] == "ok", (method, runs[(method, 9)])
     why = big.get("reason", "")
-    assert big["status"] == "unavailable" and ("fewer than m = 64" in why or "vectors" in why), (method, big)
+    assert big["status"] == "unavailable" and ("d = 32" in why or "vectors" in why), (method, big)
 print("ok: m = 4 and 9 ran, m = 64 unavailable with a reason, for gp-deim and gp-adeim; window caution for m = 9 at w = 1 only")
 PY

@@ -115,8 +115,12 @@ Teuchos::ParameterList loadConfig(const std::string& path) {
   try {
     pl = xml ? Teuchos::getParametersFromXmlFile(path) : Teuchos::getParametersFromYamlFile(path);
   } catch (const std::exception& e) {
+    // Teuchos' YAML reader takes a flow mapping {a: 1, b: 2} on one line only: say so, since
+    // its own message gives just a position.
     throw InputError(detail::concat("config file '", path, "' is malformed ", xml ? "XML" : "YAML", ": ",
-                                    firstLine(e.what())));
+                                    firstLine(e.what()),
+                                    xml ? "" : " (a {key: value, ...} mapping must fit on one line; "
+                                               "write longer sections in block style, one key per line)"));
   }
   GPHR_REQUIRE(pl->name() == "gphr", InputError, "config file '", path,
                "': the top level must be the single key 'gphr' (found '", pl->name(), "')");

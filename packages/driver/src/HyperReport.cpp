@@ -39,7 +39,8 @@ void writeRunsCsv(const RomStages& st, double fomOnline, const std::string& path
     double eRom = NAN;
     for (const auto& q : st.runs)
       if (q.method == "rom" && q.k == r.k) eRom = q.eL2;
-    os << r.method << "," << r.k << "," << r.m << "," << (r.ok ? "ok" : "diverged") << "," << r.eL2 << ","
+    os << r.method << "," << r.k << "," << r.m << "," << (r.ok ? "ok" : r.available ? "diverged" : "unavailable") << ","
+       << r.eL2 << ","
        << r.tOnline << "," << (r.tOnline > 0 ? fomOnline / r.tOnline : NAN) << "," << eRom << ","
        << r.run.number("t_total_s") << "\n";
   }
@@ -120,6 +121,15 @@ std::string adeimWindowCaution(const RunContext& ctx, const RomStages& st) {
     const int wNeeded = (r.m + 2 * r.k - 1) / (2 * r.k);
     md << "- " << r.label() << ": 2k w = " << wbar << " < m = " << r.m << " (window >= " << wNeeded
        << ", initialWindow > " << wNeeded << ")\n";
+  }
+  // A run whose first update would come after its last step never adapted: say so, since its
+  // status is ok and its error is then the fixed pair's (U_0, P_0).
+  const long steps = numSteps(ctx.config);
+  for (const auto& r : st.runs) {
+    if (r.method != "gp-adeim" || !r.ok || !r.adeimUpdates.empty()) continue;
+    const AdeimOptions o = adeimOptionsFrom(ctx.config.sublist("adeim"), r.m);
+    md << "\nNo update ran in " << r.label() << ": adeim.initialWindow = " << o.initialWindow << " exceeds the "
+       << steps << " steps of the run, so it is the non-adaptive model of its initial pair (U_0, P_0).\n";
   }
   return md.str();
 }

@@ -5,6 +5,7 @@
 #include <Teuchos_Time.hpp>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/Config.hpp"
@@ -101,6 +102,7 @@ CachedDeimBasis deimBasisFor(const RunContext& ctx, const RomStages& st, const M
 ModelRun unavailable(const std::string& method, int k, int m, const std::string& why) {
   ModelRun r;
   r.method = method, r.k = k, r.m = m, r.ok = false, r.available = false;
+  r.eL2 = r.tOnline = std::numeric_limits<double>::quiet_NaN();  // not run: no error, no time (never 0)
   r.run.set("method", method).set("k", static_cast<long>(k)).set("m", static_cast<long>(m));
   r.run.set("status", "unavailable").set("reason", why);
   return r;

@@ -193,18 +193,28 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
   }
   int plottedAll = plotted;
   Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(plottedAll));
+  // A file this run does not write is removed: an output directory reused for another config
+  // must not keep an older run's report beside this run's summary.
+  auto commitOrDrop = [&](RenameOnCommit& f, bool written) {
+    if (written) {
+      f.commit();
+    } else if (root) {
+      std::error_code ec;
+      std::filesystem::remove(f.finalPath(), ec);
+    }
+  };
   if (!inPlace) h5.commit();
   csv.commit();
-  if (firstRom) romCsv.commit();
-  if (rom) svCsv.commit();
+  commitOrDrop(romCsv, firstRom != nullptr);
+  commitOrDrop(svCsv, rom != nullptr);
   int svPlotted = root && std::filesystem::exists(svPng.tempPath());
   Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(svPlotted));
-  if (svPlotted) svPng.commit();
-  if (plottedAll) png.commit();
+  commitOrDrop(svPng, svPlotted);
+  commitOrDrop(png, plottedAll);
   for (auto& [name, file] : hyper) {
     int done = root && std::find(hyperFiles.begin(), hyperFiles.end(), name) != hyperFiles.end();
     Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(done));
-    if (done) file->commit();
+    commitOrDrop(*file, done);
   }
   json.commit();  // last: summary.json present means the run is complete
   return summary.str();

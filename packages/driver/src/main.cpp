@@ -60,6 +60,9 @@ int runMain(const Args& args, const gphr::RCP<const gphr::Comm>& comm) {
     std::error_code ec;
     std::filesystem::create_directories(ctx.outputDir, ec);
     GPHR_REQUIRE(!ec, InputError, "cannot create output directory '", ctx.outputDir, "': ", ec.message());
+    // A directory reused from an earlier run: its summary.json would claim this run complete
+    // before it is; the report's other files not rewritten are removed when it commits.
+    std::filesystem::remove(ctx.outputDir + "/summary.json", ec);
     std::fprintf(stderr, "[gphr] scene %s, %d rank(s), output in %s\n", ctx.scene->name().c_str(),
                  comm->getSize(), ctx.outputDir.c_str());
   }

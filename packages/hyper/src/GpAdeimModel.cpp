@@ -33,7 +33,7 @@ Teuchos::ParameterList adeimValidParameters() {
                      "directions of C_j with |R_ll| <= coefficientTol |R_11| in the column-pivoted QR of C_j^T are "
                      "dropped (C C^T would be numerically singular below 1e-8 but is never formed: the QR resolves "
                      "down to ~wbar eps; a kept direction moves U by ~1 / |R_ll|)");
-  setIntParameter(pl, "numSamples", 0, 0, 100000000, "m_s: sampling rows (>= m); 0 = chosen by sampleTol");
+  setIntParameter(pl, "numSamples", 0, 0, 100000000, "m_s: sampling rows (>= m; at most the d - m rows outside P, fewer if d - m is smaller); 0 = chosen by sampleTol");
   setDoubleParameter(pl, "sampleTol", 1e-3, 0.0, 1.0,
                      "tau_s: rows whose score exceeds sampleTol x the largest score (relative: the scale of F does not matter)");
   setIntParameter(pl, "maxSamples", 0, 0, 100000000, "cap on m_s chosen by sampleTol; 0 = 4 m");
@@ -433,6 +433,9 @@ void GpAdeimModel::orthonormalizeBasis() {
 
 RCP<MultiVector> initialAdeimBasis(RCP<const HamiltonianSystem> system, const Vector& y0, const MultiVector& A,
                                    const Teuchos::ParameterList& integrator, double dt, int delta0, int m) {
+  const GO d = static_cast<GO>(system->nonlinearTerm().numTerms());
+  GPHR_REQUIRE(m >= 1 && m <= d, InputError, "GP-ADEIM: m = ", m, " is not available: G has d = ", d,
+               " rows (allowed: 1 to d)");
   FullModelIntegrator integ(system, integrator);
   Vector y(y0, Teuchos::Copy);
   auto states = rcp(new MultiVector(system->map(), delta0 + 1));

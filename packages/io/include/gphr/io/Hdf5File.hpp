@@ -64,6 +64,7 @@ class RenameOnCommit {
   RenameOnCommit(std::string finalPath, RCP<const Comm> comm);
   ~RenameOnCommit();
   const std::string& tempPath() const { return temp_; }
+  const std::string& finalPath() const { return final_; }
   void commit();  // collective: barrier, then rank 0 renames
 
  private:
