@@ -29,6 +29,9 @@ echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(n
 baseNp=${GPHR_BASE_RANKS:-$np}
 base=bench-out/adeim_base_np$baseNp
 suffix=$([ "$baseNp" = "$np" ] && echo "" || echo "_base$baseNp")
+if [ -n "$suffix" ] && [ ! -s "$base/artifacts.h5" ]; then
+  echo "GPHR_BASE_RANKS=$baseNp: no $base/artifacts.h5 (run a case on $baseNp ranks first)" >&2; exit 2
+fi
 mkdir -p "$base"
 
 # config BODY_YAML_LINES -> stdout: the paper's NLS set-up plus the given lines (under gphr:)
@@ -63,6 +66,10 @@ run() {  # run NAME YAML_LINES...: one gphr run in bench-out/adeim_<case>_np<R>/
   # A run that had to train again (the training or integrator config differs from the cached
   # artifacts', e.g. after a new integrator default) refreshes the cache for the runs after it
   # (the cache of its own rank count only: one borrowed by GPHR_BASE_RANKS stays as it was).
+  if [ -n "$suffix" ] && grep -q "training again" "$out/run.log"; then
+    echo "$name: the borrowed artifacts of $baseNp ranks did not fit this config and it trained on $np ranks:" \
+         "not the comparison GPHR_BASE_RANKS asks for" >&2; exit 3
+  fi
   if [ -z "$suffix" ] && { [ ! -s "$base/artifacts.h5" ] || grep -q "training again" "$out/run.log"; }; then
     cp "$out/artifacts.h5" "$base/artifacts.h5"
   fi

@@ -11,7 +11,7 @@
 # 2026-11-23 with the randomized initial basis, 0.992 with the exact POD before it, 0.98 before
 # the defaults tau_r = 1e-12, coefficientTol 1e-10) where GP-DEIM's error is 27x the ROM's; the
 # report files exist, the PNGs among them, and adeim_updates.csv agrees with the summary (one row
-# per update, rank <= rank(C) <= m <= m_s, residuals consistent: check_summary.py adeim-updates)
+# per update, rank <= rank(C) <= m, residuals and the bound columns consistent: check_summary.py adeim-updates)
 # with the full-row residual at every update (adeim.monitorResidual is on by default). The report cautions about the one
 # GP-ADEIM run whose window is narrower than its DEIM basis (2k w = 20 < m = 40), and only that one.
 set -eu

@@ -2,6 +2,7 @@
 # An output directory reused for another config holds only the new run's outputs: a GP-ADEIM run,
 # then a full-model-only run into the same directory, leaves no report, runs.csv,
 # adeim_updates.csv, rom_history.csv or plot of the first run beside the second run's summary.json.
+# A directory gphr has not completed a run in keeps every file of the user's, report.md included.
 # usage: reused_output_dir.sh GPHR
 set -u
 gphr=$1
@@ -16,4 +17,8 @@ done
 left=$(cd "$work/out" && ls | grep -v -x -e summary.json -e fom_history.csv -e artifacts.h5)
 [ -z "$left" ] || { echo "FAIL: files of the first run left beside the second's summary: $left"; exit 1; }
 grep -q '"steps": 10' "$work/out/summary.json" || { echo "FAIL: summary.json is not the second run's"; exit 1; }
-echo "ok: only summary.json, fom_history.csv and artifacts.h5 after the full-model-only run"
+mkdir -p "$work/user" && echo "my notes" > "$work/user/report.md" && echo "x" > "$work/user/runs.csv"
+"$gphr" run "$work/b.yaml" --output "$work/user" > /dev/null 2> "$work/err" || { echo "FAIL: run into a user directory, exit $?"; cat "$work/err"; exit 1; }
+[ "$(cat "$work/user/report.md")" = "my notes" ] && [ "$(cat "$work/user/runs.csv")" = "x" ] || {
+  echo "FAIL: a user's files in a directory without an earlier gphr run were removed or changed"; exit 1; }
+echo "ok: only summary.json, fom_history.csv and artifacts.h5 after the full-model-only run; a user's files kept"

@@ -306,31 +306,33 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
   }
   if (adeim) {
     const std::string csv = p.at("adeim_updates.csv");
-    std::ostringstream b;
-    // Left: ||U_{j+1} C_j - F_j||_F over all rows where adeim.monitorResidual recorded it (a
-    // curve of only undefined points would make gnuplot drop the whole figure), and always its
-    // part at the sampling rows.
-    b << "set multiplot layout 1,2\nset key below\nset xlabel 'update j'\nset logscale y\n"
-      << "set format y '%.0e'\nset title '||U_{j+1} C_j - F_j||_F: all rows (fig:schro_samplingstrats), at S'\nplot ";
-    std::ostringstream ranks;
-    ranks << "unset logscale y\nset format y '%g'\nset title 'rank r_j and m_s (fig:rj_and_msj)'\nplot ";
+    // Left: ||U_{j+1} C_j - F_j||_F over all rows where adeim.monitorResidual recorded it, and its
+    // part at the sampling rows; right: r_j and m_s. A curve without a positive point is left out
+    // (gnuplot drops the whole figure when a log-scale panel has none: m = d, monitor off).
+    std::ostringstream residuals, ranks;
     bool first = true;
     for (const auto& r : st.runs) {
       if (r.method != "gp-adeim" || r.adeimUpdates.empty()) continue;
-      const std::string sel = "(strcol(1) eq '" + r.label() + "' ? ";
-      const bool full = std::any_of(r.adeimUpdates.begin(), r.adeimUpdates.end(),
-                                    [](const AdeimUpdateRecord& u) { return u.fullResidual > 0.0; });
-      if (full)
-        b << (first ? "" : ", ") << "'" << csv << "' every ::1 using " << sel << "$4 : 1/0):($13 > 0 ? $13 : 1/0) "
-          << "with lines lw 2 title '" << r.label() << "'";
-      b << (first && !full ? "" : ", ") << "'" << csv << "' every ::1 using " << sel
-        << "$4 : 1/0):($12 > 0 ? $12 : 1/0) with lines dt 2 title 'at S, " << r.label() << "'";
-      ranks << (first ? "" : ", ") << "'" << csv << "' every ::1 using " << sel << "$4 : 1/0):7 with lines lw 2 "
-            << "title 'r " << r.label() << "', '" << csv << "' every ::1 using " << sel
+      const std::string sel = "'" + csv + "' every ::1 using (strcol(1) eq '" + r.label() + "' ? ";
+      const auto any = [&](auto value) {
+        return std::any_of(r.adeimUpdates.begin(), r.adeimUpdates.end(), [&](const AdeimUpdateRecord& u) { return value(u) > 0.0; });
+      };
+      if (any([](const AdeimUpdateRecord& u) { return u.fullResidual; }))
+        residuals << (residuals.tellp() > 0 ? ", " : "") << sel << "$4 : 1/0):($13 > 0 ? $13 : 1/0) with lines lw 2 title '"
+                  << r.label() << "'";
+      if (any([](const AdeimUpdateRecord& u) { return u.sampledAfter; }))
+        residuals << (residuals.tellp() > 0 ? ", " : "") << sel << "$4 : 1/0):($12 > 0 ? $12 : 1/0) with lines dt 2 title 'at S, "
+                  << r.label() << "'";
+      ranks << (first ? "" : ", ") << sel << "$4 : 1/0):7 with lines lw 2 title 'r " << r.label() << "', " << sel
             << "$4 : 1/0):9 with lines dt 2 title 'm_s " << r.label() << "'";
       first = false;
     }
-    b << "\n" << ranks.str() << "\nunset multiplot\n";
+    std::ostringstream b;
+    b << "set multiplot layout 1," << (residuals.tellp() > 0 ? 2 : 1) << "\nset key below\nset xlabel 'update j'\n";
+    if (residuals.tellp() > 0)
+      b << "set logscale y\nset format y '%.0e'\nset title '||U_{j+1} C_j - F_j||_F: all rows (fig:schro_samplingstrats), "
+           "at S'\nplot " << residuals.str() << "\nunset logscale y\n";
+    b << "set format y '%g'\nset title 'rank r_j and m_s (fig:rj_and_msj)'\nplot " << ranks.str() << "\nunset multiplot\n";
     if (!first && gnuplot(p.at("adeim_updates.png"), b.str())) written.push_back("adeim_updates.png");
     std::ostringstream t;  // fig:error_vs_ctime_2k400: error vs total hyper-reduction time
     t << "set logscale xy\nset format y '%.0e'\nset xlabel 't_total = hyper-reduction offline + online [s]'\n"

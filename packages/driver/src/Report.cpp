@@ -193,14 +193,17 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
   }
   int plottedAll = plotted;
   Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(plottedAll));
-  // A file this run does not write is removed: an output directory reused for another config
-  // must not keep an older run's report beside this run's summary.
+  // In the directory of an earlier run, a report file this run does not write is that run's and
+  // is removed, so the directory does not mix two runs (RunContext::replacesEarlierRun; a
+  // directory without an earlier summary.json is left as it is).
   auto commitOrDrop = [&](RenameOnCommit& f, bool written) {
     if (written) {
       f.commit();
-    } else if (root) {
+    } else if (root && ctx.replacesEarlierRun) {
       std::error_code ec;
       std::filesystem::remove(f.finalPath(), ec);
+      if (ec) std::fprintf(stderr, "[gphr] warning: cannot remove the earlier run's '%s': %s\n", f.finalPath().c_str(),
+                           ec.message().c_str());
     }
   };
   if (!inPlace) h5.commit();

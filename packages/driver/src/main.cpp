@@ -60,9 +60,14 @@ int runMain(const Args& args, const gphr::RCP<const gphr::Comm>& comm) {
     std::error_code ec;
     std::filesystem::create_directories(ctx.outputDir, ec);
     GPHR_REQUIRE(!ec, InputError, "cannot create output directory '", ctx.outputDir, "': ", ec.message());
-    // A directory reused from an earlier run: its summary.json would claim this run complete
-    // before it is; the report's other files not rewritten are removed when it commits.
-    std::filesystem::remove(ctx.outputDir + "/summary.json", ec);
+    // A directory of an earlier run: its summary.json would claim this run complete before it
+    // is, so it goes now; that run's report files this run does not rewrite go when it commits.
+    const std::string earlier = ctx.outputDir + "/summary.json";
+    if (std::filesystem::exists(earlier, ec)) {
+      ctx.replacesEarlierRun = true;
+      GPHR_REQUIRE(std::filesystem::remove(earlier, ec) && !ec, InputError, "cannot remove the earlier run's '", earlier,
+                   "': ", ec.message());
+    }
     std::fprintf(stderr, "[gphr] scene %s, %d rank(s), output in %s\n", ctx.scene->name().c_str(),
                  comm->getSize(), ctx.outputDir.c_str());
   }

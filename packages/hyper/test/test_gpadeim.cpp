@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <Teuchos_LAPACK.hpp>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 
 #include "AdeimTestUtils.hpp"
@@ -116,13 +118,39 @@ RunWithPairs runCopyingPairs(GpAdeimModel& model, long steps) {
   return out;
 }
 
+// Solves with the gathered interpolation rows B = P^T U (row-major m x m, as gatherRows returns
+// them): B X = RHS, or B^T X = RHS with transpose, RHS column-major m x nrhs, by LAPACK GETRF +
+// GETRS. Returns cond_1(B) from GECON, the scale of the solution's rounding error.
+double solveWithPtU(const std::vector<double>& PtU, int m, bool transpose, std::vector<double>& rhs, int nrhs) {
+  std::vector<double> B(static_cast<size_t>(m) * m);
+  double norm1 = 0.0;  // max column sum (Teuchos::LAPACK has no LANGE)
+  for (int j = 0; j < m; ++j) {
+    double sum = 0.0;
+    for (int i = 0; i < m; ++i) sum += std::abs(B[i + static_cast<size_t>(m) * j] = PtU[static_cast<size_t>(i) * m + j]);
+    norm1 = std::max(norm1, sum);
+  }
+  std::vector<int> piv(m), iwork(m);
+  std::vector<double> work(4 * m);
+  int info = 0;
+  double rcond = 0.0;
+  Teuchos::LAPACK<int, double> lapack;
+  lapack.GETRF(m, m, B.data(), m, piv.data(), &info);
+  EXPECT_EQ(info, 0);
+  lapack.GECON('1', m, B.data(), m, norm1, &rcond, work.data(), iwork.data(), &info);
+  lapack.GETRS(transpose ? 'T' : 'N', m, nrhs, B.data(), m, piv.data(), rhs.data(), m, &info);
+  return rcond > 0.0 ? 1.0 / rcond : std::numeric_limits<double>::infinity();
+}
+
 // The local Hamiltonian of the pair (eq:lochr) computed here from the full model: H(A z) of the
 // shifted system, whose nonlinear part is v^T (G(y0 + A z) - G(y0)) (the shift of sec:ham_cons
 // that puts G's value at z^0 = 0 in every col U), with that part replaced by its DEIM
-// interpolation v^T U (P^T U)^{-1} P^T (G(y0 + A z) - G(y0)); the weights solved with LAPACK GESV
-// from gathered rows: independent of the model's sample mesh, weights and reduced linear part.
+// interpolation v^T U (P^T U)^{-1} P^T (G(y0 + A z) - G(y0)), the weights from gathered rows:
+// independent of the model's sample mesh, weights and reduced linear part. With cond_1(P^T U).
 // Collective.
-double interpolatedH(const HamiltonianSystem& sys, const MultiVector& A, const DeimPair& pair, const DenseVector& z) {
+struct LocalH {
+  double value, cond;
+};
+LocalH interpolatedH(const HamiltonianSystem& sys, const MultiVector& A, const DeimPair& pair, const DenseVector& z) {
   const Vector y = lift(A, z);
   Vector G(sys.nonlinearTerm().rowMap()), G0(sys.nonlinearTerm().rowMap());
   sys.nonlinearRows(y, G);  // unshifted values G(y0 + A z)
@@ -133,38 +161,34 @@ double interpolatedH(const HamiltonianSystem& sys, const MultiVector& A, const D
   auto local = rcp(new Map(m, 0, A.getMap()->getComm(), Tpetra::LocallyReplicated));
   MultiVector Utv(local, 1);
   Utv.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, *pair.U, v, 0.0);
-  const std::vector<double> PtU = gatherRows(*pair.U, pair.P), PtG = gatherRows(G, pair.P);  // row-major
-  std::vector<double> B(static_cast<size_t>(m) * m), x(m);
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < m; ++j) B[j + static_cast<size_t>(m) * i] = PtU[static_cast<size_t>(i) * m + j];  // (P^T U)^T
+  const std::vector<double> PtG = gatherRows(G, pair.P);
+  std::vector<double> x(m);  // (P^T U)^{-T} U^T v
   {
     auto u = Utv.getLocalViewHost(Tpetra::Access::ReadOnly);
     for (int i = 0; i < m; ++i) x[i] = u(i, 0);
   }
-  std::vector<int> piv(m);
-  int info = 0;
-  Teuchos::LAPACK<int, double>().GESV(m, 1, B.data(), m, piv.data(), x.data(), m, &info);
-  EXPECT_EQ(info, 0);
+  const double cond = solveWithPtU(gatherRows(*pair.U, pair.P), m, true, x, 1);
   double interpolated = 0.0;
   for (int i = 0; i < m; ++i) interpolated += x[i] * PtG[i];
-  return sys.hamiltonian(y) - v.dot(G) + interpolated;
+  return {sys.hamiltonian(y) - v.dot(G) + interpolated, cond};
 }
 
-// eq:Hambound (prop:ham_cons_adapt) term by term at every update time ell_{j+1} = l:
+// The terms of eq:Hambound (prop:ham_cons_adapt) at every update time ell_{j+1} = l, against the
+// full model:
 //   Delta H_j = |H(y^l) - H(A z^l)| <= eps_fom + sum over the intervals so far of
-//               (eps_hr^i = |H_hr^i(z^{l_{i+1}}) - H_hr^i(z^{l_i})| + deim_end^i = |H_hr^i(z^{l_{i+1}}) - H(A z^{l_{i+1}})|),
-// under the assumption that deim_start^i = |H(A z^{l_i}) - H_hr^i(z^{l_i})| vanishes (G(A z) in
-// col U_i). The proposition is the triangle inequality over these terms, so what can fail is the
-// terms: (1) the model's H_hr^j before and after each update (hrBefore, hrAfter) against
-// interpolatedH with the pairs (U_j, P_j) copied during the run; tolerance 1e-13 (1 + |H|)
-// cond_1(P^T U) (sums of d terms of size |H| through (P^T U)^{-1}, cond up to 2.2e3 here; measured
-// on 1 to 3 ranks: at most 1.2e-14 (1 + |H|)); (2) each eps_hr^i at the Newton
-// level, below the sum of its steps' AVF bounds |gbar| |R| (+ 1e-13 (1 + |H|) for two evaluations
-// of H); (3) at m = d, where the assumption holds (U spans R^d), Delta H_j below the paper's bound
-// without the deim_start terms (+ 1e-11 |H| per interval for round-off in deim_end, as in (1)): it
-// fails if the trajectory does not conserve H(A z). At m = 6 the assumption fails (deim_start is
-// not zero): the terms are printed, as the report's adeim_updates.csv lists them.
-TEST_F(GpAdeim, HamiltonianErrorObeysTheBoundTermByTerm) {
+//               (eps_hr^i = |H_hr^i(z^{l_{i+1}}) - H_hr^i(z^{l_i})| + deim_end^i = |H_hr^i(z^{l_{i+1}}) - H(A z^{l_{i+1}})|)
+// when every deim_start^i = |H(A z^{l_i}) - H_hr^i(z^{l_i})| vanishes (G(A z) in col U_i). The
+// proposition is the triangle inequality over these terms, so the bound itself cannot fail once
+// they are right; what is tested is the terms: (1) the model's H_hr^j before and after each
+// update (hrBefore, hrAfter) against interpolatedH with the pairs (U_j, P_j) copied during the
+// run, to 1e-13 (1 + |H|) cond_1(P^T U) (sums of d terms of size |H| through (P^T U)^{-1}; cond
+// up to 2.2e3 here, measured error at most 1.2e-14 (1 + |H|) on 1 to 3 ranks); (2) each eps_hr^i
+// at the Newton level: below the sum of its steps' AVF bounds |gbar| |R| (+ 1e-13 (1 + |H|) for
+// two evaluations of H); (3) at m = d, where U spans R^d, the DEIM terms deim_end and deim_start
+// at round-off (1e-11 |H|: (1) with cond ~1e2), so the proposition's assumption holds and
+// eq:Hambound reduces to the integrator's errors. At m = 6 the assumption fails (deim_start is not
+// zero); the terms are printed, as the report's adeim_updates.csv lists them.
+TEST_F(GpAdeim, HamiltonianBoundTermsAgainstTheFullModel) {
   auto& hc = nls();
   const auto& sys = *hc.test.system;
   const MultiVector& A = *hc.basis.A;
@@ -176,35 +200,30 @@ TEST_F(GpAdeim, HamiltonianErrorObeysTheBoundTermByTerm) {
     const auto& rec = model->updates();
     ASSERT_EQ(rec.size(), 20u);
     ASSERT_EQ(pairs.size(), rec.size() + 1);
-    const bool print = model->deimBasis().getMap()->getComm()->getRank() == 0 && m == kM;
+    const bool print = model->deimBasis().getMap()->getComm()->getRank() == 0;
     if (print) std::printf("eq:Hambound terms, m = %d:\n   l  dH_total   eps_fom    eps_hr     deim_end   deim_start paper_bound\n", m);
-    double paperSum = 0.0, segStart = run.H[0], tolSum = 0.0;
+    double paperSum = 0.0, segStart = run.H[0];
     long segBegin = 0;
     for (size_t j = 0; j < rec.size(); ++j) {
       const long l = rec[j].step;
-      const double Hlift = sys.hamiltonian(lift(A, run.z[l]));
-      const double scale = 1.0 + std::abs(Hlift);
-      const double hrBefore = interpolatedH(sys, A, pairs[j], run.z[l]);
-      const double hrAfter = interpolatedH(sys, A, pairs[j + 1], run.z[l]);
-      const double condBefore = j == 0 ? 1.0 : rec[j - 1].condPtU;  // (U_0, P_0): cond not recorded, 1e-13 (1 + |H|)
-      EXPECT_NEAR(rec[j].hrBefore, hrBefore, 1e-13 * scale * std::max(1.0, condBefore)) << "m = " << m << ", l = " << l;
-      EXPECT_NEAR(rec[j].hrAfter, hrAfter, 1e-13 * scale * std::max(1.0, rec[j].condPtU)) << "m = " << m << ", l = " << l;
+      const double Hlift = sys.hamiltonian(lift(A, run.z[l])), scale = 1.0 + std::abs(Hlift);
+      const LocalH before = interpolatedH(sys, A, pairs[j], run.z[l]), after = interpolatedH(sys, A, pairs[j + 1], run.z[l]);
+      EXPECT_NEAR(rec[j].hrBefore, before.value, 1e-13 * scale * before.cond) << "m = " << m << ", l = " << l;
+      EXPECT_NEAR(rec[j].hrAfter, after.value, 1e-13 * scale * after.cond) << "m = " << m << ", l = " << l;
       double newton = 0.0;
       for (long tau = segBegin + 1; tau <= l; ++tau) newton += run.bound[tau];
       const double epsHr = std::abs(rec[j].hrBefore - segStart);
       EXPECT_LE(epsHr, newton + 1e-13 * scale) << "m = " << m << ", interval ending at " << l;
-      const double deimEnd = std::abs(hrBefore - Hlift), deimStart = std::abs(Hlift - hrAfter);
-      paperSum += epsHr + deimEnd;
-      tolSum += 1e-11 * std::abs(H0);
-      const double yl = sys.hamiltonian(*fom->getVector(l));
-      const double dH = std::abs(yl - Hlift), epsFom = std::abs(yl - H0);
+      const double deimEnd = std::abs(before.value - Hlift), deimStart = std::abs(Hlift - after.value);
       if (m == 48) {
-        EXPECT_LE(dH, epsFom + paperSum + tolSum) << "l = " << l;
-        EXPECT_LE(deimStart, 1e-11 * std::abs(H0)) << "l = " << l;  // the assumption holds at m = d
+        EXPECT_LE(deimEnd, 1e-11 * std::abs(H0)) << "l = " << l;
+        EXPECT_LE(deimStart, 1e-11 * std::abs(H0)) << "l = " << l;
       }
+      paperSum += epsHr + deimEnd;
+      const double yl = sys.hamiltonian(*fom->getVector(l));
       if (print)
-        std::printf("%4ld %10.3e %10.3e %10.3e %10.3e %10.3e %10.3e\n", l, dH, epsFom, epsHr, deimEnd, deimStart,
-                    epsFom + paperSum);
+        std::printf("%4ld %10.3e %10.3e %10.3e %10.3e %10.3e %10.3e\n", l, std::abs(yl - Hlift), std::abs(yl - H0), epsHr,
+                    deimEnd, deimStart, std::abs(yl - H0) + paperSum);
       segStart = rec[j].hrAfter, segBegin = l;
     }
   }
@@ -212,11 +231,12 @@ TEST_F(GpAdeim, HamiltonianErrorObeysTheBoundTermByTerm) {
 
 // ||U_{j+1} C_j - F_j||_F over all d rows (the report's full_residual, fig:schro_samplingstrats)
 // against the full model: F_j = J_G(A z^l) A by the assembled Jacobian (Tpetra), C_j from the
-// previous pair by GESV, U_{j+1} the basis right after the update (adeim.orthonormalize off, so
-// the copy is U_j + S a b^T itself). Tolerance 1e-11 relative: C_j carries cond(P^T U) eps
-// (cond up to 2.2e3 here) relative to |F|, and ||R|| is smaller than |F|; measured at most 3e-13
-// on 1 to 3 ranks. It fails if the residual is taken with U_j, on
-// the sampling rows only, or with another window; and it is at least the sampled residual after.
+// previous pair by LU, U_{j+1} the basis right after the update (adeim.orthonormalize off, so the
+// copy is U_j + S a b^T itself). The two C_j differ by rounding amplified by cond_1(P^T U), so
+// their residuals by about eps cond ||F||_F: tolerance 10 eps cond ||F||_F (measured at most
+// 0.045 eps cond ||F||_F on 1 to 3 ranks; the residual itself is 1e-3 to 1e-1 ||F||_F, far above).
+// It fails if the residual is taken with U_j, on the sampling rows only, or with another window;
+// and it is at least the sampled residual after.
 TEST_F(GpAdeim, FullResidualIsTheUpdatedFitOnAllRows) {
   auto& hc = nls();
   const auto& sys = *hc.test.system;
@@ -238,25 +258,24 @@ TEST_F(GpAdeim, FullResidualIsTheUpdatedFitOnAllRows) {
     sys.jacobianG(lift(A, run.z[rec[j].step]), *J);
     MultiVector F(sys.nonlinearTerm().rowMap(), r);
     J->apply(A, F);
-    const std::vector<double> PtU = gatherRows(*pairs[j].U, pairs[j].P), PtF = gatherRows(F, pairs[j].P);
-    std::vector<double> B(static_cast<size_t>(kM) * kM), C(static_cast<size_t>(kM) * r);  // column-major
-    for (int i = 0; i < kM; ++i) {
-      for (int c = 0; c < kM; ++c) B[i + static_cast<size_t>(kM) * c] = PtU[static_cast<size_t>(i) * kM + c];
+    const std::vector<double> PtF = gatherRows(F, pairs[j].P);  // row-major kM x r
+    std::vector<double> C(static_cast<size_t>(kM) * r);         // column-major
+    for (int i = 0; i < kM; ++i)
       for (int c = 0; c < r; ++c) C[i + static_cast<size_t>(kM) * c] = PtF[static_cast<size_t>(i) * r + c];
-    }
-    std::vector<int> piv(kM);
-    int info = 0;
-    Teuchos::LAPACK<int, double>().GESV(kM, r, B.data(), kM, piv.data(), C.data(), kM, &info);
-    ASSERT_EQ(info, 0);
+    const double cond = solveWithPtU(gatherRows(*pairs[j].U, pairs[j].P), kM, false, C, r);
+    std::vector<double> norms(r);
+    F.norm2(Teuchos::ArrayView<double>(norms));
+    double normF2 = 0.0;
+    for (double v : norms) normF2 += v * v;
     MultiVector Cm(local, r);
     for (int c = 0; c < r; ++c)
       for (int i = 0; i < kM; ++i) Cm.replaceLocalValue(i, c, C[i + static_cast<size_t>(kM) * c]);
     F.multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, *pairs[j + 1].U, Cm, -1.0);  // U_{j+1} C_j - F_j
-    std::vector<double> norms(r);
     F.norm2(Teuchos::ArrayView<double>(norms));
     double sum = 0.0;
     for (double v : norms) sum += v * v;
-    EXPECT_NEAR(rec[j].fullResidual, std::sqrt(sum), 1e-11 * std::sqrt(sum)) << "update at " << rec[j].step;
+    const double tol = 10.0 * std::numeric_limits<double>::epsilon() * cond * std::sqrt(normF2);
+    EXPECT_NEAR(rec[j].fullResidual, std::sqrt(sum), tol) << "update at " << rec[j].step;
     EXPECT_GE(rec[j].fullResidual, rec[j].sampledAfter * (1.0 - 1e-12)) << "update at " << rec[j].step;
   }
   EXPECT_GT(checked, 5);

@@ -15,6 +15,10 @@ struct RunContext {
   std::shared_ptr<Scene> scene;
   std::vector<double> mu;  // test parameter
   RCP<const Comm> comm;
+  // outputDir held an earlier gphr run's summary.json (removed at start): the report's files this
+  // run does not write are that run's and are removed when it commits. Never set for a directory
+  // gphr has not completed a run in, so no other file of the user's is touched. Rank 0 only.
+  bool replacesEarlierRun = false;
   std::string artifactsPath() const { return outputDir + "/artifacts.h5"; }
 };
 
