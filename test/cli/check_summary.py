@@ -53,8 +53,11 @@ def run_of(summary, method):
 
 
 def check_keys_and_numbers(run, keys):
+    """The keys are there and not null (summary.json writes a non-finite number as null, so a NaN
+    or Inf result arrives here as None), and every number present is finite."""
     for k in keys:
         require(k in run, "%s run: key '%s' missing: %s" % (run.get("method"), k, run))
+        require(run[k] is not None, "%s run: %s is null (non-finite in the run)" % (run.get("method"), k))
     for k, v in run.items():
         if isinstance(v, (int, float)) and not isinstance(v, bool):
             require(math.isfinite(v), "%s run: %s = %r is not finite" % (run["method"], k, v))

@@ -13,6 +13,7 @@ set -eu
 gphr=$1; dir=$2
 here=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+for name in nls1d swe2d; do [ -s "$dir/$name.yaml" ] || { echo "examples/$name.yaml is missing"; exit 1; }; done
 for cfg in "$dir"/*.yaml; do
   name=$(basename "$cfg" .yaml)
   case $name in

@@ -5,7 +5,7 @@
 # usage: kill_resume.sh GPHR
 set -u
 gphr=$1
-work=$(mktemp -d); trap 'kill -9 $pid 2>/dev/null; rm -rf "$work"' EXIT
+work=$(mktemp -d); trap '[ $pid -gt 0 ] && kill -9 $pid 2>/dev/null; rm -rf "$work"' EXIT
 pid=0
 cat > "$work/c.yaml" <<'YAML'
 gphr:
@@ -25,7 +25,7 @@ for _ in $(seq 1 1200); do
   sleep 0.05
 done
 grep -q "parameter 1/3 .* done" "$work/first.err" || fail "parameter 1 never finished"
-kill -9 $pid; wait $pid 2>/dev/null
+kill -9 $pid; wait $pid 2>/dev/null; pid=0  # reaped: the EXIT trap must not signal a reused pid
 grep -q "parameter 2/3" "$work/first.err" && fail "killed too late: parameter 2 had finished"
 [ -f "$work/killed/summary.json" ] && fail "a killed run left summary.json"
 # 2. Restart: parameter 1 is reused, the run completes.

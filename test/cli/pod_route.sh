@@ -36,9 +36,14 @@ config replicated replicated
 "$gphr" run "$work/c.yaml" --output "$work/fresh" > /dev/null 2> "$work/err" || fail "replicated routes: exit code $?"
 python3 - "$work/fresh/summary.json" <<'PY' || fail "summary"
 import json, sys
-rom = [r for r in json.load(open(sys.argv[1]))["runs"] if r["method"] == "rom"][0]
+runs = json.load(open(sys.argv[1]))["runs"]
+rom = [r for r in runs if r["method"] == "rom"][0]
 # 3 training runs of 51 states: one POD step each, all replicated (a fresh directory: computed here)
 assert (rom["basis_cached"], rom["pod_route"], rom["pod_steps_tsqr"], rom["pod_steps_replicated"]) == (False, "replicated", 0, 3), rom
+# the DEIM basis's POD: every step on the replicated route (an ignored hyper.podRoute would take auto's route)
+g = [r for r in runs if r["method"] == "gp-deim"][0]
+assert not g["deim_basis_cached"] and g["deim_pod_steps_replicated"] > 0, g
+assert g["deim_pod_steps_tsqr"] == g["deim_pod_steps_stacked"] == 0, g
 PY
 config stacked stacked
 "$gphr" run "$work/c.yaml" --output "$work/stacked" > /dev/null 2> "$work/err" || fail "stacked routes: exit code $?"
@@ -47,6 +52,10 @@ import json, sys
 runs = [json.load(open(f))["runs"] for f in sys.argv[1:]]
 rom = [r for r in runs[1] if r["method"] == "rom"][0]
 assert (rom["pod_route"], rom["pod_steps_tsqr"], rom["pod_steps_stacked"], rom["pod_steps_replicated"]) == ("stacked", 0, 3, 0), rom
+g = [r for r in runs[1] if r["method"] == "gp-deim"][0]
+assert not g["deim_basis_cached"] and g["deim_pod_steps_stacked"] > 0, g
+assert g["deim_pod_steps_tsqr"] == g["deim_pod_steps_replicated"] == 0, g
+assert len(runs[0]) == len(runs[1]), (len(runs[0]), len(runs[1]))
 # The same bases up to round-off, so the same errors: 1e-8 relative is far above the round-off
 # carried through 50 steps and far below what a wrong basis vector does (errors change by O(1)).
 for a, b in zip(runs[0][1:], runs[1][1:]):

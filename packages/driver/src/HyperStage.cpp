@@ -142,6 +142,9 @@ void runGpDeim(const RunContext& ctx, const FomResult& fom, RomStages& st, const
         .set("kernel_rows_per_evaluation", static_cast<long>(model.kernelRowsPerEvaluation()))
         .set("online_numbers_held", static_cast<long>(model.numbersHeld()))
         .set("deim_basis_cached", db.cached)
+        .set("deim_pod_steps_tsqr", static_cast<long>(db.basis.tsqrSteps))  // 0 when cached or randomized
+        .set("deim_pod_steps_stacked", static_cast<long>(db.basis.stackedSteps))
+        .set("deim_pod_steps_replicated", static_cast<long>(db.basis.replicatedSteps))
         .set("t_deim_basis_s", db.seconds)
         .set("t_deim_pair_s", tPair)
         .set("t_offline_s", st.training.seconds + st.basisSeconds + db.seconds + tPair)

@@ -264,6 +264,7 @@ DeimBasis computeDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& syst
   out.snapshots = used;
   out.energy = pod.totalEnergy();
   out.U = rcp(new MultiVector(pod.leftVectors(), Teuchos::Copy));
+  out.tsqrSteps = pod.tsqrSteps(), out.stackedSteps = pod.stackedSteps(), out.replicatedSteps = pod.replicatedSteps();
   return out;
 }
 

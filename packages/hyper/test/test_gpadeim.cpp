@@ -466,18 +466,7 @@ TEST_F(GpAdeim, AdaptationTracksTheReducedModelBetterThanTheFixedBasis) {
 }
 
 // max |U^T U - I| of the model's current DEIM basis (collective).
-double orthonormalityError(const GpAdeimModel& model) {
-  const MultiVector& U = model.deimBasis();
-  const int m = static_cast<int>(U.getNumVectors());
-  auto local = rcp(new Map(m, 0, U.getMap()->getComm(), Tpetra::LocallyReplicated));
-  MultiVector G(local, m);
-  G.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, U, U, 0.0);
-  auto g = G.getLocalViewHost(Tpetra::Access::ReadOnly);
-  double e = 0.0;
-  for (int j = 0; j < m; ++j)
-    for (int i = 0; i < m; ++i) e = std::max(e, std::abs(g(i, j) - (i == j ? 1.0 : 0.0)));
-  return e;
-}
+double orthonormalityError(const GpAdeimModel& model) { return test::orthonormalityError(model.deimBasis()); }
 
 // adeim.orthonormalize: after every update U_{j+1}^T U_{j+1} = I, with greedy DEIM (pivoted
 // Cholesky, U Pi R^{-1}) and with the partial point update (Loewdin). Both form U T from the

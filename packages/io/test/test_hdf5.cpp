@@ -2,6 +2,10 @@
 // layout is rank-independent (global-id order), and bad files give errors naming the file.
 #include <gtest/gtest.h>
 
+#include <Teuchos_CommHelpers.hpp>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 
@@ -13,7 +17,33 @@ using namespace gphr;
 
 namespace {
 
-std::string tmpName(const std::string& base) { return "/tmp/gphr_test_" + base + ".h5"; }
+// Files of this run only: named after rank 0's pid and the rank count (test_hdf5 runs on 1 and 2
+// ranks, possibly at the same time under ctest -j), and removed when the tests end.
+std::vector<std::string>& createdFiles() {
+  static std::vector<std::string> files;
+  return files;
+}
+std::string tmpName(const std::string& base) {
+  static const long id = [] {
+    long pid = static_cast<long>(getpid());
+    Teuchos::broadcast(*test::comm(), 0, Teuchos::outArg(pid));
+    return pid;
+  }();
+  const std::string path =
+      "/tmp/gphr_test_" + base + "_" + std::to_string(id) + "_np" + std::to_string(test::comm()->getSize()) + ".h5";
+  if (std::find(createdFiles().begin(), createdFiles().end(), path) == createdFiles().end()) createdFiles().push_back(path);
+  return path;
+}
+class RemoveCreatedFiles : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    test::comm()->barrier();
+    if (test::comm()->getRank() == 0)
+      for (const auto& f : createdFiles()) std::remove(f.c_str());
+  }
+};
+[[maybe_unused]] ::testing::Environment* const removeCreatedFiles =
+    ::testing::AddGlobalTestEnvironment(new RemoveCreatedFiles);
 
 TEST(Hdf5, ColumnsOnAContiguousMapRoundTripInGlobalOrder) {
   // A DEIM basis lives on the rows of G (a contiguous map): written in parallel, read back bit for

@@ -35,6 +35,21 @@ inline std::vector<double> transposeTimes(const MultiVector& A, const MultiVecto
   return out;
 }
 
+// max |U^T U - I| (collective, the same on every rank): subspaceDistance below measures angles
+// only for orthonormal bases (it is 0 for any U_a inside span U_b, scaled or not), so the tests
+// check this beside it.
+inline double orthonormalityError(const MultiVector& U) {
+  const int m = static_cast<int>(U.getNumVectors());
+  auto local = rcp(new Map(m, 0, U.getMap()->getComm(), Tpetra::LocallyReplicated));
+  MultiVector G(local, m);
+  G.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, U, U, 0.0);
+  auto g = G.getLocalViewHost(Tpetra::Access::ReadOnly);
+  double e = 0.0;
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < m; ++i) e = std::max(e, std::abs(g(i, j) - (i == j ? 1.0 : 0.0)));
+  return e;
+}
+
 // ||U_a - U_b (U_b^T U_a)||_F = ||sin Theta(U_a, U_b)||_F for orthonormal U_a, U_b with as many
 // columns (collective, the same on every rank). Formed from the residual, not from the cosines,
 // so that angles down to round-off are resolved.

@@ -53,7 +53,11 @@ TEST_P(Bases, OrthonormalAndSymplectic) {
   MultiVector JA(ps.map(), 16);
   ps.applyJ(*basis.A, JA);
   EXPECT_LE(maxAbsDiffFromCanonical(test::transposeTimes(*basis.A, JA), 16, true), 1e-12);
-  EXPECT_GT(basis.energyCaptured, 0.99);
+  // These smooth NLS snapshots have fast-decaying singular values: 2k = 16 columns capture
+  // 1 - 1.8e-9 (psd) and 1 - 1.7e-6 (cotangent lift) of the energy (measured); a basis built from
+  // the wrong singular vectors (the trailing ones, or unsorted) captures far less. 1 - 1e-4 leaves
+  // a factor 60 on the worse one.
+  EXPECT_GT(basis.energyCaptured, 1.0 - 1e-4);
   EXPECT_LE(basis.energyCaptured, 1.0 + 1e-12);
 }
 

@@ -35,6 +35,8 @@ struct DeimBasis {
   std::vector<double> singularValues;  // of M_J (the leading ones kept)
   long snapshots = 0;                  // reduced-Jacobian snapshots (states) used
   double energy = 0.0;                 // ||M_J||_F^2
+  // svd exact: the streaming POD's steps by route (hyper.podRoute); all 0 for randomized
+  int tsqrSteps = 0, stackedSteps = 0, replicatedSteps = 0;
 };
 
 // systems[j]: the (shifted) system at training parameter j; states[j]: its stored states in the
