@@ -12,6 +12,8 @@
 // cosines (singular values of U_b^T U_a) it could not resolve angles below sqrt(eps) ~ 1e-8.
 #include <gtest/gtest.h>
 
+#include <Teuchos_LAPACK.hpp>
+
 #include <cmath>
 #include <string>
 #include <vector>
@@ -72,6 +74,33 @@ StreamingPod podOf(const MultiVector& X, int maxRank, int blockColumns, PodRoute
   return pod;
 }
 
+// The incremental SVD of X (d x N, column-major, on one rank) written out densely: per block of
+// blockColumns columns, the thin SVD of [U diag(sigma), X_b] by LAPACK GESVD, truncated to the
+// leading maxRank values above tol sigma_1 (StreamingPod's rule). U (d x r, column-major) and sigma.
+void denseIncrementalSvd(const std::vector<double>& X, int d, int N, int maxRank, int blockColumns, double tol,
+                         std::vector<double>& U, std::vector<double>& sigma) {
+  Teuchos::LAPACK<int, double> lapack;
+  U.clear(), sigma.clear();
+  for (int c0 = 0; c0 < N; c0 += blockColumns) {
+    const int r = static_cast<int>(sigma.size()), nb = std::min(blockColumns, N - c0), nc = r + nb, k = std::min(d, nc);
+    std::vector<double> Y(static_cast<size_t>(d) * nc), S(k), W(static_cast<size_t>(d) * k), work(1);
+    for (int j = 0; j < r; ++j)
+      for (int i = 0; i < d; ++i) Y[i + static_cast<size_t>(d) * j] = U[i + static_cast<size_t>(d) * j] * sigma[j];
+    std::copy_n(X.begin() + static_cast<size_t>(d) * c0, static_cast<size_t>(d) * nb, Y.begin() + static_cast<size_t>(d) * r);
+    int info = 0;
+    double dummy = 0.0;
+    lapack.GESVD('S', 'N', d, nc, Y.data(), d, S.data(), W.data(), d, &dummy, 1, work.data(), -1, nullptr, &info);
+    work.resize(static_cast<size_t>(work[0]));
+    lapack.GESVD('S', 'N', d, nc, Y.data(), d, S.data(), W.data(), d, &dummy, 1, work.data(),
+                 static_cast<int>(work.size()), nullptr, &info);
+    EXPECT_EQ(info, 0);
+    int keep = 0;
+    while (keep < std::min(k, maxRank) && S[keep] > tol * S[0]) ++keep;
+    sigma.assign(S.begin(), S.begin() + keep);
+    U.assign(W.begin(), W.begin() + static_cast<size_t>(d) * keep);
+  }
+}
+
 double maxSigmaDiff(const std::vector<double>& a, const std::vector<double>& b) {
   double worst = 0.0;
   for (size_t j = 0; j < std::min(a.size(), b.size()); ++j) worst = std::max(worst, std::abs(a[j] - b[j]));
@@ -108,7 +137,8 @@ TEST_F(Routes, EachRouteGivesTheExactSvd) {
 // Truncation between steps (maxRank 16 < rank 48): the incremental SVD, no longer the exact one,
 // but the same on both routes (they truncate at the same places). Each truncation keeps the best
 // rank-r part of Y, so B B^T <= X X^T for the carried B = U diag(sigma) (Loewner order, by
-// induction over the steps): sigma_j <= s_j on either route.
+// induction over the steps): sigma_j <= s_j on either route. And each route is the recursion
+// itself, computed densely on rank 0.
 TEST_F(Routes, AllRoutesAgreeUnderTruncation) {
   const auto s = linearSpectrum(48, 1.0 / 64.0);
   const MultiVector X = knownSvdData(map_, 96, s);
@@ -132,6 +162,36 @@ TEST_F(Routes, AllRoutesAgreeUnderTruncation) {
   EXPECT_LE(dSigmaStacked, 1e-10);
   EXPECT_LE(dUStacked, 1e-10);
   for (const StreamingPod* pod : {&tsqr, &repl, &stacked}) EXPECT_LE(test::orthonormalityError(pod->leftVectors()), kOrthTol);
+  // Against the same recursion computed densely on rank 0 (GESVD per step): a truncation or carry
+  // shared by the three routes, which their agreement cannot see, shows here. The routes and the
+  // reference are backward-stable SVDs of the same steps; the 16th and 17th values of each step
+  // are apart by 1/64 of sigma_1, so the kept subspace is well conditioned: 1e-10 as above.
+  const int d = static_cast<int>(X.getGlobalLength());
+  const std::vector<double> Xall = test::gatherColumns(X);
+  std::vector<std::vector<double>> Us;
+  for (const StreamingPod* pod : {&tsqr, &repl, &stacked}) Us.push_back(test::gatherColumns(pod->leftVectors()));
+  if (test::comm()->getRank() == 0) {
+    std::vector<double> Uref, sref;
+    denseIncrementalSvd(Xall, d, 96, 16, 8, 1e-8, Uref, sref);
+    ASSERT_EQ(sref.size(), 16u);
+    for (size_t p = 0; p < Us.size(); ++p) {
+      const StreamingPod* pod = p == 0 ? &tsqr : p == 1 ? &repl : &stacked;
+      EXPECT_LE(maxSigmaDiff(pod->singularValues(), sref), 1e-10) << "route " << p;
+      // ||U_ref - U U^T U_ref||_F, both orthonormal d x 16 (column-major)
+      double dist2 = 0.0;
+      for (int j = 0; j < 16; ++j) {
+        std::vector<double> res(Uref.begin() + static_cast<size_t>(d) * j, Uref.begin() + static_cast<size_t>(d) * (j + 1));
+        for (int l = 0; l < 16; ++l) {
+          double c = 0.0;
+          for (int i = 0; i < d; ++i) c += Us[p][i + static_cast<size_t>(d) * l] * Uref[i + static_cast<size_t>(d) * j];
+          for (int i = 0; i < d; ++i) res[i] -= c * Us[p][i + static_cast<size_t>(d) * l];
+        }
+        for (double x : res) dist2 += x * x;
+      }
+      EXPECT_LE(std::sqrt(dist2), 1e-10) << "route " << p;
+      std::printf("  route %zu vs the dense recursion: ||sin Theta||_F = %.1e\n", p, std::sqrt(dist2));
+    }
+  }
   if (test::comm()->getRank() == 0) {
     std::printf("  tsqr vs replicated: max |d sigma| = %.1e, ||sin Theta||_F = %.1e\n", dSigma, dU);
     std::printf("  stacked vs replicated: max |d sigma| = %.1e, ||sin Theta||_F = %.1e\n", dSigmaStacked, dUStacked);
