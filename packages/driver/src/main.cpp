@@ -1,5 +1,6 @@
 // The `gphr` command. Exit codes: 0 success, 2 bad input (one line on stderr naming the problem),
 // 3 solver failure, 1 anything else.
+#include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_TimeMonitor.hpp>
 #include <Tpetra_Core.hpp>
 
@@ -47,6 +48,29 @@ Args parseArgs(int argc, char** argv) {
   return a;
 }
 
+// Rank 0 creates the output directory and removes an earlier run's summary.json (it would claim
+// this run complete before it is; that run's report files this run does not rewrite go when it
+// commits). Collective: a failure there is thrown on every rank, which would otherwise wait in
+// the next collective for a rank 0 that has left.
+void prepareOutputDir(gphr::RunContext& ctx) {
+  using namespace gphr;
+  std::string error;
+  if (ctx.comm->getRank() == 0) {
+    std::error_code ec;
+    std::filesystem::create_directories(ctx.outputDir, ec);
+    if (ec) error = detail::concat("cannot create output directory '", ctx.outputDir, "': ", ec.message());
+    const std::string earlier = ctx.outputDir + "/summary.json";
+    if (error.empty() && std::filesystem::exists(earlier, ec)) {
+      ctx.replacesEarlierRun = true;
+      if (!std::filesystem::remove(earlier, ec) || ec)
+        error = detail::concat("cannot remove the earlier run's '", earlier, "': ", ec.message());
+    }
+  }
+  int failed = !error.empty();
+  Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(failed));
+  GPHR_REQUIRE(!failed, InputError, error.empty() ? "rank 0 could not prepare the output directory" : error);
+}
+
 int runMain(const Args& args, const gphr::RCP<const gphr::Comm>& comm) {
   using namespace gphr;
   const bool root = comm->getRank() == 0;
@@ -56,22 +80,10 @@ int runMain(const Args& args, const gphr::RCP<const gphr::Comm>& comm) {
   ctx.mu = sceneParameters(*ctx.scene, ctx.config.sublist("parameters"));
   ctx.comm = comm;
   ctx.outputDir = args.output;
-  if (root) {
-    std::error_code ec;
-    std::filesystem::create_directories(ctx.outputDir, ec);
-    GPHR_REQUIRE(!ec, InputError, "cannot create output directory '", ctx.outputDir, "': ", ec.message());
-    // A directory of an earlier run: its summary.json would claim this run complete before it
-    // is, so it goes now; that run's report files this run does not rewrite go when it commits.
-    const std::string earlier = ctx.outputDir + "/summary.json";
-    if (std::filesystem::exists(earlier, ec)) {
-      ctx.replacesEarlierRun = true;
-      GPHR_REQUIRE(std::filesystem::remove(earlier, ec) && !ec, InputError, "cannot remove the earlier run's '", earlier,
-                   "': ", ec.message());
-    }
+  prepareOutputDir(ctx);
+  if (root)
     std::fprintf(stderr, "[gphr] scene %s, %d rank(s), output in %s\n", ctx.scene->name().c_str(),
                  comm->getSize(), ctx.outputDir.c_str());
-  }
-  comm->barrier();
   std::unique_ptr<RomStages> rom;
   const auto methods = pipelineMethods(ctx.config);
   if (!methods.empty()) {

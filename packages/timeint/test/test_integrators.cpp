@@ -76,7 +76,7 @@ TEST(IMR, ConservesNlsMass) {
   const double m0 = nlsMass(*s.physicalInitialState);
   // Exact invariant of IMR when its step equation is solved exactly: with the Newton residual
   // R = y1 - y0 - dt J grad H((y0 + y1) / 2) at acceptance and y^T J grad H(y) = 0 (the mass
-  // ||y||^2 is a Casimir of the NLS), m(y1) - m(y0) = (y1 - y0)^T (y1 + y0) = R^T (y1 + y0), so per
+  // ||y||^2 is an invariant of the NLS: its gradient 2 y is orthogonal to J grad H), m(y1) - m(y0) = (y1 - y0)^T (y1 + y0) = R^T (y1 + y0), so per
   // step |dm| <= ||R|| (|y0| + |y1|) (+ round-off of m: 1e-14 m0 over 256 entries); the drift is at
   // most the sum of those bounds. (A fixed 1e-12 m0 was not implied by the Newton tolerance:
   // 500 steps of ||R|| <= 1e-12 with |y| ~ 3 allow 3e-9.)

@@ -35,7 +35,8 @@ struct ModelRun {
   bool available = true;  // false: not run, the offline data cannot support this (k, m)
   JsonObject run;
   std::string label() const;
-  std::string statusText() const { return ok ? "ok" : available ? "**diverged**" : "unavailable"; }
+  const char* status() const { return ok ? "ok" : available ? "diverged" : "unavailable"; }  // runs.csv
+  std::string statusText() const { return ok || !available ? status() : std::string("**") + status() + "**"; }  // report.md
 };
 
 struct RomStages {
