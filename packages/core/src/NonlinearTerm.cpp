@@ -27,8 +27,7 @@ void RowBatch::allocate(const std::vector<GO>& rowIds, const std::vector<size_t>
 
 NonlinearTerm::NonlinearTerm(RCP<const Map> rowMap, RCP<const Map> stateMap, Stencil stencil,
                              RCP<const Vector> weights, int degree)
-    : rowMap_(rowMap), stateMap_(stateMap), stencil_(std::move(stencil)), weights_(weights),
-      degree_(degree) {
+    : RowEvaluator(degree), rowMap_(rowMap), stateMap_(stateMap), stencil_(std::move(stencil)), weights_(weights) {
   const LO nr = static_cast<LO>(rowMap_->getNodeNumElements());
   GPHR_REQUIRE(stencil_.numRows() == nr, InputError, "nonlinear term: the stencil lists ",
                stencil_.numRows(), " rows but this rank owns ", nr, " rows of G");

@@ -74,6 +74,16 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
                   "reduced-Jacobian snapshots per incremental POD step; 0: about maxRank columns per step");
   setChoiceParameter(hyp, "podRoute", "auto", routes, "svd exact: the incremental SVD's step route, as reduction.podRoute");
   pl.sublist("adeim") = adeimValidParameters();
+  auto& bld = pl.sublist("build");
+  bld.set("withBasis", false,
+          "gphr build: also store the full basis A (2n x 2k numbers per k) in the model file, for the exact "
+          "set-up route and for lifting whole states; without it the file holds nothing of size n or d");
+  bld.set("probes", Teuchos::Array<int>(),
+          "gphr build: state entries (global ids 0..2n-1, q then p) whose lifted values queries can report "
+          "(only these rows of A are stored)");
+  setIntParameter(bld, "interpolationNodes", 7, 2, 33,
+                  "gphr build: Chebyshev-Lobatto nodes per parameter of the interpolant of L_r, f_r, c and the "
+                  "reference rows over the box (the n-independent set-up route of a query; its error is reported)");
   auto& out = pl.sublist("output");
   setIntParameter(out, "saveEvery", 10, 1, 1000000000, "keep every N-th state of the trajectory in artifacts.h5");
   setDoubleParameter(out, "progressSeconds", 2.0, 0.0, 1e9, "seconds between progress lines on stderr (0: none)");

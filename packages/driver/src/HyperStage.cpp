@@ -40,12 +40,7 @@ std::vector<RCP<const HamiltonianSystem>> trainingSystems(const RunContext& ctx,
   return out;
 }
 
-struct CachedDeimBasis {
-  DeimBasis basis;
-  bool cached = false;
-  double seconds = 0.0;         // this run: computing it, or reading the cache
-  double computeSeconds = 0.0;  // computing it (stored with the cache): the offline cost it stands for
-};
+}  // namespace
 
 CachedDeimBasis deimBasisFor(const RunContext& ctx, const RomStages& st, const MultiVector& A, int k,
                              const HamiltonianSystem& test) {
@@ -98,6 +93,8 @@ CachedDeimBasis deimBasisFor(const RunContext& ctx, const RomStages& st, const M
                  out.basis.singularValues.size(), out.basis.snapshots, out.cached ? " (cached)" : "", out.seconds);
   return out;
 }
+
+namespace {
 
 ModelRun unavailable(const std::string& method, int k, int m, const std::string& why) {
   ModelRun r;

@@ -14,6 +14,7 @@
 #include <Teuchos_Time.hpp>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/driver/Commands.hpp"
 #include "gphr/driver/Config.hpp"
 #include "gphr/driver/Report.hpp"
 #include "gphr/models/SceneFactory.hpp"
@@ -21,16 +22,28 @@
 namespace {
 
 struct Args {
-  enum Command { Run, Help } command = Run;
-  std::string config, output = "gphr-output";
+  enum Command { Run, Build, Query, Help } command = Run;
+  std::string config, output = "gphr-output", model, queries;
 };
+
+const char* kUsage = "usage: gphr [--output DIR] | run CONFIG [--output DIR] | build CONFIG --model FILE.h5 "
+                     "[--output DIR] | query MODEL.h5 QUERIES.yaml [--output DIR] | --help";
+
+// --output DIR and --model FILE after the positional arguments.
+void options(Args& a, const std::vector<std::string>& v, size_t from, bool model) {
+  for (size_t i = from; i < v.size(); ++i) {
+    if (v[i] == "--output" && i + 1 < v.size()) a.output = v[++i];
+    else if (model && v[i] == "--model" && i + 1 < v.size()) a.model = v[++i];
+    else throw gphr::InputError("unknown argument '" + v[i] + "'; allowed: --output DIR" + (model ? ", --model FILE" : ""));
+  }
+}
 
 Args parseArgs(int argc, char** argv) {
   Args a;
   std::vector<std::string> v(argv + 1, argv + argc);
   if (v.empty()) return a;  // default scene
   if (v[0] == "--output") {  // default scene into DIR
-    GPHR_REQUIRE(v.size() == 2, gphr::InputError, "usage: gphr [--output DIR] (see gphr --help)");
+    GPHR_REQUIRE(v.size() == 2, gphr::InputError, kUsage);
     a.output = v[1];
     return a;
   }
@@ -38,37 +51,21 @@ Args parseArgs(int argc, char** argv) {
     a.command = Args::Help;
     return a;
   }
-  GPHR_REQUIRE(v[0] == "run", gphr::InputError, "unknown command '", v[0], "'; allowed: run, --help (see gphr --help)");
-  GPHR_REQUIRE(v.size() >= 2, gphr::InputError, "'gphr run' needs a CONFIG file (see gphr --help)");
+  GPHR_REQUIRE(v[0] == "run" || v[0] == "build" || v[0] == "query", gphr::InputError, "unknown command '", v[0],
+               "'; allowed: run, build, query, --help (", kUsage, ")");
+  if (v[0] == "query") {
+    GPHR_REQUIRE(v.size() >= 3, gphr::InputError, "'gphr query' needs MODEL.h5 and QUERIES.yaml (", kUsage, ")");
+    a.command = Args::Query, a.model = v[1], a.queries = v[2], a.output = "gphr-queries";
+    options(a, v, 3, false);
+    return a;
+  }
+  GPHR_REQUIRE(v.size() >= 2, gphr::InputError, "'gphr ", v[0], "' needs a CONFIG file (", kUsage, ")");
   a.config = v[1];
-  for (size_t i = 2; i < v.size(); ++i) {
-    if (v[i] == "--output" && i + 1 < v.size()) a.output = v[++i];
-    else throw gphr::InputError("unknown argument '" + v[i] + "'; allowed: --output DIR");
-  }
+  a.command = v[0] == "build" ? Args::Build : Args::Run;
+  options(a, v, 2, a.command == Args::Build);
+  GPHR_REQUIRE(a.command != Args::Build || !a.model.empty(), gphr::InputError, "'gphr build' needs --model FILE.h5 (",
+               kUsage, ")");
   return a;
-}
-
-// Rank 0 creates the output directory and removes an earlier run's summary.json (it would claim
-// this run complete before it is; that run's report files this run does not rewrite go when it
-// commits). Collective: a failure there is thrown on every rank, which would otherwise wait in
-// the next collective for a rank 0 that has left.
-void prepareOutputDir(gphr::RunContext& ctx) {
-  using namespace gphr;
-  std::string error;
-  if (ctx.comm->getRank() == 0) {
-    std::error_code ec;
-    std::filesystem::create_directories(ctx.outputDir, ec);
-    if (ec) error = detail::concat("cannot create output directory '", ctx.outputDir, "': ", ec.message());
-    const std::string earlier = ctx.outputDir + "/summary.json";
-    if (error.empty() && std::filesystem::exists(earlier, ec)) {
-      ctx.replacesEarlierRun = true;
-      if (!std::filesystem::remove(earlier, ec) || ec)
-        error = detail::concat("cannot remove the earlier run's '", earlier, "': ", ec.message());
-    }
-  }
-  int failed = !error.empty();
-  Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(failed));
-  GPHR_REQUIRE(!failed, InputError, error.empty() ? "rank 0 could not prepare the output directory" : error);
 }
 
 int runMain(const Args& args, const gphr::RCP<const gphr::Comm>& comm) {
@@ -80,7 +77,7 @@ int runMain(const Args& args, const gphr::RCP<const gphr::Comm>& comm) {
   ctx.mu = sceneParameters(*ctx.scene, ctx.config.sublist("parameters"));
   ctx.comm = comm;
   ctx.outputDir = args.output;
-  prepareOutputDir(ctx);
+  prepareOutputDir(ctx, true);
   if (root)
     std::fprintf(stderr, "[gphr] scene %s, %d rank(s), output in %s\n", ctx.scene->name().c_str(),
                  comm->getSize(), ctx.outputDir.c_str());
@@ -127,6 +124,8 @@ int main(int argc, char** argv) {
       if (root) std::cout << gphr::helpText();
       return 0;
     }
+    if (args.command == Args::Build) return gphr::runBuild(args.config, args.model, args.output, comm);
+    if (args.command == Args::Query) return gphr::runQuery(args.model, args.queries, args.output, comm);
     return runMain(args, comm);
   } catch (const gphr::InputError& e) {
     if (root) std::fprintf(stderr, "gphr: error: %s\n", e.what());

@@ -4,7 +4,7 @@
 
 namespace gphr {
 
-GpDeimModel::GpDeimModel(RCP<const NonlinearTerm> term, const SampleMesh& mesh)
+GpDeimModel::GpDeimModel(RCP<const RowEvaluator> term, const SampleMesh& mesh)
     : ReducedHamiltonian(mesh.linear, rcp(new ReducedRowKernel(term, mesh.sample, Teuchos::null))),
       numbersHeld_(mesh.numbersHeld()) {}
 

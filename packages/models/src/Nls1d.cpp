@@ -31,6 +31,12 @@ Nls1d::Nls1d(GO n, double halfLength) : n_(n), L_(halfLength) {
   GPHR_REQUIRE(halfLength > 0, InputError, "nls1d: half length ", halfLength, " must be > 0");
   box_.names = {"eps"};
   box_.bounds = {{0.9, 1.1}};
+  box_.enters = {EntersRowKernel};
+}
+
+RCP<const RowEvaluator> Nls1d::rowKernel(const std::vector<double>& mu) const {
+  GPHR_REQUIRE(mu.size() == 1, InputError, "nls1d takes one parameter (eps), got ", mu.size());
+  return makeRowEvaluator(NlsKernel{mu[0]}, 4);
 }
 
 std::pair<RCP<HamiltonianSystem>, RCP<Vector>> Nls1d::build(const RCP<const Comm>& comm,

@@ -44,6 +44,13 @@ Swe2d::Swe2d(GO nx, double halfLength) : nx_(nx), L_(halfLength) {
   GPHR_REQUIRE(halfLength > 0, InputError, "swe2d: half length ", halfLength, " must be > 0");
   box_.names = {"beta", "gamma"};
   box_.bounds = {{1.1, 1.7}, {0.7, 1.3}};
+  box_.enters = {EntersInitialState, EntersRowKernel | EntersLinearPart};
+}
+
+RCP<const RowEvaluator> Swe2d::rowKernel(const std::vector<double>& mu) const {
+  GPHR_REQUIRE(mu.size() == 2, InputError, "swe2d takes two parameters (beta, gamma), got ", mu.size());
+  const double dx = 2 * L_ / nx_;  // as in build(): the same h to the last bit
+  return makeRowEvaluator(SweKernel{mu[1], 0.5 / dx}, 3);
 }
 
 std::pair<RCP<HamiltonianSystem>, RCP<Vector>> Swe2d::build(const RCP<const Comm>& comm,

@@ -16,7 +16,7 @@ using Vec = Kokkos::View<Scalar*, Kokkos::LayoutLeft, Kokkos::HostSpace, Kokkos:
 using ConstVec = Kokkos::View<const Scalar*, Kokkos::LayoutLeft, Kokkos::HostSpace, Kokkos::MemoryUnmanaged>;
 }  // namespace
 
-ReducedRowKernel::ReducedRowKernel(RCP<const NonlinearTerm> term, RowSample sample, RCP<const Comm> sumOver)
+ReducedRowKernel::ReducedRowKernel(RCP<const RowEvaluator> term, RowSample sample, RCP<const Comm> sumOver)
     : term_(term), sample_(std::move(sample)), sumOver_(sumOver) {
   const RowSample& s = sample_;
   const int r = s.reducedDim;

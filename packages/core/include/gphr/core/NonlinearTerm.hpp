@@ -44,23 +44,73 @@ struct RowBatch {
                 bool withGradient, bool withHessian);
 };
 
-class NonlinearTerm {
+// The row kernel alone, at one parameter value: what the reduced and hyper-reduced models call.
+// It holds no maps, stencils or weights (nothing of size n or d), so an online model loaded from
+// a reduced-model file runs it without the full system.
+class RowEvaluator {
  public:
-  virtual ~NonlinearTerm() = default;
+  virtual ~RowEvaluator() = default;
+  // Run the row kernel on every entry of the batch (Kokkos::parallel_for over the entries).
+  virtual void evaluate(const RowBatch& batch) const = 0;
+  // Polynomial degree of G in y (0 if not polynomial): AVF picks its quadrature from it.
+  int polynomialDegree() const { return degree_; }
 
+ protected:
+  explicit RowEvaluator(int degree) : degree_(degree) {}
+
+ private:
+  int degree_;
+};
+
+// The one place a row kernel is called: a parallel_for over the rows of a batch. The virtual
+// call is per batch, never per row.
+template <class Kernel>
+void runRowKernel(const Kernel& kernel, const RowBatch& b) {
+  const Kernel k = kernel;
+  const auto rows = b.rows;
+  const auto off = b.offsets;
+  const auto hoff = b.hessOffsets;
+  const auto vals = b.values;
+  const auto g = b.g;
+  const auto grad = b.grad;
+  const auto hess = b.hess;
+  const bool wantG = g.extent(0) > 0, wantGrad = grad.extent(0) > 0, wantHess = hess.extent(0) > 0;
+  Kokkos::parallel_for(
+      "gphr::rowKernel", Kokkos::RangePolicy<ExecSpace>(0, b.size()), KOKKOS_LAMBDA(const LO e) {
+        Scalar ge = 0.0;
+        k(rows(e), &vals(off(e)), ge, wantGrad ? &grad(off(e)) : nullptr, wantHess ? &hess(hoff(e)) : nullptr);
+        if (wantG) g(e) = ge;
+      });
+}
+
+// A RowEvaluator over a kernel functor (see the contract above).
+template <class Kernel>
+class KernelRows final : public RowEvaluator {
+ public:
+  KernelRows(const Kernel& kernel, int degree) : RowEvaluator(degree), kernel_(kernel) {}
+  void evaluate(const RowBatch& b) const override { runRowKernel(kernel_, b); }
+
+ private:
+  Kernel kernel_;
+};
+
+template <class Kernel>
+RCP<const RowEvaluator> makeRowEvaluator(const Kernel& kernel, int degree) {
+  return rcp(new KernelRows<Kernel>(kernel, degree));
+}
+
+// The decomposed nonlinearity of a full system: the row kernel with the layout of the rows of G
+// (maps, stencils, weights v, the sparsity of J_G).
+class NonlinearTerm : public RowEvaluator {
+ public:
   GO numTerms() const { return static_cast<GO>(rowMap_->getGlobalNumElements()); }
   const RCP<const Map>& rowMap() const { return rowMap_; }
   const RCP<const Map>& stateMap() const { return stateMap_; }
   const RCP<const Vector>& weights() const { return weights_; }
   const Stencil& stencil() const { return stencil_; }
   int maxStencilSize() const { return maxStencil_; }
-  // Polynomial degree of G in y (0 if not polynomial): AVF picks its quadrature from it.
-  int polynomialDegree() const { return degree_; }
   // Sparsity of J_G (d rows x 2n columns): row map rowMap(), domain stateMap(), range rowMap().
   const RCP<const CrsGraph>& jacobianGraph() const { return jacobianGraph_; }
-
-  // Run the row kernel on every entry of the batch (Kokkos::parallel_for over the entries).
-  virtual void evaluate(const RowBatch& batch) const = 0;
 
  protected:
   NonlinearTerm(RCP<const Map> rowMap, RCP<const Map> stateMap, Stencil stencil,
@@ -70,13 +120,10 @@ class NonlinearTerm {
   RCP<const Map> rowMap_, stateMap_;
   Stencil stencil_;
   RCP<const Vector> weights_;
-  int degree_;
   int maxStencil_ = 0;
   RCP<const CrsGraph> jacobianGraph_;
 };
 
-// The one place a row kernel is called: a parallel_for over the rows of a batch. The virtual
-// call is per batch, never per row.
 template <class Kernel>
 class RowKernelTerm final : public NonlinearTerm {
  public:
@@ -85,25 +132,7 @@ class RowKernelTerm final : public NonlinearTerm {
       : NonlinearTerm(rowMap, stateMap, std::move(stencil), weights, degree), kernel_(kernel) {}
 
   const Kernel& kernel() const { return kernel_; }
-
-  void evaluate(const RowBatch& b) const override {
-    const Kernel k = kernel_;
-    const auto rows = b.rows;
-    const auto off = b.offsets;
-    const auto hoff = b.hessOffsets;
-    const auto vals = b.values;
-    const auto g = b.g;
-    const auto grad = b.grad;
-    const auto hess = b.hess;
-    const bool wantG = g.extent(0) > 0, wantGrad = grad.extent(0) > 0, wantHess = hess.extent(0) > 0;
-    Kokkos::parallel_for(
-        "gphr::rowKernel", Kokkos::RangePolicy<ExecSpace>(0, b.size()), KOKKOS_LAMBDA(const LO e) {
-          Scalar ge = 0.0;
-          k(rows(e), &vals(off(e)), ge, wantGrad ? &grad(off(e)) : nullptr,
-            wantHess ? &hess(hoff(e)) : nullptr);
-          if (wantG) g(e) = ge;
-        });
-  }
+  void evaluate(const RowBatch& b) const override { runRowKernel(kernel_, b); }
 
  private:
   Kernel kernel_;

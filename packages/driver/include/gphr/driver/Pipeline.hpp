@@ -9,6 +9,7 @@
 
 #include "gphr/driver/FomStage.hpp"
 #include "gphr/driver/RunContext.hpp"
+#include "gphr/hyper/DeimBasis.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/reduction/SymplecticBasis.hpp"
 
@@ -59,6 +60,17 @@ int basisK(const Teuchos::ParameterList& cfg);
 // Provenance keys of the cached artifacts (the config text each one depends on).
 std::string trainingKey(const Teuchos::ParameterList& cfg);
 std::string basisKey(const Teuchos::ParameterList& cfg);
+// The reduced-Jacobian DEIM basis of size k (hyper section of the config), from the cache in
+// artifacts.h5 /deim/k<k> when its key matches, else computed from the training snapshots and
+// cached. `test` supplies the row map of G. Collective.
+struct CachedDeimBasis {
+  DeimBasis basis;
+  bool cached = false;
+  double seconds = 0.0;         // this run: computing it, or reading the cache
+  double computeSeconds = 0.0;  // computing it (stored with the cache): the offline cost it stands for
+};
+CachedDeimBasis deimBasisFor(const RunContext& ctx, const RomStages& st, const MultiVector& A, int k,
+                             const HamiltonianSystem& test);
 // The hyper-reduced models of pipeline.methods (gp-deim, deim, sdeim) for every k and m.
 void runHyperReduction(const RunContext& ctx, const FomResult& fom, RomStages& stages);
 // The training and basis keys of a rom / gp-deim entry: t_training_s, t_basis_s, t_basis_cpu_s,

@@ -11,7 +11,7 @@ namespace gphr {
 
 class GpDeimModel final : public ReducedHamiltonian {
  public:
-  GpDeimModel(RCP<const NonlinearTerm> term, const SampleMesh& mesh);
+  GpDeimModel(RCP<const RowEvaluator> term, const SampleMesh& mesh);
   int deimSize() const { return rows().numRows(); }
   // Kernel rows evaluated per kernel evaluation (= m) and stencil entries held (= sum of s_i).
   LO kernelRowsPerEvaluation() const { return rows().numRows(); }

@@ -11,9 +11,16 @@
 
 namespace gphr {
 
+// Where a parameter enters a scene (flags, combined with |). A reduced-model query rebuilds only
+// what its parameters touch: the row kernel (n-independent, rebuilt exactly per query), the
+// linear part L, f (hence L_r, f_r and c) and the initial state (hence the shift's reference
+// state y0, f_r = A^T (f + L y0), c = H(y0) and the reference rows of the sample mesh).
+enum ParameterEntry : unsigned { EntersRowKernel = 1u, EntersLinearPart = 2u, EntersInitialState = 4u };
+
 struct ParameterBox {
   std::vector<std::string> names;
   std::vector<std::pair<double, double>> bounds;
+  std::vector<unsigned> enters;  // per parameter, ParameterEntry flags
   // Throws InputError naming the parameter, its value and the box when mu lies outside.
   void check(const std::vector<double>& mu) const;
 };
@@ -34,6 +41,10 @@ class Scene {
   // tests use e.g. eps = 0 for the linear NLS).
   virtual std::pair<RCP<HamiltonianSystem>, RCP<Vector>> build(const RCP<const Comm>& comm,
                                                               const std::vector<double>& mu) const = 0;
+  // The row kernel alone at mu (no maps, stencils or weights: nothing of size n or d), equal to
+  // the kernel of build(comm, mu)'s nonlinear term: what an online model loaded from a
+  // reduced-model file evaluates.
+  virtual RCP<const RowEvaluator> rowKernel(const std::vector<double>& mu) const = 0;
   // build() then, if shift is set, the shifted system of paper eq:shiftH with y0 = 0.
   SceneInstance instantiate(const RCP<const Comm>& comm, const std::vector<double>& mu, bool shift) const;
 };
@@ -47,6 +58,7 @@ class Nls1d final : public Scene {
   const ParameterBox& parameterBox() const override { return box_; }
   std::pair<RCP<HamiltonianSystem>, RCP<Vector>> build(const RCP<const Comm>& comm,
                                                       const std::vector<double>& mu) const override;
+  RCP<const RowEvaluator> rowKernel(const std::vector<double>& mu) const override;
   GO n() const { return n_; }
 
  private:
@@ -65,6 +77,7 @@ class Swe2d final : public Scene {
   const ParameterBox& parameterBox() const override { return box_; }
   std::pair<RCP<HamiltonianSystem>, RCP<Vector>> build(const RCP<const Comm>& comm,
                                                       const std::vector<double>& mu) const override;
+  RCP<const RowEvaluator> rowKernel(const std::vector<double>& mu) const override;
   GO nx() const { return nx_; }
 
  private:

@@ -40,7 +40,7 @@ class ReducedRowKernel {
 
   // sumOver: the communicator whose ranks hold disjoint parts of one row set (partial sums are
   // reduced over it), or null when every rank holds the whole (replicated) sample.
-  ReducedRowKernel(RCP<const NonlinearTerm> term, RowSample sample, RCP<const Comm> sumOver);
+  ReducedRowKernel(RCP<const RowEvaluator> term, RowSample sample, RCP<const Comm> sumOver);
 
   int reducedDim() const { return sample_.reducedDim; }
   LO numRows() const { return static_cast<LO>(sample_.rows.size()); }
@@ -90,7 +90,7 @@ class ReducedRowKernel {
   void setZ0(const DenseVector& z0);                         // v0_ = A_S z0 unless z0 is the cached one
   // values = yref + (1 - s) v0_ + s v1_ (the quadrature node s on [z0, z1]), then b evaluated.
   void evaluateAtNode(double s, const RowBatch& b);
-  RCP<const NonlinearTerm> term_;
+  RCP<const RowEvaluator> term_;
   RowSample sample_;
   RCP<const Comm> sumOver_;
   RowBatch batch_;

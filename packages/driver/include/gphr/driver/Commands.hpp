@@ -1,0 +1,27 @@
+#pragma once
+// The `gphr` commands besides `run`: build (offline stages -> a reduced-model file), query (the
+// file's models at many parameters, spread over the ranks) and validate (the models against the
+// full model over a set of test parameters). Each returns the process exit code; bad input is an
+// InputError (exit 2), thrown on every rank.
+#include <string>
+
+#include "gphr/driver/RunContext.hpp"
+
+namespace gphr {
+
+// Creates ctx.outputDir (rank 0) and, if removeSummary, removes an earlier run's summary.json
+// (then ctx.replacesEarlierRun). Collective: a failure on rank 0 is thrown on every rank.
+void prepareOutputDir(RunContext& ctx, bool removeSummary);
+
+// Creates `dir` on rank 0; collective like prepareOutputDir.
+void makeDirectory(const std::string& dir, const RCP<const Comm>& comm);
+
+int runBuild(const std::string& configPath, const std::string& modelPath, const std::string& artifactsDir,
+             const RCP<const Comm>& comm);
+int runQuery(const std::string& modelPath, const std::string& queriesPath, const std::string& outputDir,
+             const RCP<const Comm>& comm);
+
+// The gphr version (git describe at configure time) for provenance.
+const char* gphrVersion();
+
+}  // namespace gphr

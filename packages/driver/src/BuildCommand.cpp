@@ -1,0 +1,103 @@
+// `gphr build CONFIG --model FILE.h5`: the offline stages of `gphr run` (training, basis, DEIM
+// basis, reusing DIR/artifacts.h5) for every k and m of the pipeline, then the reduced-model file:
+// per k the parameter interpolant of L_r, f_r, c and the reference rows (doc/model-file.md), per
+// gp-deim (k, m) its sample mesh. The full model is not evaluated.
+#include <Teuchos_Time.hpp>
+
+#include <filesystem>
+
+#include "gphr/core/Error.hpp"
+#include "gphr/driver/Commands.hpp"
+#include "gphr/driver/Config.hpp"
+#include "gphr/driver/ModelEvaluation.hpp"
+#include "gphr/driver/ModelFileBuilder.hpp"
+#include "gphr/driver/Pipeline.hpp"
+#include "gphr/models/SceneFactory.hpp"
+
+namespace gphr {
+
+namespace {
+
+// Methods a model file stores: those whose online model needs only a sample mesh.
+bool storable(const std::string& method) { return method == "gp-deim"; }
+
+// A section of the config as YAML with its own name at the top.
+std::string sectionYaml(const Teuchos::ParameterList& cfg, const std::string& name) {
+  Teuchos::ParameterList copy(cfg.sublist(name));
+  copy.setName(name);
+  return toYaml(copy);
+}
+
+ModelFileOptions fileOptions(const Teuchos::ParameterList& cfg) {
+  ModelFileOptions o;
+  for (int g : cfg.sublist("build").get<Teuchos::Array<int>>("probes")) o.probes.push_back(g);
+  o.interpolationNodes = cfg.sublist("build").get<int>("interpolationNodes");
+  o.indices = cfg.sublist("hyper").get<std::string>("indices");
+  o.integratorConfig = sectionYaml(cfg, "integrator");
+  return o;
+}
+
+void printBuild(const std::string& path, const ReducedModelData& data, double seconds, int ranks) {
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(path, ec);
+  std::printf("gphr build: %s (%.1f kB): %s; scene %s, offline %.1f s on %d rank(s)\n", path.c_str(), bytes / 1024.0,
+              data.modelList().c_str(), data.sceneName.c_str(), seconds, ranks);
+  for (const auto& b : data.bases)
+    std::printf("  k = %d: parameter interpolant %zu nodes, relative error between nodes: L_r %.1e, f_r %.1e, "
+                "c %.1e, reference rows %.1e\n", b.k, b.interpolant.numNodes(), b.interpolationError.at("L"),
+                b.interpolationError.at("f"), b.interpolationError.at("c"), b.interpolationError.at("reference"));
+}
+
+}  // namespace
+
+int runBuild(const std::string& configPath, const std::string& modelPath, const std::string& artifactsDir,
+             const RCP<const Comm>& comm) {
+  const bool root = comm->getRank() == 0;
+  RunContext ctx;
+  ctx.config = loadConfig(configPath);
+  ctx.scene = makeScene(ctx.config.sublist("scene"));
+  ctx.mu = sceneParameters(*ctx.scene, ctx.config.sublist("parameters"));
+  ctx.comm = comm;
+  ctx.outputDir = artifactsDir;
+  std::vector<std::string> stored, skipped;
+  for (const auto& m : pipelineMethods(ctx.config)) (storable(m) ? stored : skipped).push_back(m);
+  GPHR_REQUIRE(!stored.empty(), InputError, "config file '", configPath,
+               "': gphr build stores gp-deim models; pipeline.methods must list gp-deim");
+  GPHR_REQUIRE(ctx.config.sublist("scene").get<bool>("shift"), InputError, "config file '", configPath,
+               "': gphr build needs scene.shift: true (the stored models are of the shifted system)");
+  prepareOutputDir(ctx, false);
+  const auto parent = std::filesystem::path(modelPath).parent_path();
+  if (!parent.empty()) makeDirectory(parent.string(), comm);
+  if (root && !skipped.empty())
+    for (const auto& m : skipped)
+      std::fprintf(stderr, "[gphr] build: %s is not stored (%s)\n", m.c_str(),
+                   m == "gp-adeim" ? "it samples the full residual online: run it with gphr run"
+                                   : "its online model needs all d rows or is a baseline: run it with gphr run");
+  Teuchos::Time clock("build");
+  clock.start();
+  RomStages st;
+  st.training = runTraining(ctx);
+  st.basis = runReduction(ctx, st.training, st.basisCached);
+  const auto inst = ctx.scene->instantiate(comm, ctx.mu, true);
+  const ModelFileOptions opt = fileOptions(ctx.config);
+  ReducedModelData data = modelFileHeader(*ctx.scene, inst, opt);
+  data.sceneConfig = sectionYaml(ctx.config, "scene");
+  data.config = toYaml(ctx.config);
+  data.T = ctx.config.sublist("time").get<double>("T");
+  data.dt = ctx.config.sublist("time").get<double>("dt");
+  std::vector<int> ms;
+  for (int m : ctx.config.sublist("pipeline").get<Teuchos::Array<int>>("m")) ms.push_back(m);
+  std::vector<RCP<const MultiVector>> bases;
+  const bool withBasis = ctx.config.sublist("build").get<bool>("withBasis");
+  for (int k : stageK(ctx.config, st.basis)) {
+    const auto A = leadingBasis(st.basis, k);
+    addReducedBasis(data, *ctx.scene, inst, *A, k, *deimBasisFor(ctx, st, *A, k, *inst.system).basis.U, ms, opt);
+    bases.push_back(withBasis ? RCP<const MultiVector>(A) : Teuchos::null);
+  }
+  writeReducedModelFile(modelPath, comm, data, bases, &inst.system->space());
+  const double seconds = clock.stop();
+  if (root) printBuild(modelPath, data, seconds, comm->getSize());
+  return 0;
+}
+
+}  // namespace gphr

@@ -1,0 +1,119 @@
+// The contents of a reduced-model file from the offline results (ModelFileBuilder.hpp).
+#include "gphr/driver/ModelFileBuilder.hpp"
+
+#include <Trilinos_version.h>
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+#include <set>
+
+#include "gphr/core/Error.hpp"
+#include "gphr/core/ReplicatedGather.hpp"
+#include "gphr/driver/Commands.hpp"
+#include "gphr/driver/Config.hpp"
+#include "gphr/hyper/SampleMesh.hpp"
+#include "gphr/reduction/Deim.hpp"
+
+namespace gphr {
+
+namespace {
+
+std::vector<StoredHyperModel> deimModels(const SceneInstance& inst, const MultiVector& A, int k, const MultiVector& U,
+                                         const std::vector<int>& ms, const std::string& indices) {
+  std::vector<StoredHyperModel> out;
+  for (int m : ms) {
+    GPHR_REQUIRE(m >= 1 && m <= static_cast<int>(U.getNumVectors()), InputError, "gp-deim k = ", k, ", m = ", m,
+                 ": the DEIM basis has ", U.getNumVectors(),
+                 " vectors (numerical rank of the snapshots or hyper.maxRank); allowed: 1 <= m <= that");
+    StoredHyperModel sm;
+    sm.method = "gp-deim", sm.k = k, sm.m = m;
+    const auto idx = selectDeimIndices(U, m, indices);
+    const auto w = computeDeimWeights(U, idx, *inst.system->nonlinearTerm().weights());
+    sm.sample = gatherRowSample(*inst.system, A, idx, w.weights);
+    sm.sample.reference.clear();  // parameter-dependent: from the interpolant per query
+    sm.conditionNumber = w.conditionNumber;
+    out.push_back(std::move(sm));
+  }
+  return out;
+}
+
+// Exact L_r, f_r, c and reference rows at mu (an O(n k) projection of the full system).
+OnlineParameterData exactAt(const Scene& scene, const RCP<const Comm>& comm, const MultiVector& A,
+                            const std::vector<GO>& gids, const std::vector<double>& mu) {
+  const auto inst = scene.instantiate(comm, mu, true);
+  OnlineParameterData d;
+  d.linear = reduceLinearPart(*inst.system, A);
+  d.reference = gatherRows(*inst.system->reference(), gids);
+  return d;
+}
+
+double relativeError(const std::vector<double>& a, const std::vector<double>& b, size_t i0, size_t i1) {
+  double num = 0.0, den = 0.0;
+  for (size_t i = i0; i < i1; ++i) num += (a[i] - b[i]) * (a[i] - b[i]), den += b[i] * b[i];
+  return den > 0.0 ? std::sqrt(num / den) : std::sqrt(num);
+}
+
+// The interpolant's largest relative error per piece at points between the nodes.
+void checkInterpolant(const Scene& scene, const RCP<const Comm>& comm, const MultiVector& A, StoredBasisData& b) {
+  const size_t r = 2 * static_cast<size_t>(b.k), nL = r * r, nf = nL + r, nc = nf + 1;
+  for (const char* piece : {"L", "f", "c", "reference"}) b.interpolationError[piece] = 0.0;
+  for (const auto& mu : b.interpolant.checkPoints(8)) {
+    const auto exact = b.pack(exactAt(scene, comm, A, b.referenceGids, mu)), approx = b.interpolant.evaluate(mu);
+    auto worst = [&](const char* piece, size_t i0, size_t i1) {
+      b.interpolationError[piece] = std::max(b.interpolationError[piece], relativeError(approx, exact, i0, i1));
+    };
+    worst("L", 0, nL), worst("f", nL, nf), worst("c", nf, nc), worst("reference", nc, exact.size());
+  }
+}
+
+StoredBasisData basisData(const Scene& scene, const RCP<const Comm>& comm, const MultiVector& A, int k,
+                          const std::vector<StoredHyperModel>& models, const ModelFileOptions& opt) {
+  StoredBasisData b;
+  b.k = k;
+  for (GO g : opt.probes)
+    GPHR_REQUIRE(g >= 0 && static_cast<size_t>(g) < A.getGlobalLength(), InputError, "probe entry ", g,
+                 " is not a state entry; allowed: 0 to ", A.getGlobalLength() - 1);
+  b.probeGids = opt.probes;
+  b.probeRows = gatherRows(A, b.probeGids);
+  std::set<GO> gids(b.probeGids.begin(), b.probeGids.end());
+  for (const auto& m : models) gids.insert(m.sample.stencil.gids.begin(), m.sample.stencil.gids.end());
+  b.referenceGids.assign(gids.begin(), gids.end());
+  const auto& box = scene.parameterBox();
+  const std::vector<int> counts(box.bounds.size(), opt.interpolationNodes);
+  b.interpolant = ParameterInterpolant(box.bounds, counts, 4 * k * k + 2 * k + 1 + b.referenceGids.size());
+  for (size_t j = 0; j < b.interpolant.numNodes(); ++j)
+    b.interpolant.setNodeValues(j, b.pack(exactAt(scene, comm, A, b.referenceGids, b.interpolant.node(j))));
+  checkInterpolant(scene, comm, A, b);
+  return b;
+}
+
+}  // namespace
+
+ReducedModelData modelFileHeader(const Scene& scene, const SceneInstance& inst, const ModelFileOptions& opt) {
+  ReducedModelData d;
+  d.sceneName = scene.name();
+  d.integratorConfig = opt.integratorConfig.empty() ? toYaml(Teuchos::ParameterList("integrator")) : opt.integratorConfig;
+  d.gphrVersion = gphrVersion();
+  d.trilinosVersion = TRILINOS_VERSION_STRING;
+  char when[32];
+  const std::time_t now = std::time(nullptr);
+  std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  d.created = when;
+  d.buildRanks = inst.system->space().comm()->getSize();
+  d.polynomialDegree = inst.system->nonlinearTerm().polynomialDegree();
+  const auto& box = scene.parameterBox();
+  d.parameterNames = box.names, d.box = box.bounds, d.enters = box.enters;
+  return d;
+}
+
+void addReducedBasis(ReducedModelData& data, const Scene& scene, const SceneInstance& inst, const MultiVector& A,
+                     int k, const MultiVector& U, const std::vector<int>& ms, const ModelFileOptions& opt) {
+  GPHR_REQUIRE(opt.interpolationNodes >= 2 && opt.interpolationNodes <= 33, InputError, "interpolation nodes ",
+               opt.interpolationNodes, "; allowed: 2 to 33");
+  auto models = deimModels(inst, A, k, U, ms, opt.indices);
+  data.bases.push_back(basisData(scene, inst.system->space().comm(), A, k, models, opt));
+  for (auto& m : models) data.models.push_back(std::move(m));
+}
+
+}  // namespace gphr

@@ -1,0 +1,53 @@
+// Output directories of the `gphr` commands, created collectively: rank 0 acts, and its failure
+// is thrown on every rank (a rank that threw alone would leave the others waiting in the next
+// collective).
+#include <Teuchos_CommHelpers.hpp>
+
+#include <filesystem>
+
+#include "gphr/core/Error.hpp"
+#include "gphr/driver/Commands.hpp"
+
+#ifndef GPHR_VERSION_STRING
+#define GPHR_VERSION_STRING "unknown"
+#endif
+
+namespace gphr {
+
+namespace {
+void agree(const RCP<const Comm>& comm, const std::string& error, const char* fallback) {
+  int failed = !error.empty();
+  Teuchos::broadcast(*comm, 0, Teuchos::outArg(failed));
+  GPHR_REQUIRE(!failed, InputError, error.empty() ? fallback : error);
+}
+}  // namespace
+
+void makeDirectory(const std::string& dir, const RCP<const Comm>& comm) {
+  std::string error;
+  if (comm->getRank() == 0) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) error = detail::concat("cannot create directory '", dir, "': ", ec.message());
+  }
+  agree(comm, error, "rank 0 could not create the directory");
+}
+
+void prepareOutputDir(RunContext& ctx, bool removeSummary) {
+  std::string error;
+  if (ctx.comm->getRank() == 0) {
+    std::error_code ec;
+    std::filesystem::create_directories(ctx.outputDir, ec);
+    if (ec) error = detail::concat("cannot create output directory '", ctx.outputDir, "': ", ec.message());
+    const std::string earlier = ctx.outputDir + "/summary.json";
+    if (removeSummary && error.empty() && std::filesystem::exists(earlier, ec)) {
+      ctx.replacesEarlierRun = true;
+      if (!std::filesystem::remove(earlier, ec) || ec)
+        error = detail::concat("cannot remove the earlier run's '", earlier, "': ", ec.message());
+    }
+  }
+  agree(ctx.comm, error, "rank 0 could not prepare the output directory");
+}
+
+const char* gphrVersion() { return GPHR_VERSION_STRING; }
+
+}  // namespace gphr

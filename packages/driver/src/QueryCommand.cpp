@@ -1,0 +1,222 @@
+// `gphr query MODEL.h5 QUERIES.yaml --output DIR`: the file's hyper-reduced models at many
+// parameters. Queries are dealt round-robin to the ranks, each run on one rank alone (the online
+// model is small and replicated: no communication in the time loop), so a query's result does not
+// depend on the rank count. Each finished query is written at once to DIR/queries/<name>.h5
+// (write-then-rename) with a key of everything that determines it: a killed run restarts without
+// redoing them. Rank 0 then gathers them into DIR/results.h5, DIR/queries.csv and
+// DIR/query_summary.json.
+#include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_DefaultSerialComm.hpp>
+#include <Teuchos_Time.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+
+#include "gphr/core/Error.hpp"
+#include "gphr/driver/Commands.hpp"
+#include "gphr/driver/Json.hpp"
+#include "gphr/driver/QueryList.hpp"
+#include "gphr/driver/ReducedModel.hpp"
+#include "gphr/io/Hdf5File.hpp"
+
+namespace gphr {
+
+namespace {
+
+RCP<const Comm> selfComm() { return rcp(new Teuchos::SerialComm<int>()); }
+
+std::string queryFile(const std::string& dir, const Query& q) { return dir + "/queries/" + q.name + ".h5"; }
+
+// A finished query as the CSV and the summary see it.
+struct QueryOutcome {
+  std::string status, reason;
+  double setupSeconds = NAN, onlineSeconds = NAN, drift = NAN, newtonIterations = NAN;
+  bool extrapolated = false, reused = false;
+};
+
+// The outcome stored in a finished query's file if its key matches (else the query is redone).
+bool finished(const std::string& path, const std::string& key, QueryOutcome& out) {
+  std::ifstream probe(path);
+  if (!probe.good()) return false;
+  try {
+    Hdf5File f(path, selfComm(), Hdf5File::Mode::ReadOnly);
+    if (!f.hasAttribute("/", "key") || f.stringAttribute("/", "key") != key) return false;
+    out.status = f.stringAttribute("/", "status");
+    out.reason = f.stringAttribute("/", "reason");
+    const auto v = f.doubleAttribute("/", "numbers");  // setup_s, online_s, drift, newton, extrapolated
+    out.setupSeconds = v.at(0), out.onlineSeconds = v.at(1), out.drift = v.at(2), out.newtonIterations = v.at(3);
+    out.extrapolated = v.at(4) != 0.0;
+    out.reused = true;
+    return true;
+  } catch (const std::exception&) {
+    return false;  // unreadable (a damaged file): redo it
+  }
+}
+
+struct Recorder {
+  std::vector<double> H, times, z, probes;
+  size_t probeCount = 0;
+};
+
+QueryOutcome runOne(const ReducedModel& model, const Query& q, const std::string& path) {
+  OnlineModel online = model.instantiate(q.method, q.k, q.m, q.mu, q.extrapolate, q.setup);
+  const long steps = std::lround(q.T / q.dt);
+  Recorder rec;
+  rec.probeCount = q.probes ? online.probeGids().size() : 0;
+  const auto stats = online.simulate(q.T, q.dt, [&](const QueryStep& s) {
+    rec.H.push_back(s.hamiltonian);
+    if (s.step % q.saveEvery != 0 && s.step != steps) return;
+    rec.times.push_back(s.time);
+    rec.z.insert(rec.z.end(), s.z.values(), s.z.values() + s.z.length());
+    if (rec.probeCount) rec.probes.insert(rec.probes.end(), s.probes.begin(), s.probes.end());
+  });
+  QueryOutcome out;
+  out.status = stats.status, out.reason = stats.reason;
+  out.setupSeconds = online.setupSeconds(), out.onlineSeconds = stats.onlineSeconds;
+  out.extrapolated = online.extrapolated();
+  out.newtonIterations = stats.status == "ok" ? double(stats.run.newtonIterations) / steps : NAN;
+  out.drift = 0.0;
+  for (double h : rec.H) out.drift = std::max(out.drift, std::abs(h - rec.H.front()));
+  if (stats.status != "ok") out.drift = NAN;
+  RenameOnCommit commit(path, selfComm());
+  {
+    Hdf5File f(commit.tempPath(), selfComm(), Hdf5File::Mode::Create);
+    f.writeArray("/hamiltonian", rec.H.empty() ? std::vector<double>{NAN} : rec.H, std::max<size_t>(1, rec.H.size()), 1);
+    const size_t saved = rec.times.size(), r = static_cast<size_t>(online.reducedDim());
+    if (saved > 0) {
+      f.writeArray("/saved_times", rec.times, saved, 1);
+      f.writeArray("/z", rec.z, saved, r);
+      if (rec.probeCount) f.writeArray("/probes", rec.probes, saved, rec.probeCount);
+    }
+    f.setAttribute("/", "parameter", q.mu);
+    f.setAttribute("/", "status", out.status);
+    f.setAttribute("/", "reason", out.reason);
+    f.setAttribute("/", "numbers", std::vector<double>{out.setupSeconds, out.onlineSeconds, out.drift,
+                                                       out.newtonIterations, out.extrapolated ? 1.0 : 0.0});
+    f.flush();
+    f.setAttribute("/", "key", q.key());  // last: marks the file complete
+  }
+  commit.commit();
+  return out;
+}
+
+// Each query's outcome on every rank (rank 0 writes the table): numbers summed over the ranks,
+// each query's from the rank that ran it; the status words travel as codes.
+void shareOutcomes(const RCP<const Comm>& comm, std::vector<QueryOutcome>& outs) {
+  const size_t n = outs.size();
+  std::vector<double> mine(n * 7, 0.0), all(n * 7, 0.0);
+  for (size_t i = 0; i < n; ++i) {
+    if (outs[i].status.empty()) continue;
+    const double code = outs[i].status == "ok" ? 1.0 : 2.0;
+    const double v[7] = {code, outs[i].setupSeconds, outs[i].onlineSeconds, outs[i].drift,
+                         outs[i].newtonIterations, outs[i].extrapolated ? 1.0 : 0.0, outs[i].reused ? 1.0 : 0.0};
+    std::copy(v, v + 7, mine.begin() + i * 7);
+  }
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, static_cast<int>(mine.size()), mine.data(), all.data());
+  for (size_t i = 0; i < n; ++i) {
+    const double* v = all.data() + i * 7;
+    if (outs[i].status.empty()) outs[i].status = v[0] == 1.0 ? "ok" : "diverged";
+    outs[i].setupSeconds = v[1], outs[i].onlineSeconds = v[2], outs[i].drift = v[3];
+    outs[i].newtonIterations = v[4], outs[i].extrapolated = v[5] != 0.0, outs[i].reused = v[6] != 0.0;
+  }
+}
+
+std::string number(double x) { return std::isfinite(x) ? detail::concat(x) : std::string("nan"); }
+
+void writeTable(const std::string& dir, const ReducedModelData& d, const std::vector<Query>& qs,
+                const std::vector<QueryOutcome>& outs) {
+  const std::string path = dir + "/queries.csv", temp = path + ".tmp";
+  {
+    std::ofstream csv(temp);
+    csv << "name";
+    for (const auto& p : d.parameterNames) csv << "," << p;
+    csv << ",method,k,m,T,dt,setup,status,extrapolated,setup_s,online_s,H_hr_drift_max,newton_iters_avg,reused\n";
+    for (size_t i = 0; i < qs.size(); ++i) {
+      const auto& q = qs[i];
+      const auto& o = outs[i];
+      csv << q.name;
+      for (double x : q.mu) csv << "," << number(x);
+      csv << "," << q.method << "," << q.k << "," << q.m << "," << number(q.T) << "," << number(q.dt) << ","
+          << (q.setup == SetupRoute::Exact ? "exact" : "interpolated") << "," << o.status << ","
+          << (o.extrapolated ? "yes" : "no") << "," << number(o.setupSeconds) << "," << number(o.onlineSeconds)
+          << "," << number(o.drift) << "," << number(o.newtonIterations) << "," << (o.reused ? "yes" : "no") << "\n";
+    }
+  }
+  std::rename(temp.c_str(), path.c_str());
+}
+
+// DIR/results.h5: every query's datasets under /queries/<name>, with its parameter and status.
+void writeResults(const std::string& dir, const std::vector<Query>& qs) {
+  RenameOnCommit commit(dir + "/results.h5", selfComm());
+  {
+    Hdf5File out(commit.tempPath(), selfComm(), Hdf5File::Mode::Create);
+    out.createGroup("/queries");
+    for (const auto& q : qs) {
+      Hdf5File in(queryFile(dir, q), selfComm(), Hdf5File::Mode::ReadOnly);
+      const std::string g = "/queries/" + q.name;
+      out.createGroup(g);
+      for (const char* name : {"/hamiltonian", "/saved_times", "/z", "/probes"}) {
+        if (!in.exists(name)) continue;
+        size_t rows = 0, cols = 0;
+        const auto v = in.readArray(name, &rows, &cols);
+        out.writeArray(g + name, v, rows, std::max<size_t>(cols, 1));
+      }
+      out.setAttribute(g, "parameter", q.mu);
+      out.setAttribute(g, "status", in.stringAttribute("/", "status"));
+      out.setAttribute(g, "method", q.method);
+      out.setAttribute(g, "k_m", std::vector<double>{double(q.k), double(q.m)});
+    }
+    out.flush();
+  }
+  commit.commit();
+}
+
+}  // namespace
+
+int runQuery(const std::string& modelPath, const std::string& queriesPath, const std::string& outputDir,
+             const RCP<const Comm>& comm) {
+  const int rank = comm->getRank(), size = comm->getSize();
+  const ReducedModel model(modelPath);
+  const auto queries = readQueries(queriesPath, model);
+  makeDirectory(outputDir + "/queries", comm);
+  Teuchos::Time wall("queries");
+  wall.start();
+  std::vector<QueryOutcome> outs(queries.size());
+  long mine = 0, done = 0;
+  for (size_t i = rank; i < queries.size(); i += size) ++mine;
+  double lastPrint = -1e9;
+  for (size_t i = rank; i < queries.size(); i += size) {
+    const std::string path = queryFile(outputDir, queries[i]);
+    if (!finished(path, queries[i].key(), outs[i])) outs[i] = runOne(model, queries[i], path);
+    ++done;
+    const double t = wall.totalElapsedTime(true);
+    if (rank == 0 && (t - lastPrint > 2.0 || done == mine)) {
+      std::fprintf(stderr, "[gphr] query: rank 0 %ld/%ld, all ranks ~%zu queries, elapsed %.1f s, ETA %.1f s\n", done,
+                   mine, queries.size(), t, t / done * (mine - done));
+      lastPrint = t;
+    }
+  }
+  double seconds = wall.stop(), slowest = 0.0;
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, seconds, Teuchos::outArg(slowest));
+  shareOutcomes(comm, outs);
+  if (rank == 0) {
+    long ran = 0, ok = 0;
+    for (const auto& o : outs) ran += !o.reused, ok += o.status == "ok";
+    writeResults(outputDir, queries);
+    writeTable(outputDir, model.data(), queries, outs);
+    JsonObject s;
+    s.set("model_file", modelPath).set("queries", static_cast<long>(queries.size())).set("queries_run", ran)
+        .set("queries_reused", static_cast<long>(queries.size()) - ran).set("queries_ok", ok).set("ranks", size)
+        .set("wall_s", slowest).set("queries_per_s", ran > 0 ? ran / slowest : NAN).set("gphr_version", gphrVersion());
+    std::ofstream(outputDir + "/query_summary.json") << s.str(2) << "\n";
+    std::printf("gphr query: %zu queries (%ld run, %ld reused, %ld ok) on %d rank(s) in %.2f s: %.1f queries/s; "
+                "results in %s/results.h5, table %s/queries.csv\n", queries.size(), ran,
+                static_cast<long>(queries.size()) - ran, ok, size, slowest, ran > 0 ? ran / slowest : 0.0,
+                outputDir.c_str(), outputDir.c_str());
+  }
+  comm->barrier();
+  return 0;
+}
+
+}  // namespace gphr

@@ -1,0 +1,197 @@
+#include "gphr/driver/QueryList.hpp"
+
+#include <Teuchos_YamlParameterListCoreHelpers.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <set>
+
+#include "gphr/core/Error.hpp"
+
+namespace gphr {
+
+namespace {
+
+const std::vector<std::string> kKeys = {"method", "k", "m", "T", "dt", "saveEvery", "probes", "setup", "extrapolate"};
+
+std::string allowedKeys(const ReducedModelData& d) {
+  std::string s;
+  for (const auto& p : d.parameterNames) s += p + ", ";
+  for (const auto& k : kKeys) s += k + (k == kKeys.back() ? "" : ", ");
+  return s;
+}
+
+double numberAt(const Teuchos::ParameterList& pl, const std::string& key, const std::string& where) {
+  if (pl.isType<double>(key)) return pl.get<double>(key);
+  if (pl.isType<int>(key)) return pl.get<int>(key);
+  throw InputError(detail::concat(where, ": key '", key, "' must be a number"));
+}
+
+long wholeAt(const Teuchos::ParameterList& pl, const std::string& key, const std::string& where, long lo) {
+  GPHR_REQUIRE(pl.isType<int>(key), InputError, where, ": key '", key, "' must be a whole number");
+  const long v = pl.get<int>(key);
+  GPHR_REQUIRE(v >= lo, InputError, where, ": key '", key, "' has value ", v, "; allowed: >= ", lo);
+  return v;
+}
+
+bool flagAt(const Teuchos::ParameterList& pl, const std::string& key, const std::string& where) {
+  GPHR_REQUIRE(pl.isType<bool>(key), InputError, where, ": key '", key, "' must be true or false");
+  return pl.get<bool>(key);
+}
+
+// Applies the keys of one mapping (defaults or a point) to q; parameters go to mu (NaN: unset).
+void apply(const Teuchos::ParameterList& pl, const ReducedModelData& d, const std::string& where, Query& q) {
+  for (auto it = pl.begin(); it != pl.end(); ++it) {
+    const std::string key = pl.name(it);
+    const auto p = std::find(d.parameterNames.begin(), d.parameterNames.end(), key);
+    if (p != d.parameterNames.end()) q.mu[p - d.parameterNames.begin()] = numberAt(pl, key, where);
+    else if (key == "method") {
+      GPHR_REQUIRE(pl.isType<std::string>(key), InputError, where, ": key 'method' must be a method name");
+      q.method = pl.get<std::string>(key);
+    }
+    else if (key == "k") q.k = static_cast<int>(wholeAt(pl, key, where, 1));
+    else if (key == "m") q.m = static_cast<int>(wholeAt(pl, key, where, 1));
+    else if (key == "T") q.T = numberAt(pl, key, where);
+    else if (key == "dt") q.dt = numberAt(pl, key, where);
+    else if (key == "saveEvery") q.saveEvery = wholeAt(pl, key, where, 1);
+    else if (key == "probes") q.probes = flagAt(pl, key, where);
+    else if (key == "extrapolate") q.extrapolate = flagAt(pl, key, where);
+    else if (key == "setup") {
+      const std::string v = pl.isType<std::string>(key) ? pl.get<std::string>(key) : "";
+      GPHR_REQUIRE(v == "interpolated" || v == "exact", InputError, where, ": key 'setup' has value '", v,
+                   "'; allowed: interpolated, exact");
+      q.setup = v == "exact" ? SetupRoute::Exact : SetupRoute::Interpolated;
+    } else
+      throw InputError(detail::concat(where, ": unknown key '", key, "'; allowed: ", allowedKeys(d)));
+  }
+}
+
+// Model defaults: the only k and m of the file when it holds one, its T and dt.
+Query fileDefaults(const ReducedModelData& d) {
+  Query q;
+  q.mu.assign(d.parameterNames.size(), NAN);
+  std::set<int> ks, ms;
+  for (const auto& x : d.models) ks.insert(x.k), ms.insert(x.m);
+  if (ks.size() == 1) q.k = *ks.begin();
+  if (ms.size() == 1) q.m = *ms.begin();
+  q.T = d.T, q.dt = d.dt;
+  return q;
+}
+
+// Everything that can fail later, checked now on every rank.
+void check(const Query& q, const ReducedModel& model, const std::string& where) {
+  const auto& d = model.data();
+  for (size_t p = 0; p < q.mu.size(); ++p) {
+    GPHR_REQUIRE(std::isfinite(q.mu[p]), InputError, where, ": parameter '", d.parameterNames[p],
+                 "' is not given (in the query or in defaults)");
+    const bool inside = q.mu[p] >= d.box[p].first && q.mu[p] <= d.box[p].second;
+    GPHR_REQUIRE(inside || q.extrapolate, InputError, where, ": ", d.parameterNames[p], " = ", q.mu[p],
+                 " is outside the training box [", d.box[p].first, ", ", d.box[p].second,
+                 "]; allowed: inside it, or extrapolate: true");
+  }
+  GPHR_REQUIRE(q.k > 0 && q.m > 0, InputError, where, ": k and m must be given (the file holds ", d.modelList(), ")");
+  try {
+    d.model(q.method, q.k, q.m);
+  } catch (const InputError& e) {
+    throw InputError(detail::concat(where, ": ", e.what()));
+  }
+  GPHR_REQUIRE(q.setup != SetupRoute::Exact || d.basis(q.k).hasBasis, InputError, where,
+               ": setup 'exact' needs the basis in the model file (build with build.withBasis: true)");
+  GPHR_REQUIRE(std::isfinite(q.dt) && q.dt > 0 && std::isfinite(q.T) && q.T >= q.dt, InputError, where, ": T = ", q.T,
+               ", dt = ", q.dt, "; allowed: dt > 0 and T >= dt");
+  const double ratio = q.T / q.dt;
+  GPHR_REQUIRE(std::abs(ratio - std::round(ratio)) <= 1e-9 * ratio, InputError, where, ": T = ", q.T,
+               " is not a whole number of steps dt = ", q.dt);
+}
+
+std::vector<double> gridValues(const Teuchos::ParameterList& grid, const std::string& key) {
+  std::vector<double> spec;
+  if (grid.isType<Teuchos::Array<double>>(key))
+    for (double x : grid.get<Teuchos::Array<double>>(key)) spec.push_back(x);
+  else if (grid.isType<Teuchos::Array<int>>(key))
+    for (int x : grid.get<Teuchos::Array<int>>(key)) spec.push_back(x);
+  GPHR_REQUIRE(spec.size() == 3 && spec[2] >= 1 && spec[2] == std::floor(spec[2]) && spec[2] <= 100000, InputError,
+               "queries.grid: key '", key, "' must be [from, to, count] with a whole count from 1 to 100000");
+  const long n = static_cast<long>(spec[2]);
+  std::vector<double> v;
+  for (long i = 0; i < n; ++i) v.push_back(n == 1 ? spec[0] : spec[0] + (spec[1] - spec[0]) * i / (n - 1));
+  return v;
+}
+
+void addGrid(const Teuchos::ParameterList& grid, const ReducedModelData& d, const Query& base, std::vector<Query>& out) {
+  std::vector<std::vector<double>> axes(d.parameterNames.size());
+  for (auto it = grid.begin(); it != grid.end(); ++it) {
+    const auto p = std::find(d.parameterNames.begin(), d.parameterNames.end(), grid.name(it));
+    GPHR_REQUIRE(p != d.parameterNames.end(), InputError, "queries.grid: unknown parameter '", grid.name(it),
+                 "'; allowed: the scene's parameters");
+    axes[p - d.parameterNames.begin()] = gridValues(grid, grid.name(it));
+  }
+  size_t total = 1;
+  for (size_t p = 0; p < axes.size(); ++p) {
+    if (axes[p].empty()) axes[p] = {base.mu[p]};  // not gridded: the default (checked later)
+    total *= axes[p].size();
+  }
+  for (size_t j = 0; j < total; ++j) {
+    Query q = base;
+    for (size_t p = axes.size(), r = j; p-- > 0; r /= axes[p].size()) q.mu[p] = axes[p][r % axes[p].size()];
+    char name[32];
+    std::snprintf(name, sizeof name, "grid-%04zu", j);
+    q.name = name;
+    out.push_back(q);
+  }
+}
+
+}  // namespace
+
+std::string Query::key() const {
+  std::string s = detail::concat("name=", name, ";method=", method, ";k=", k, ";m=", m, ";saveEvery=", saveEvery,
+                                 ";probes=", probes, ";setup=", setup == SetupRoute::Exact ? "exact" : "interpolated",
+                                 ";extrapolate=", extrapolate);
+  char buf[64];
+  for (double x : mu) std::snprintf(buf, sizeof buf, ";mu=%.17g", x), s += buf;
+  std::snprintf(buf, sizeof buf, ";T=%.17g;dt=%.17g", T, dt);
+  return s + buf;
+}
+
+std::vector<Query> readQueries(const std::string& path, const ReducedModel& model) {
+  GPHR_REQUIRE(std::ifstream(path).good(), InputError, "cannot read queries file '", path, "'");
+  Teuchos::RCP<Teuchos::ParameterList> pl;
+  try {
+    pl = Teuchos::getParametersFromYamlFile(path);
+  } catch (const std::exception& e) {
+    throw InputError(detail::concat("queries file '", path, "' is malformed YAML (a {key: value} mapping must fit on "
+                                    "one line)"));
+  }
+  const auto& d = model.data();
+  std::vector<Query> out;
+  try {
+    GPHR_REQUIRE(pl->name() == "queries", InputError, "the top level must be the single key 'queries' (found '",
+                 pl->name(), "')");
+    for (auto it = pl->begin(); it != pl->end(); ++it)
+      GPHR_REQUIRE(pl->name(it) == "defaults" || pl->name(it) == "points" || pl->name(it) == "grid", InputError,
+                   "unknown section 'queries.", pl->name(it), "'; allowed: defaults, points, grid");
+    Query base = fileDefaults(d);
+    if (pl->isSublist("defaults")) apply(pl->sublist("defaults"), d, "queries.defaults", base);
+    if (pl->isSublist("points")) {
+      const auto& points = pl->sublist("points");
+      for (auto it = points.begin(); it != points.end(); ++it) {
+        const std::string name = points.name(it), where = "query '" + name + "'";
+        GPHR_REQUIRE(points.isSublist(name), InputError, where, ": must be a mapping of parameters and keys");
+        GPHR_REQUIRE(name.find_first_of("/\\ ") == std::string::npos && name.rfind("grid-", 0) != 0, InputError, where,
+                     ": a name may not contain '/', '\\' or spaces, nor start with 'grid-'");
+        Query q = base;
+        q.name = name;
+        apply(points.sublist(name), d, where, q);
+        out.push_back(q);
+      }
+    }
+    if (pl->isSublist("grid")) addGrid(pl->sublist("grid"), d, base, out);
+    GPHR_REQUIRE(!out.empty(), InputError, "no query: give queries.points or queries.grid");
+    for (const auto& q : out) check(q, model, "query '" + q.name + "'");
+  } catch (const InputError& e) {
+    throw InputError(detail::concat("queries file '", path, "': ", e.what()));
+  }
+  return out;
+}
+
+}  // namespace gphr

@@ -1,0 +1,146 @@
+#include "gphr/driver/ReducedModel.hpp"
+
+#include <Teuchos_DefaultSerialComm.hpp>
+#include <Teuchos_Time.hpp>
+#include <Teuchos_YamlParameterListCoreHelpers.hpp>
+
+#include <cmath>
+#include <unordered_map>
+
+#include "gphr/core/Error.hpp"
+#include "gphr/core/ReplicatedGather.hpp"
+#include "gphr/models/SceneFactory.hpp"
+
+namespace gphr {
+
+namespace {
+
+std::shared_ptr<const Scene> sceneOf(const ReducedModelData& d, const std::string& path) {
+  GPHR_REQUIRE(!d.sceneConfig.empty(), InputError, "reduced-model file '", path, "' is of scene '", d.sceneName,
+               "', which is not built in: pass that scene to ReducedModel");
+  auto pl = Teuchos::getParametersFromYamlString(d.sceneConfig);
+  try {
+    return makeScene(*pl);
+  } catch (const InputError& e) {
+    throw InputError(detail::concat("reduced-model file '", path, "': its scene: ", e.what()));
+  }
+}
+
+// y0(mu) at the given entries, picked from the basis' reference entries.
+std::vector<double> pick(const StoredBasisData& b, const std::vector<double>& reference, const std::vector<GO>& gids) {
+  std::unordered_map<GO, size_t> at;
+  for (size_t i = 0; i < b.referenceGids.size(); ++i) at.emplace(b.referenceGids[i], i);
+  std::vector<double> out;
+  out.reserve(gids.size());
+  for (GO g : gids) {
+    const auto it = at.find(g);
+    GPHR_REQUIRE(it != at.end(), InputError, "reduced-model file: state entry ", g, " has no reference value");
+    out.push_back(reference[it->second]);
+  }
+  return out;
+}
+
+std::string boxText(const ReducedModelData& d) {
+  std::string s;
+  for (size_t p = 0; p < d.box.size(); ++p)
+    s += detail::concat(p ? ", " : "", d.parameterNames[p], " in [", d.box[p].first, ", ", d.box[p].second, "]");
+  return s;
+}
+
+}  // namespace
+
+ReducedModel::ReducedModel(const std::string& path, std::shared_ptr<const Scene> scene)
+    : path_(path), data_(readReducedModelFile(path)), scene_(scene ? scene : sceneOf(data_, path)) {
+  GPHR_REQUIRE(scene_->name() == data_.sceneName, InputError, "reduced-model file '", path, "' is of scene '",
+               data_.sceneName, "', not of the scene '", scene_->name(), "' given");
+  GPHR_REQUIRE(scene_->parameterBox().names == data_.parameterNames, InputError, "reduced-model file '", path,
+               "': its parameters differ from scene '", scene_->name(), "''s");
+}
+
+OnlineParameterData ReducedModel::exactParameterData(const StoredBasisData& b, const std::vector<double>& mu) const {
+  GPHR_REQUIRE(b.hasBasis, InputError, "setup 'exact' needs the basis in the reduced-model file (k = ", b.k,
+               "); build it with build.withBasis: true, or use setup 'interpolated'");
+  const auto inst = scene_->instantiate(rcp(new Teuchos::SerialComm<int>()), mu, true);
+  const auto A = readReducedModelBasis(path_, b.k, inst.system->space());
+  OnlineParameterData out;
+  out.linear = reduceLinearPart(*inst.system, *A);
+  out.reference = gatherRows(*inst.system->reference(), b.referenceGids);
+  return out;
+}
+
+OnlineModel ReducedModel::instantiate(const std::string& method, int k, int m, const std::vector<double>& mu,
+                                      bool allowExtrapolation, SetupRoute route) const {
+  GPHR_REQUIRE(mu.size() == data_.box.size(), InputError, "a query of scene ", data_.sceneName, " takes ",
+               data_.box.size(), " parameter(s) (", boxText(data_), "), got ", mu.size());
+  OnlineModel out;
+  for (size_t p = 0; p < mu.size(); ++p) {
+    GPHR_REQUIRE(std::isfinite(mu[p]), InputError, "parameter ", data_.parameterNames[p], " = ", mu[p],
+                 " is not a finite number");
+    const bool inside = mu[p] >= data_.box[p].first && mu[p] <= data_.box[p].second;
+    GPHR_REQUIRE(inside || allowExtrapolation, InputError, "parameter ", data_.parameterNames[p], " = ", mu[p],
+                 " is outside the training box (", boxText(data_), "); allowed: inside it, or extrapolate: true");
+    out.extrapolated_ = out.extrapolated_ || !inside;
+  }
+  const StoredHyperModel& stored = data_.model(method, k, m);
+  const StoredBasisData& basis = data_.basis(k);
+  Teuchos::Time clock("setup");
+  clock.start();
+  const OnlineParameterData p = route == SetupRoute::Exact ? exactParameterData(basis, mu) : basis.at(mu);
+  SampleMesh mesh;
+  mesh.sample = stored.sample;
+  mesh.sample.reference = pick(basis, p.reference, stored.sample.stencil.gids);
+  mesh.linear = p.linear;
+  out.model_ = rcp(new GpDeimModel(scene_->rowKernel(mu), mesh));
+  out.integrator_ = *Teuchos::getParametersFromYamlString(data_.integratorConfig);
+  out.degree_ = data_.polynomialDegree;
+  out.mu_ = mu;
+  out.probeGids_ = basis.probeGids;
+  out.probeRows_ = basis.probeRows;
+  out.probeReference_ = pick(basis, p.reference, basis.probeGids);
+  out.setupSeconds_ = clock.stop();
+  return out;
+}
+
+void OnlineModel::probeValues(const DenseVector& z, std::vector<double>& out) const {
+  const size_t r = static_cast<size_t>(z.length());
+  out.assign(probeReference_.begin(), probeReference_.end());
+  for (size_t i = 0; i < out.size(); ++i)
+    for (size_t j = 0; j < r; ++j) out[i] += probeRows_[i * r + j] * z(static_cast<int>(j));
+}
+
+SimulationStats OnlineModel::simulate(double T, double dt, const QueryObserver& observer) {
+  GPHR_REQUIRE(std::isfinite(dt) && dt > 0 && std::isfinite(T) && T >= dt, InputError, "T = ", T, ", dt = ", dt,
+               "; allowed: dt > 0 and T >= dt");
+  const double ratio = T / dt;
+  const long steps = std::lround(ratio);
+  GPHR_REQUIRE(std::abs(ratio - steps) <= 1e-9 * ratio, InputError, "T = ", T, " is not a whole number of steps dt = ",
+               dt, " (T / dt = ", ratio, ")");
+  SimulationStats stats;
+  DenseModelIntegrator integ(*model_, integrator_, degree_);
+  DenseVector z(model_->dim());
+  std::vector<double> probes;
+  Teuchos::Time wall("online"), obs("observe");
+  wall.start();
+  try {
+    stats.run = integ.run(z, dt, steps, [&](long j, double t, const DenseVector& zj, const StepReport&) {
+      obs.start(true);
+      stats.lastStep = j;
+      for (int i = 0; i < zj.length(); ++i)
+        GPHR_REQUIRE(std::isfinite(zj(i)), SolverError, "non-finite reduced state at step ", j);
+      if (observer) {
+        const double H = model_->hamiltonian(zj);
+        if (!probeGids_.empty()) probeValues(zj, probes);
+        observer(QueryStep{j, t, zj, H, probes});
+      }
+      stats.observeSeconds += obs.stop();
+    });
+  } catch (const SolverError& e) {
+    stats.status = "diverged";
+    stats.reason = e.what();
+    if (obs.isRunning()) stats.observeSeconds += obs.stop();
+  }
+  stats.onlineSeconds = wall.stop() - stats.observeSeconds;
+  return stats;
+}
+
+}  // namespace gphr

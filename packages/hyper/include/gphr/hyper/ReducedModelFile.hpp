@@ -1,0 +1,82 @@
+#pragma once
+// The reduced-model file (doc/model-file.md): what `gphr build` writes and `gphr query`, the
+// ReducedModel class and an embedding code read. It holds the ONLINE data only: per reduced size
+// k the parameter interpolant of L_r, f_r, c and the shift's reference rows, probe rows of the
+// basis, optionally the basis itself; per hyper-reduced model (method, k, m) its sample mesh
+// (rows, stencils, basis rows under them, weights). Nothing of size n or d unless the basis is
+// asked for. Replicated data are stored as 1-D / 2-D double datasets (global ids as doubles:
+// exact below 2^53), readable with h5dump or h5py.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "gphr/core/PhaseSpace.hpp"
+#include "gphr/hyper/ParameterInterpolant.hpp"
+#include "gphr/reduction/ReducedHamiltonian.hpp"
+
+namespace gphr {
+
+constexpr int kReducedModelSchema = 1;
+
+// One hyper-reduced model: its sample mesh without the parameter-dependent reference rows.
+struct StoredHyperModel {
+  std::string method;  // gp-deim
+  int k = 0, m = 0;
+  RowSample sample;    // reference left empty: it comes from the basis' interpolant per query
+  double conditionNumber = 0.0;  // cond_2(P^T U) of the DEIM pair
+  std::string key() const { return method + "/k" + std::to_string(k) + "/m" + std::to_string(m); }
+};
+
+// What a query at parameter mu needs of the reduced basis of one k (exactly, or interpolated).
+struct OnlineParameterData {
+  ReducedLinearPart linear;        // L_r, f_r, c = H(y0(mu))
+  std::vector<double> reference;   // y0(mu) at StoredBasisData::referenceGids
+};
+
+struct StoredBasisData {
+  int k = 0;
+  std::vector<GO> referenceGids;   // union of the models' stencil entries and the probes
+  // Per interpolation node: [L_r (2k x 2k, column-major) | f_r (2k) | c | y0 at referenceGids].
+  ParameterInterpolant interpolant;
+  std::map<std::string, double> interpolationError;  // relative error at the check points, per piece
+  std::vector<GO> probeGids;       // state entries whose lifted values a query can report
+  std::vector<double> probeRows;   // the rows of A at probeGids (probes x 2k, row-major)
+  bool hasBasis = false;           // /k<k>/basis holds A (2k rows of 2n)
+  OnlineParameterData at(const std::vector<double>& mu) const;  // the interpolant, unpacked
+  // Packs exact data at one node for the interpolant.
+  std::vector<double> pack(const OnlineParameterData& data) const;
+};
+
+struct ReducedModelData {
+  int schemaVersion = kReducedModelSchema;
+  std::string sceneName;
+  std::string sceneConfig;       // YAML of the scene section (sizes: the file's scene)
+  std::string integratorConfig;  // YAML of the integrator section the models were built for
+  std::string config;            // the whole validated build configuration, with defaults (YAML)
+  std::string gphrVersion, trilinosVersion, created;
+  int buildRanks = 1;
+  double T = 0.0, dt = 0.0;      // the build configuration's time section (query defaults)
+  int polynomialDegree = 0;      // of G (AVF's quadrature)
+  std::vector<std::string> parameterNames;
+  std::vector<std::pair<double, double>> box;
+  std::vector<unsigned> enters;  // ParameterEntry flags per parameter
+  std::vector<StoredBasisData> bases;
+  std::vector<StoredHyperModel> models;
+  const StoredBasisData& basis(int k) const;                      // InputError naming the ks held
+  const StoredHyperModel& model(const std::string& method, int k, int m) const;  // InputError naming the models held
+  std::string modelList() const;  // "gp-deim k=10 m=20, ..." for messages
+};
+
+// Writes the file (collective over comm: rank 0 writes the replicated data; bases[i], where not
+// null, is A of bases[i].k on space's map, written distributed). Write-then-rename: the file
+// appears complete or not at all.
+void writeReducedModelFile(const std::string& path, const RCP<const Comm>& comm, const ReducedModelData& data,
+                           const std::vector<RCP<const MultiVector>>& bases, const PhaseSpace* space = nullptr);
+// Reads everything but the bases, on the calling process alone (no collective). InputError, one
+// line naming the file, for a file that is missing, truncated, of another format or schema.
+ReducedModelData readReducedModelFile(const std::string& path);
+// A of reduced size k on space's map (collective over its communicator). InputError if the file
+// was built without it.
+RCP<MultiVector> readReducedModelBasis(const std::string& path, int k, const PhaseSpace& space);
+
+}  // namespace gphr
