@@ -94,6 +94,7 @@ int runBuild(const std::string& configPath, const std::string& modelPath, const 
     addReducedBasis(data, *ctx.scene, inst, *A, k, *deimBasisFor(ctx, st, *A, k, *inst.system).basis.U, ms, opt);
     bases.push_back(withBasis ? RCP<const MultiVector>(A) : Teuchos::null);
   }
+  data.offlineSeconds = clock.totalElapsedTime(true);
   writeReducedModelFile(modelPath, comm, data, bases, &inst.system->space());
   const double seconds = clock.stop();
   if (root) printBuild(modelPath, data, seconds, comm->getSize());

@@ -12,12 +12,17 @@ namespace gphr {
 
 namespace {
 
-const std::vector<std::string> kKeys = {"method", "k", "m", "T", "dt", "saveEvery", "probes", "setup", "extrapolate"};
+const std::vector<std::string> kQueryKeys = {"method", "k", "m", "T", "dt", "saveEvery", "probes", "setup", "extrapolate"};
+const std::vector<std::string> kPointKeys = {"T", "dt", "saveEvery", "setup"};
 
-std::string allowedKeys(const ReducedModelData& d) {
+const std::vector<std::string>& keysOf(QueryFileKind kind) {
+  return kind == QueryFileKind::Queries ? kQueryKeys : kPointKeys;
+}
+
+std::string allowedKeys(const ReducedModelData& d, QueryFileKind kind) {
   std::string s;
   for (const auto& p : d.parameterNames) s += p + ", ";
-  for (const auto& k : kKeys) s += k + (k == kKeys.back() ? "" : ", ");
+  for (const auto& k : keysOf(kind)) s += k + (k == keysOf(kind).back() ? "" : ", ");
   return s;
 }
 
@@ -40,10 +45,14 @@ bool flagAt(const Teuchos::ParameterList& pl, const std::string& key, const std:
 }
 
 // Applies the keys of one mapping (defaults or a point) to q; parameters go to mu (NaN: unset).
-void apply(const Teuchos::ParameterList& pl, const ReducedModelData& d, const std::string& where, Query& q) {
+void apply(const Teuchos::ParameterList& pl, const ReducedModelData& d, QueryFileKind kind, const std::string& where,
+           Query& q) {
   for (auto it = pl.begin(); it != pl.end(); ++it) {
     const std::string key = pl.name(it);
     const auto p = std::find(d.parameterNames.begin(), d.parameterNames.end(), key);
+    const auto& keys = keysOf(kind);
+    GPHR_REQUIRE(p != d.parameterNames.end() || std::find(keys.begin(), keys.end(), key) != keys.end(), InputError,
+                 where, ": unknown key '", key, "'; allowed: ", allowedKeys(d, kind));
     if (p != d.parameterNames.end()) q.mu[p - d.parameterNames.begin()] = numberAt(pl, key, where);
     else if (key == "method") {
       GPHR_REQUIRE(pl.isType<std::string>(key), InputError, where, ": key 'method' must be a method name");
@@ -61,8 +70,7 @@ void apply(const Teuchos::ParameterList& pl, const ReducedModelData& d, const st
       GPHR_REQUIRE(v == "interpolated" || v == "exact", InputError, where, ": key 'setup' has value '", v,
                    "'; allowed: interpolated, exact");
       q.setup = v == "exact" ? SetupRoute::Exact : SetupRoute::Interpolated;
-    } else
-      throw InputError(detail::concat(where, ": unknown key '", key, "'; allowed: ", allowedKeys(d)));
+    }
   }
 }
 
@@ -79,24 +87,26 @@ Query fileDefaults(const ReducedModelData& d) {
 }
 
 // Everything that can fail later, checked now on every rank.
-void check(const Query& q, const ReducedModel& model, const std::string& where) {
+void check(const Query& q, const ReducedModel& model, QueryFileKind kind, const std::string& where) {
   const auto& d = model.data();
   for (size_t p = 0; p < q.mu.size(); ++p) {
     GPHR_REQUIRE(std::isfinite(q.mu[p]), InputError, where, ": parameter '", d.parameterNames[p],
                  "' is not given (in the query or in defaults)");
     const bool inside = q.mu[p] >= d.box[p].first && q.mu[p] <= d.box[p].second;
-    GPHR_REQUIRE(inside || q.extrapolate, InputError, where, ": ", d.parameterNames[p], " = ", q.mu[p],
+    GPHR_REQUIRE(inside || q.extrapolate || kind == QueryFileKind::Validation, InputError, where, ": ", d.parameterNames[p], " = ", q.mu[p],
                  " is outside the training box [", d.box[p].first, ", ", d.box[p].second,
                  "]; allowed: inside it, or extrapolate: true");
   }
-  GPHR_REQUIRE(q.k > 0 && q.m > 0, InputError, where, ": k and m must be given (the file holds ", d.modelList(), ")");
-  try {
-    d.model(q.method, q.k, q.m);
-  } catch (const InputError& e) {
-    throw InputError(detail::concat(where, ": ", e.what()));
+  if (kind == QueryFileKind::Queries) {
+    GPHR_REQUIRE(q.k > 0 && q.m > 0, InputError, where, ": k and m must be given (the file holds ", d.modelList(), ")");
+    try {
+      d.model(q.method, q.k, q.m);
+    } catch (const InputError& e) {
+      throw InputError(detail::concat(where, ": ", e.what()));
+    }
+    GPHR_REQUIRE(q.setup != SetupRoute::Exact || d.basis(q.k).hasBasis, InputError, where,
+                 ": setup 'exact' needs the basis in the model file (build with build.withBasis: true)");
   }
-  GPHR_REQUIRE(q.setup != SetupRoute::Exact || d.basis(q.k).hasBasis, InputError, where,
-               ": setup 'exact' needs the basis in the model file (build with build.withBasis: true)");
   GPHR_REQUIRE(std::isfinite(q.dt) && q.dt > 0 && std::isfinite(q.T) && q.T >= q.dt, InputError, where, ": T = ", q.T,
                ", dt = ", q.dt, "; allowed: dt > 0 and T >= dt");
   const double ratio = q.T / q.dt;
@@ -153,25 +163,26 @@ std::string Query::key() const {
   return s + buf;
 }
 
-std::vector<Query> readQueries(const std::string& path, const ReducedModel& model) {
-  GPHR_REQUIRE(std::ifstream(path).good(), InputError, "cannot read queries file '", path, "'");
+std::vector<Query> readQueries(const std::string& path, const ReducedModel& model, QueryFileKind kind) {
+  const std::string root = kind == QueryFileKind::Queries ? "queries" : "validate";
+  GPHR_REQUIRE(std::ifstream(path).good(), InputError, "cannot read ", root, " file '", path, "'");
   Teuchos::RCP<Teuchos::ParameterList> pl;
   try {
     pl = Teuchos::getParametersFromYamlFile(path);
   } catch (const std::exception& e) {
-    throw InputError(detail::concat("queries file '", path, "' is malformed YAML (a {key: value} mapping must fit on "
+    throw InputError(detail::concat(root, " file '", path, "' is malformed YAML (a {key: value} mapping must fit on "
                                     "one line)"));
   }
   const auto& d = model.data();
   std::vector<Query> out;
   try {
-    GPHR_REQUIRE(pl->name() == "queries", InputError, "the top level must be the single key 'queries' (found '",
+    GPHR_REQUIRE(pl->name() == root, InputError, "the top level must be the single key '", root, "' (found '",
                  pl->name(), "')");
     for (auto it = pl->begin(); it != pl->end(); ++it)
       GPHR_REQUIRE(pl->name(it) == "defaults" || pl->name(it) == "points" || pl->name(it) == "grid", InputError,
-                   "unknown section 'queries.", pl->name(it), "'; allowed: defaults, points, grid");
+                   "unknown section '", root, ".", pl->name(it), "'; allowed: defaults, points, grid");
     Query base = fileDefaults(d);
-    if (pl->isSublist("defaults")) apply(pl->sublist("defaults"), d, "queries.defaults", base);
+    if (pl->isSublist("defaults")) apply(pl->sublist("defaults"), d, kind, root + ".defaults", base);
     if (pl->isSublist("points")) {
       const auto& points = pl->sublist("points");
       for (auto it = points.begin(); it != points.end(); ++it) {
@@ -181,15 +192,15 @@ std::vector<Query> readQueries(const std::string& path, const ReducedModel& mode
                      ": a name may not contain '/', '\\' or spaces, nor start with 'grid-'");
         Query q = base;
         q.name = name;
-        apply(points.sublist(name), d, where, q);
+        apply(points.sublist(name), d, kind, where, q);
         out.push_back(q);
       }
     }
     if (pl->isSublist("grid")) addGrid(pl->sublist("grid"), d, base, out);
     GPHR_REQUIRE(!out.empty(), InputError, "no query: give queries.points or queries.grid");
-    for (const auto& q : out) check(q, model, "query '" + q.name + "'");
+    for (const auto& q : out) check(q, model, kind, "query '" + q.name + "'");
   } catch (const InputError& e) {
-    throw InputError(detail::concat("queries file '", path, "': ", e.what()));
+    throw InputError(detail::concat(root, " file '", path, "': ", e.what()));
   }
   return out;
 }

@@ -22,12 +22,12 @@
 namespace {
 
 struct Args {
-  enum Command { Run, Build, Query, Help } command = Run;
+  enum Command { Run, Build, Query, Validate, Help } command = Run;
   std::string config, output = "gphr-output", model, queries;
 };
 
 const char* kUsage = "usage: gphr [--output DIR] | run CONFIG [--output DIR] | build CONFIG --model FILE.h5 "
-                     "[--output DIR] | query MODEL.h5 QUERIES.yaml [--output DIR] | --help";
+                     "[--output DIR] | query MODEL.h5 QUERIES.yaml [--output DIR] | validate MODEL.h5 TESTS.yaml [--output DIR] | --help";
 
 // --output DIR and --model FILE after the positional arguments.
 void options(Args& a, const std::vector<std::string>& v, size_t from, bool model) {
@@ -51,11 +51,12 @@ Args parseArgs(int argc, char** argv) {
     a.command = Args::Help;
     return a;
   }
-  GPHR_REQUIRE(v[0] == "run" || v[0] == "build" || v[0] == "query", gphr::InputError, "unknown command '", v[0],
-               "'; allowed: run, build, query, --help (", kUsage, ")");
-  if (v[0] == "query") {
-    GPHR_REQUIRE(v.size() >= 3, gphr::InputError, "'gphr query' needs MODEL.h5 and QUERIES.yaml (", kUsage, ")");
-    a.command = Args::Query, a.model = v[1], a.queries = v[2], a.output = "gphr-queries";
+  GPHR_REQUIRE(v[0] == "run" || v[0] == "build" || v[0] == "query" || v[0] == "validate", gphr::InputError,
+               "unknown command '", v[0], "'; allowed: run, build, query, validate, --help (", kUsage, ")");
+  if (v[0] == "query" || v[0] == "validate") {
+    GPHR_REQUIRE(v.size() >= 3, gphr::InputError, "'gphr ", v[0], "' needs MODEL.h5 and a YAML file (", kUsage, ")");
+    a.command = v[0] == "query" ? Args::Query : Args::Validate, a.model = v[1], a.queries = v[2];
+    a.output = v[0] == "query" ? "gphr-queries" : "gphr-validation";
     options(a, v, 3, false);
     return a;
   }
@@ -126,6 +127,7 @@ int main(int argc, char** argv) {
     }
     if (args.command == Args::Build) return gphr::runBuild(args.config, args.model, args.output, comm);
     if (args.command == Args::Query) return gphr::runQuery(args.model, args.queries, args.output, comm);
+    if (args.command == Args::Validate) return gphr::runValidate(args.model, args.queries, args.output, comm);
     return runMain(args, comm);
   } catch (const gphr::InputError& e) {
     if (root) std::fprintf(stderr, "gphr: error: %s\n", e.what());

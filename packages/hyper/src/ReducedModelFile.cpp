@@ -61,6 +61,7 @@ void writeProvenance(Hdf5File& f, const ReducedModelData& d) {
   f.setAttribute("/", "trilinos_version", d.trilinosVersion);
   f.setAttribute("/", "created", d.created);
   f.setAttribute("/", "build_ranks", std::vector<double>{double(d.buildRanks)});
+  f.setAttribute("/", "offline_seconds", std::vector<double>{d.offlineSeconds});
   f.setAttribute("/", "time", std::vector<double>{d.T, d.dt});
   f.setAttribute("/", "polynomial_degree", std::vector<double>{double(d.polynomialDegree)});
   f.setAttribute("/", "parameter_names", joined(d.parameterNames));
@@ -239,6 +240,7 @@ ReducedModelData readReducedModelFile(const std::string& path) {
     d.trilinosVersion = f.stringAttribute("/", "trilinos_version");
     d.created = f.stringAttribute("/", "created");
     d.buildRanks = static_cast<int>(f.doubleAttribute("/", "build_ranks").at(0));
+    d.offlineSeconds = f.doubleAttribute("/", "offline_seconds").at(0);
     const auto time = f.doubleAttribute("/", "time");
     d.T = time.at(0), d.dt = time.at(1);
     d.polynomialDegree = static_cast<int>(f.doubleAttribute("/", "polynomial_degree").at(0));

@@ -21,6 +21,9 @@ int runBuild(const std::string& configPath, const std::string& modelPath, const 
 int runQuery(const std::string& modelPath, const std::string& queriesPath, const std::string& outputDir,
              const RCP<const Comm>& comm);
 
+int runValidate(const std::string& modelPath, const std::string& testsPath, const std::string& outputDir,
+                const RCP<const Comm>& comm);
+
 // The gphr version (git describe at configure time) for provenance.
 const char* gphrVersion();
 

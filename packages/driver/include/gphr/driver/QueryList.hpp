@@ -25,6 +25,11 @@ struct Query {
   std::string key() const;
 };
 
-std::vector<Query> readQueries(const std::string& path, const ReducedModel& model);
+// Queries (top-level key `queries`) or the test points of `gphr validate` (top-level key
+// `validate`: the same sections; each point runs every model of the file, so method, k, m and
+// probes are not keys there, and points outside the box are allowed and marked).
+enum class QueryFileKind { Queries, Validation };
+std::vector<Query> readQueries(const std::string& path, const ReducedModel& model,
+                               QueryFileKind kind = QueryFileKind::Queries);
 
 }  // namespace gphr

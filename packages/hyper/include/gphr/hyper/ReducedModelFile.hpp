@@ -55,6 +55,7 @@ struct ReducedModelData {
   std::string config;            // the whole validated build configuration, with defaults (YAML)
   std::string gphrVersion, trilinosVersion, created;
   int buildRanks = 1;
+  double offlineSeconds = 0.0;   // the build's wall time (training, bases, DEIM pairs, interpolants)
   double T = 0.0, dt = 0.0;      // the build configuration's time section (query defaults)
   int polynomialDegree = 0;      // of G (AVF's quadrature)
   std::vector<std::string> parameterNames;

@@ -1,0 +1,47 @@
+#pragma once
+// The outputs of `gphr validate` (doc/model-file.md): DIR/validation.csv (a line per point and
+// model), DIR/validation.md and DIR/validation_summary.json (per model the max, mean and 95th
+// percentile of E_L2 over the points, the worst point, the online cost, the break-even number of
+// queries; the cheapest model whose largest error is below each level) and a plot of E_L2 over
+// the parameter (one parameter) or one map per model (two).
+#include <string>
+#include <vector>
+
+#include "gphr/core/Types.hpp"
+#include "gphr/driver/QueryList.hpp"
+
+namespace gphr {
+
+struct ValidationRecord {
+  std::string point, method, status;
+  std::vector<double> mu;
+  int k = 0, m = 0;
+  double eL2 = NAN, onlineSeconds = NAN, setupSeconds = NAN;
+  bool extrapolated = false;
+  std::string label() const;  // "gp-deim k=10 m=20", "rom k=10"
+};
+
+// Statistics of a sample (NaN for an empty one). percentile: linear interpolation between the
+// order statistics at position p (N - 1), numpy's default.
+double percentile(std::vector<double> x, double p);
+
+struct ModelStatistics {
+  std::string label;
+  int k = 0, m = 0;
+  long points = 0, ok = 0;
+  double maxError = NAN, meanError = NAN, p95Error = NAN, meanOnline = NAN;
+  std::string worstPoint;
+};
+// Per model (in the records' first-seen order): a point that is not ok makes the maximum infinite.
+std::vector<ModelStatistics> modelStatistics(const std::vector<ValidationRecord>& records);
+
+// One point's records as kept for resumption (rank 0 writes, every rank reads; collective).
+void writePointRecords(const std::string& path, const std::string& key, const std::vector<ValidationRecord>& recs,
+                       double fomSeconds, const RCP<const Comm>& comm);
+bool readPointRecords(const std::string& path, const std::string& key, const RCP<const Comm>& comm,
+                      std::vector<ValidationRecord>& recs, double& fomSeconds);
+
+void writeValidationReport(const std::string& dir, const class ReducedModel& model, const std::vector<Query>& points,
+                           const std::vector<ValidationRecord>& records, const std::vector<double>& fomSeconds);
+
+}  // namespace gphr

@@ -1,0 +1,165 @@
+// `gphr validate MODEL.h5 TESTS.yaml --output DIR`: every model of the file, and the Galerkin ROM
+// of each k, against the full model at each test point: the error over the parameter box, not at
+// one point. The full model runs distributed over all ranks, one point after another, its saved
+// states cached in DIR/fom/<point>.h5; each point's results are kept in DIR/points/<point>.txt
+// (write-then-rename, keyed), so a killed run resumes without redoing finished points. The
+// hyper-reduced models are loaded from the file as a query loads them (interpolated set-up unless
+// the point asks for the exact one) and lifted with the stored basis for the error eq:errNR.
+#include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_DefaultSerialComm.hpp>
+#include <Teuchos_YamlParameterListCoreHelpers.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "gphr/core/Error.hpp"
+#include "gphr/driver/Commands.hpp"
+#include "gphr/driver/Config.hpp"
+#include "gphr/driver/ModelEvaluation.hpp"
+#include "gphr/driver/QueryList.hpp"
+#include "gphr/driver/ValidationReport.hpp"
+#include "gphr/io/Hdf5File.hpp"
+#include "gphr/reduction/GalerkinRom.hpp"
+
+namespace gphr {
+
+namespace {
+
+// The build configuration with the point's time settings: what the full model and the reduced
+// models' evaluation read.
+Teuchos::ParameterList pointConfig(const ReducedModelData& d, const Query& q) {
+  Teuchos::ParameterList cfg("gphr");
+  cfg.sublist("scene") = *Teuchos::getParametersFromYamlString(d.sceneConfig);
+  cfg.sublist("integrator") = *Teuchos::getParametersFromYamlString(d.integratorConfig);
+  cfg.sublist("time").set("T", q.T).set("dt", q.dt);
+  cfg.sublist("output").set("saveEvery", static_cast<int>(q.saveEvery));
+  cfg.sublist("pipeline").set("onlineRepeats", 1);
+  return validateConfig(cfg);
+}
+
+std::string fomKey(const Query& q, const ReducedModelData& d) {
+  char buf[64];
+  std::string s = d.sceneConfig + d.integratorConfig;
+  for (double x : q.mu) std::snprintf(buf, sizeof buf, "mu=%.17g;", x), s += buf;
+  std::snprintf(buf, sizeof buf, "T=%.17g;dt=%.17g;save=%ld", q.T, q.dt, q.saveEvery);
+  return s + buf;
+}
+
+// The full model at the point, from DIR/fom/<point>.h5 when its key matches, else run and cached.
+FomResult fullModel(const RunContext& ctx, const Scene& scene, const ReducedModelData& d, const Query& q,
+                    const PhaseSpace& space, bool& cached) {
+  const std::string path = ctx.outputDir + "/fom/" + q.name + ".h5", key = fomKey(q, d);
+  int usable = 0;
+  if (ctx.comm->getRank() == 0 && std::ifstream(path).good()) {
+    try {
+      Hdf5File f(path, rcp(new Teuchos::SerialComm<int>()), Hdf5File::Mode::ReadOnly);
+      usable = f.hasAttribute("/", "key") && f.stringAttribute("/", "key") == key;
+    } catch (const std::exception&) {
+      usable = 0;  // damaged: run again
+    }
+  }
+  Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(usable));
+  cached = usable != 0;
+  FomResult fom;
+  if (cached) {
+    Hdf5File f(path, ctx.comm, Hdf5File::Mode::ReadOnly);
+    fom.trajectory = f.readStates("/states", space);
+    fom.hamiltonian = f.readArray("/hamiltonian");
+    fom.tOnline = f.doubleAttribute("/", "t_online_s").at(0);
+    return fom;
+  }
+  fom = runFullModel(ctx.config, scene, q.mu, ctx.comm);
+  RenameOnCommit commit(path, ctx.comm);
+  {
+    Hdf5File f(commit.tempPath(), ctx.comm, Hdf5File::Mode::Create);
+    f.writeStates("/states", *fom.trajectory, space);
+    f.writeArray("/hamiltonian", fom.hamiltonian, fom.hamiltonian.size(), 1);
+    f.setAttribute("/", "t_online_s", std::vector<double>{fom.tOnline});
+    f.flush();
+    f.setAttribute("/", "key", key);
+  }
+  commit.commit();
+  return fom;
+}
+
+ValidationRecord recordOf(const ModelRun& run, const Query& q, double setupSeconds, bool extrapolated) {
+  ValidationRecord r;
+  r.point = q.name, r.mu = q.mu, r.method = run.method, r.k = run.k, r.m = run.m;
+  r.status = run.status(), r.eL2 = run.eL2, r.onlineSeconds = run.tOnline, r.setupSeconds = setupSeconds;
+  r.extrapolated = extrapolated;
+  return r;
+}
+
+// Every model at one point: the ROM of each k and each stored hyper-reduced model.
+std::vector<ValidationRecord> evaluatePoint(RunContext& ctx, const ReducedModel& rm, const Query& q, double& tFom,
+                                            bool& cached) {
+  const auto& d = rm.data();
+  ctx.config = pointConfig(d, q);
+  ctx.mu = q.mu;
+  const auto inst = rm.scene().instantiate(ctx.comm, q.mu, true);
+  const FomResult fom = fullModel(ctx, rm.scene(), d, q, inst.system->space(), cached);
+  tFom = fom.tOnline;
+  bool outside = false;
+  for (size_t p = 0; p < q.mu.size(); ++p) outside = outside || q.mu[p] < d.box[p].first || q.mu[p] > d.box[p].second;
+  std::vector<ValidationRecord> out;
+  for (const auto& b : d.bases) {
+    const RCP<const MultiVector> A = readReducedModelBasis(rm.path(), b.k, inst.system->space());
+    GalerkinRom rom(inst.system, A);
+    out.push_back(recordOf(evaluateReducedModel(ctx, fom, *inst.system, *A, rom, true, "rom", b.k, 0), q, 0.0, outside));
+    for (const auto& sm : d.models) {
+      if (sm.k != b.k) continue;
+      OnlineModel online = rm.instantiate(sm.method, sm.k, sm.m, q.mu, true, q.setup);
+      const ModelRun run = evaluateReducedModel(ctx, fom, *inst.system, *A, online.model(), true, sm.method, sm.k, sm.m);
+      out.push_back(recordOf(run, q, online.setupSeconds(), outside));
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+int runValidate(const std::string& modelPath, const std::string& testsPath, const std::string& outputDir,
+                const RCP<const Comm>& comm) {
+  const ReducedModel rm(modelPath);
+  const auto& d = rm.data();
+  for (const auto& b : d.bases)
+    GPHR_REQUIRE(b.hasBasis, InputError, "reduced-model file '", modelPath, "' holds no basis for k = ", b.k,
+                 ": gphr validate lifts the reduced states to compare them with the full model; build the file with "
+                 "build.withBasis: true");
+  const auto points = readQueries(testsPath, rm, QueryFileKind::Validation);
+  RunContext ctx;
+  ctx.comm = comm;
+  ctx.outputDir = outputDir;
+  makeDirectory(outputDir + "/fom", comm);
+  makeDirectory(outputDir + "/points", comm);
+  std::vector<ValidationRecord> all;
+  std::vector<double> fomSeconds;
+  Teuchos::Time wall("validate");
+  wall.start();
+  for (size_t i = 0; i < points.size(); ++i) {
+    const auto& q = points[i];
+    const std::string key = q.key() + ";file=" + d.created;
+    std::vector<ValidationRecord> recs;
+    double tFom = NAN;
+    bool cachedFom = false, reused = readPointRecords(outputDir + "/points/" + q.name + ".txt", key, comm, recs, tFom);
+    if (!reused) {
+      recs = evaluatePoint(ctx, rm, q, tFom, cachedFom);
+      writePointRecords(outputDir + "/points/" + q.name + ".txt", key, recs, tFom, comm);
+    }
+    all.insert(all.end(), recs.begin(), recs.end());
+    fomSeconds.push_back(tFom);
+    if (comm->getRank() == 0) {
+      const double t = wall.totalElapsedTime(true);
+      std::fprintf(stderr, "[gphr] validate: point %zu/%zu (%s)%s, %zu models, elapsed %.1f s, ETA %.1f s\n", i + 1,
+                   points.size(), q.name.c_str(), reused ? " reused" : cachedFom ? " (full model cached)" : "",
+                   recs.size(), t, t / (i + 1) * (points.size() - i - 1));
+    }
+  }
+  if (comm->getRank() == 0) writeValidationReport(outputDir, rm, points, all, fomSeconds);
+  comm->barrier();
+  return 0;
+}
+
+}  // namespace gphr

@@ -1,0 +1,237 @@
+#include "gphr/driver/ValidationReport.hpp"
+
+#include <Teuchos_CommHelpers.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "gphr/core/Error.hpp"
+#include "gphr/driver/Commands.hpp"
+#include "gphr/driver/Json.hpp"
+#include "gphr/driver/ReducedModel.hpp"
+
+namespace gphr {
+
+namespace {
+
+std::string num(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.17g", x);
+  return b;
+}
+
+std::string sci(double x) {
+  if (std::isnan(x)) return "-";
+  if (std::isinf(x)) return "inf";
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3e", x);
+  return b;
+}
+
+std::string muText(const std::vector<double>& mu) {
+  std::string s;
+  for (double x : mu) s += (s.empty() ? "" : ",") + num(x);
+  return s;
+}
+
+// Write-then-rename of a text file (rank 0 only).
+void writeText(const std::string& path, const std::string& text) {
+  const std::string temp = path + ".tmp";
+  std::ofstream(temp) << text;
+  std::rename(temp.c_str(), path.c_str());
+}
+
+// One data block per model (points sorted by the parameter), then gnuplot over the blocks.
+void plotErrors(const std::string& dir, const ReducedModelData& d, const std::vector<ModelStatistics>& stats,
+                const std::vector<ValidationRecord>& records) {
+  if (d.parameterNames.size() != 1 || std::system("command -v gnuplot > /dev/null 2>&1") != 0) return;
+  std::ofstream dat(dir + "/validation_error.dat");
+  for (const auto& s : stats) {
+    std::vector<std::pair<double, double>> pts;
+    for (const auto& r : records)
+      if (r.label() == s.label && r.status == "ok") pts.emplace_back(r.mu[0], r.eL2);
+    std::sort(pts.begin(), pts.end());
+    dat << "# " << s.label << "\n";
+    for (const auto& [x, e] : pts) dat << num(x) << " " << num(e) << "\n";
+    dat << "\n\n";
+  }
+  dat.close();
+  const std::string script = dir + "/validation_error.gp";
+  std::ofstream gp(script);
+  gp << "set terminal pngcairo size 900,560 noenhanced\nset output '" << dir << "/validation_error.png'\n"
+     << "set logscale y\nset format y '%.0e'\nset key outside right\nset grid\n"
+     << "set title 'Relative error E_L2 over the parameter box'\nset xlabel '" << d.parameterNames[0]
+     << " (training box [" << d.box[0].first << ", " << d.box[0].second << "])'\nset ylabel 'E_L2'\n"
+     << "set arrow from " << d.box[0].first << ", graph 0 to " << d.box[0].first << ", graph 1 nohead dt 2\n"
+     << "set arrow from " << d.box[0].second << ", graph 0 to " << d.box[0].second << ", graph 1 nohead dt 2\nplot ";
+  for (size_t i = 0; i < stats.size(); ++i)
+    gp << (i ? ", " : "") << "'" << dir << "/validation_error.dat' index " << i << " using 1:2 with linespoints pt "
+       << (i + 4) << " title '" << stats[i].label << "'";
+  gp << "\n";
+  gp.close();
+  (void)std::system(("gnuplot '" + script + "' > /dev/null 2>&1").c_str());
+}
+
+}  // namespace
+
+std::string ValidationRecord::label() const {
+  return method + " k=" + std::to_string(k) + (m > 0 ? " m=" + std::to_string(m) : "");
+}
+
+double percentile(std::vector<double> x, double p) {
+  if (x.empty()) return NAN;
+  std::sort(x.begin(), x.end());
+  const double pos = p * (x.size() - 1);
+  const size_t i = static_cast<size_t>(std::floor(pos));
+  if (i + 1 >= x.size()) return x.back();
+  return x[i] + (pos - i) * (x[i + 1] - x[i]);
+}
+
+std::vector<ModelStatistics> modelStatistics(const std::vector<ValidationRecord>& records) {
+  std::vector<ModelStatistics> out;
+  std::map<std::string, std::vector<const ValidationRecord*>> by;
+  for (const auto& r : records) {
+    if (!by.count(r.label())) {
+      out.emplace_back();
+      out.back().label = r.label(), out.back().k = r.k, out.back().m = r.m;
+    }
+    by[r.label()].push_back(&r);
+  }
+  for (auto& s : out) {
+    std::vector<double> e, t;
+    double worst = -1.0;
+    for (const auto* r : by[s.label]) {
+      ++s.points;
+      const bool ok = r->status == "ok" && std::isfinite(r->eL2);
+      s.ok += ok;
+      const double err = ok ? r->eL2 : std::numeric_limits<double>::infinity();
+      e.push_back(err);
+      if (ok) t.push_back(r->onlineSeconds);
+      if (err > worst) worst = err, s.worstPoint = r->point;
+    }
+    s.maxError = *std::max_element(e.begin(), e.end());
+    double sum = 0.0;
+    for (double x : e) sum += x;
+    s.meanError = sum / e.size();
+    s.p95Error = percentile(e, 0.95);
+    double ts = 0.0;
+    for (double x : t) ts += x;
+    s.meanOnline = t.empty() ? NAN : ts / t.size();
+  }
+  return out;
+}
+
+void writePointRecords(const std::string& path, const std::string& key, const std::vector<ValidationRecord>& recs,
+                       double fomSeconds, const RCP<const Comm>& comm) {
+  if (comm->getRank() == 0) {
+    std::ostringstream os;
+    os << "key\t" << key << "\nfom_s\t" << num(fomSeconds) << "\n";
+    for (const auto& r : recs)
+      os << r.point << "\t" << r.method << "\t" << r.k << "\t" << r.m << "\t" << r.status << "\t" << num(r.eL2) << "\t"
+         << num(r.onlineSeconds) << "\t" << num(r.setupSeconds) << "\t" << r.extrapolated << "\t" << muText(r.mu) << "\n";
+    writeText(path, os.str());
+  }
+  comm->barrier();
+}
+
+bool readPointRecords(const std::string& path, const std::string& key, const RCP<const Comm>& comm,
+                      std::vector<ValidationRecord>& recs, double& fomSeconds) {
+  int usable = 0;
+  if (comm->getRank() == 0) {
+    std::ifstream in(path);
+    std::string line;
+    if (std::getline(in, line) && line == "key\t" + key && std::getline(in, line) && line.rfind("fom_s\t", 0) == 0) {
+      fomSeconds = std::stod(line.substr(6));
+      usable = 1;
+      while (std::getline(in, line)) {
+        std::istringstream ls(line);
+        ValidationRecord r;
+        std::string eL2, online, setup, mu;
+        int extrap = 0;
+        std::getline(ls, r.point, '\t'), std::getline(ls, r.method, '\t');
+        ls >> r.k >> r.m >> r.status >> eL2 >> online >> setup >> extrap >> mu;
+        if (!ls && !ls.eof()) usable = 0;
+        r.eL2 = std::stod(eL2), r.onlineSeconds = std::stod(online), r.setupSeconds = std::stod(setup);
+        r.extrapolated = extrap != 0;
+        std::istringstream ms(mu);
+        for (std::string x; std::getline(ms, x, ',');) r.mu.push_back(std::stod(x));
+        recs.push_back(r);
+      }
+    }
+  }
+  Teuchos::broadcast(*comm, 0, Teuchos::outArg(usable));
+  if (!usable) recs.clear();
+  return usable != 0;
+}
+
+void writeValidationReport(const std::string& dir, const ReducedModel& model, const std::vector<Query>& points,
+                           const std::vector<ValidationRecord>& records, const std::vector<double>& fomSeconds) {
+  const auto& d = model.data();
+  std::ostringstream csv;
+  csv << "point";
+  for (const auto& p : d.parameterNames) csv << "," << p;
+  csv << ",model,method,k,m,E_L2,status,extrapolated,online_s,setup_s\n";
+  for (const auto& r : records) {
+    csv << r.point;
+    for (double x : r.mu) csv << "," << num(x);
+    csv << "," << r.label() << "," << r.method << "," << r.k << "," << r.m << "," << num(r.eL2) << "," << r.status
+        << "," << (r.extrapolated ? "yes" : "no") << "," << num(r.onlineSeconds) << "," << num(r.setupSeconds) << "\n";
+  }
+  writeText(dir + "/validation.csv", csv.str());
+  const auto stats = modelStatistics(records);
+  double fomMean = 0.0;
+  for (double t : fomSeconds) fomMean += t / fomSeconds.size();
+  std::ostringstream md;
+  md << "# Validation of " << model.path() << " over " << points.size() << " test points\n\n"
+     << "Scene " << d.sceneName << "; built by gphr " << d.gphrVersion << " on " << d.created << " ("
+     << num(d.offlineSeconds) << " s offline on " << d.buildRanks << " rank(s)). Full model: " << sci(fomMean)
+     << " s per query on average. E_L2 is eq:errNR over the saved steps; a point whose run did not finish counts as "
+        "an infinite error. The 95th percentile interpolates linearly between order statistics. Break-even: the "
+        "number of queries after which the offline cost is repaid, offline / (full - model) per query.\n\n"
+     << "| model | points ok | max E_L2 | mean E_L2 | p95 E_L2 | worst point | online s | speed-up | break-even queries |\n"
+     << "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  std::vector<JsonObject> js;
+  for (const auto& s : stats) {
+    const double speedup = fomMean / s.meanOnline, breakEven = d.offlineSeconds / (fomMean - s.meanOnline);
+    md << "| " << s.label << " | " << s.ok << "/" << s.points << " | " << sci(s.maxError) << " | " << sci(s.meanError)
+       << " | " << sci(s.p95Error) << " | " << s.worstPoint << " | " << sci(s.meanOnline) << " | " << sci(speedup)
+       << " | " << (breakEven > 0 ? sci(std::ceil(breakEven)) : std::string("never")) << " |\n";
+    JsonObject j;
+    j.set("model", s.label).set("k", s.k).set("m", s.m).set("points", s.points).set("ok", s.ok)
+        .set("E_L2_max", s.maxError).set("E_L2_mean", s.meanError).set("E_L2_p95", s.p95Error)
+        .set("worst_point", s.worstPoint).set("online_s_mean", s.meanOnline).set("speedup", speedup)
+        .set("break_even_queries", breakEven > 0 ? std::ceil(breakEven) : NAN);
+    js.push_back(j);
+  }
+  std::string outside;
+  for (const auto& q : points)
+    for (size_t p = 0; p < q.mu.size(); ++p)
+      if (q.mu[p] < d.box[p].first || q.mu[p] > d.box[p].second) {
+        outside += (outside.empty() ? "" : ", ") + q.name;
+        break;
+      }
+  if (!outside.empty()) md << "\nPoints outside the training box (extrapolated, included above): " << outside << "\n";
+  md << "\n## The cheapest model whose largest error over the box is below each level\n\n| level | model | max E_L2 | "
+        "online s |\n| --- | --- | --- | --- |\n";
+  for (double level = 1e-1; level >= 1e-8; level /= 10) {
+    const ModelStatistics* best = nullptr;
+    for (const auto& s : stats)
+      if (s.maxError < level && (!best || s.meanOnline < best->meanOnline)) best = &s;
+    md << "| " << sci(level) << " | " << (best ? best->label : "none") << " | " << (best ? sci(best->maxError) : "-")
+       << " | " << (best ? sci(best->meanOnline) : "-") << " |\n";
+  }
+  writeText(dir + "/validation.md", md.str());
+  JsonObject summary;
+  summary.set("model_file", model.path()).set("points", static_cast<long>(points.size())).set("fom_online_s_mean", fomMean)
+      .set("offline_s", d.offlineSeconds).set("gphr_version", gphrVersion()).set("models", js);
+  writeText(dir + "/validation_summary.json", summary.str(2) + "\n");
+  plotErrors(dir, d, stats, records);
+  std::printf("%s", md.str().c_str());
+}
+
+}  // namespace gphr
