@@ -1,0 +1,171 @@
+#!/usr/bin/env bash
+# The build / query / validate workflow end to end:
+#  1. gphr build on 2 ranks writes a model file without n-sized data when the basis is not asked for;
+#  2. gphr query gives bit-identical per-query results on 1, 2 and 3 ranks (each query runs on one
+#     rank alone; OpenBLAS single-threaded so that BLAS sums in one order);
+#  3. gphr validate's max / mean / 95th percentile agree with a hand computation from validation.csv;
+#  4. bad queries and bad model files: exit 2, one line naming the problem, nothing written;
+#  5. a query run killed with SIGKILL resumes: finished queries are kept byte for byte and the
+#     results equal an uninterrupted run's.
+# usage: model_file.sh GPHR MPIEXEC
+set -u
+gphr=$1; mpi=$2
+export OPENBLAS_NUM_THREADS=1 OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+work=$(mktemp -d); pid=0
+trap '[ $pid -gt 0 ] && kill -9 $pid 2>/dev/null; rm -rf "$work"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+run() { "$mpi" -np "$1" "${@:2}"; }
+cd "$work"
+cat > build.yaml <<'YAML'
+gphr:
+  scene: {name: nls1d, n: 128}
+  time: {T: 1.0, dt: 0.01}
+  training: {points: [3]}
+  pipeline: {methods: [gp-deim], k: [6], m: [10, 20]}
+  hyper: {snapshotEvery: 5}
+  build: {probes: [0, 5, 130]}
+  output: {progressSeconds: 0.0}
+YAML
+sed 's/probes: \[0, 5, 130\]}/probes: [0, 5, 130], withBasis: true}/' build.yaml > build_basis.yaml
+
+# 1. Build on 2 ranks, without and with the basis.
+run 2 "$gphr" build build.yaml --model m/nls.h5 --output art > build.out 2> build.err || { cat build.err; fail "build"; }
+run 2 "$gphr" build build_basis.yaml --model m/nls_basis.h5 --output art > /dev/null 2> build.err || { cat build.err; fail "build with basis"; }
+grep -q "gp-deim k=6 m=10, gp-deim k=6 m=20" build.out || fail "build did not list its models: $(cat build.out)"
+h5ls -r m/nls.h5 | grep -q "/k6/basis" && fail "the basis was stored without build.withBasis"
+h5ls -r m/nls_basis.h5 | grep -q "/k6/basis" || fail "build.withBasis did not store the basis"
+# Without the basis the largest dataset is the interpolant (7 nodes x (4k^2 + 2k + 1 + |mesh|)):
+# nothing has 2n = 256 or d = 128 entries per row.
+sizes=$(h5ls -r m/nls.h5 | grep -E "\{[0-9]+(, [0-9]+)?\}" | awk -F'[{},]' '{print $2+0 "x" $3+0}')
+[ -n "$sizes" ] || fail "h5ls listed no dataset"
+for s in $sizes; do
+  case "${s#*x}" in 256|128) fail "a dataset with rows of size n or d: $s" ;; esac
+  case "${s%x*}" in 256|128) fail "a dataset of size n or d: $s" ;; esac
+done
+
+# 2. Queries on 1, 2 and 3 ranks.
+cat > q.yaml <<'YAML'
+queries:
+  defaults: {T: 1.0, dt: 0.01, k: 6, m: 10, saveEvery: 20}
+  points:
+    test: {eps: 1.0932}
+    big: {eps: 1.02, m: 20, T: 0.5}
+  grid:
+    eps: [0.9, 1.1, 5]
+YAML
+for np in 1 2 3; do
+  run $np "$gphr" query m/nls.h5 q.yaml --output q$np > q$np.out 2> q$np.err || { cat q$np.err; fail "query on $np ranks"; }
+  grep -q "7 queries (7 run, 0 reused, 7 ok) on $np rank" q$np.out || fail "query on $np ranks: $(cat q$np.out)"
+done
+[ $(wc -l < q1/queries.csv) -eq 8 ] || fail "queries.csv should have a header and 7 lines"
+for f in q1/queries/*.h5; do
+  b=$(basename "$f")
+  for np in 2 3; do
+    for d in /z /hamiltonian /probes /saved_times; do
+      h5diff "$f" "q$np/queries/$b" $d $d > diff.txt 2>&1 || { cat diff.txt; fail "$b $d differs between 1 and $np ranks"; }
+    done
+  done
+done
+grep -q '"queries_per_s"' q2/query_summary.json || fail "no throughput in query_summary.json"
+
+# 3. Validate: statistics by hand from the CSV.
+cat > v.yaml <<'YAML'
+validate:
+  defaults: {T: 1.0, dt: 0.01, saveEvery: 10}
+  grid:
+    eps: [0.9, 1.1, 4]
+  points:
+    beyond: {eps: 1.12}
+YAML
+"$gphr" validate m/nls.h5 v.yaml --output v > v.out 2> v.err && fail "validate accepted a file without the basis"
+grep -q "build.withBasis: true" v.err || fail "validate's refusal does not say how to fix it: $(cat v.err)"
+run 2 "$gphr" validate m/nls_basis.h5 v.yaml --output v > v.out 2> v.err || { cat v.err; fail "validate"; }
+python3 - "$work/v" <<'PY' || fail "validation statistics"
+import csv, json, math, sys
+d = sys.argv[1]
+rows = list(csv.DictReader(open(d + "/validation.csv")))
+summary = json.load(open(d + "/validation_summary.json"))
+assert summary["points"] == 5, summary["points"]
+assert any(r["extrapolated"] == "yes" and r["point"] == "beyond" for r in rows)
+for m in summary["models"]:
+    e = sorted(float(r["E_L2"]) for r in rows if r["model"] == m["model"])
+    assert len(e) == 5, (m["model"], len(e))
+    pos = 0.95 * (len(e) - 1); i = int(pos)
+    p95 = e[i] + (pos - i) * (e[i + 1] - e[i])
+    for key, want in (("E_L2_max", max(e)), ("E_L2_mean", sum(e) / len(e)), ("E_L2_p95", p95)):
+        assert abs(m[key] - want) <= 1e-12 * want, (m["model"], key, m[key], want)
+    worst = max((float(r["E_L2"]), r["point"]) for r in rows if r["model"] == m["model"])[1]
+    assert m["worst_point"] == worst, (m["worst_point"], worst)
+print("validation statistics agree with the hand computation for", len(summary["models"]), "models")
+PY
+grep -q "beyond" v/validation.md || fail "validation.md does not mark the extrapolated point"
+
+# 4. Bad input: exit 2, one line on stderr with the expected words, no output written.
+bad() {  # name, expected words, query YAML body (or a model file via MODEL=...)
+  local name=$1 expect=$2 model=${MODEL:-m/nls.h5}
+  printf '%s\n' "$3" > bad_$name.yaml
+  "$gphr" query "$model" bad_$name.yaml --output bad_$name > bad.out 2> bad.err
+  local rc=$?
+  [ $rc -eq 2 ] || fail "$name: exit code $rc, expected 2 ($(cat bad.err))"
+  [ $(wc -l < bad.err) -eq 1 ] || fail "$name: stderr is not one line: $(cat bad.err)"
+  grep -qF "$expect" bad.err || fail "$name: stderr lacks '$expect': $(cat bad.err)"
+  [ -e bad_$name/results.h5 ] || [ -e bad_$name/queries.csv ] && fail "$name: output written"
+  return 0
+}
+q='queries:
+  defaults: {T: 1.0, dt: 0.01, k: 6, m: 10}
+  points:'
+bad unknown_key "unknown key 'mm'; allowed: eps, method, k, m" "$q
+    a: {eps: 1.0, mm: 20}"
+bad outside_box "eps = 1.3 is outside the training box [0.9, 1.1]; allowed: inside it, or extrapolate: true" "$q
+    a: {eps: 1.3}"
+bad no_model "it holds gp-deim k=6 m=10, gp-deim k=6 m=20" "$q
+    a: {eps: 1.0, m: 30}"
+bad mistyped "key 'k' must be a whole number" "$q
+    a: {eps: 1.0, k: six}"
+bad bad_section "unknown section 'queries.point'" 'queries:
+  point:
+    a: {eps: 1.0}'
+bad not_steps "is not a whole number of steps" "$q
+    a: {eps: 1.0, T: 0.015}"
+head -c 20000 m/nls.h5 > m/cut.h5
+MODEL=m/cut.h5 bad truncated "reduced-model file 'm/cut.h5'" "$q
+    a: {eps: 1.0}"
+printf 'not a model' > m/junk.h5
+MODEL=m/junk.h5 bad junk "not an HDF5 file" "$q
+    a: {eps: 1.0}"
+MODEL=build.yaml bad not_model "reduced-model file 'build.yaml'" "$q
+    a: {eps: 1.0}"
+# An extrapolating query is allowed when asked for, and marked.
+printf '%s\n' "$q
+    a: {eps: 1.15, extrapolate: true}" > extra.yaml
+"$gphr" query m/nls.h5 extra.yaml --output extra > /dev/null 2>&1 || fail "extrapolate: true was refused"
+grep -q "^a,1.15,.*,ok,yes," extra/queries.csv || fail "the extrapolated query is not marked: $(cat extra/queries.csv)"
+
+# 5. kill -9 during a query run, then resume.
+cat > long.yaml <<'YAML'
+queries:
+  defaults: {T: 40.0, dt: 0.01, k: 6, m: 20, saveEvery: 100}
+  grid:
+    eps: [0.9, 1.1, 24]
+YAML
+"$gphr" query m/nls.h5 long.yaml --output clean > /dev/null 2> clean.err || { cat clean.err; fail "clean long run"; }
+"$gphr" query m/nls.h5 long.yaml --output killed > /dev/null 2> killed.err &
+pid=$!
+for _ in $(seq 1 600); do
+  [ $(ls killed/queries/*.h5 2>/dev/null | wc -l) -ge 3 ] && break
+  sleep 0.02
+done
+kill -9 $pid; wait $pid 2>/dev/null; pid=0
+kept=$(ls killed/queries/*.h5 2>/dev/null | wc -l)
+[ "$kept" -ge 3 ] || fail "no query had finished before the kill"
+[ "$kept" -lt 24 ] || fail "killed too late: every query had finished"
+[ -e killed/results.h5 ] && fail "a killed run left results.h5"
+md5sum killed/queries/*.h5 > before.md5
+"$gphr" query m/nls.h5 long.yaml --output killed > resumed.out 2> resumed.err || { cat resumed.err; fail "resume"; }
+grep -q "($((24 - kept)) run, $kept reused" resumed.out || fail "resume did not reuse the $kept finished queries: $(cat resumed.out)"
+md5sum -c --quiet before.md5 || fail "a finished query's file changed on resume"
+for f in clean/queries/*.h5; do
+  h5diff "$f" "killed/queries/$(basename "$f")" /z /z > /dev/null || fail "$(basename "$f") differs from the clean run"
+done
+echo "ok: build, query on 1/2/3 ranks bit-identical, validate statistics, 9 bad inputs, kill -9 resume ($kept kept)"
