@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
-# Installs GPHR from the build tree into a temporary prefix, builds examples/embedding against
-# the *installed* package (find_package(GPHR) + GPHR::gphr only, from a project that enables
-# LANGUAGES CXX only, as a C++-only consumer would), and runs it on 1 and 2 ranks.
+# Installs GPHR from the build tree into a temporary prefix, builds examples/embedding and
+# examples/query against the *installed* package (find_package(GPHR) + GPHR::gphr only, from
+# projects that enable LANGUAGES CXX only, as a C++-only consumer would), runs the embedding on 1
+# and 2 ranks, and runs the query program on a model file written by the installed `gphr build`.
 # usage: check_install.sh BUILD_DIR SOURCE_DIR MPIEXEC
 set -euo pipefail
 build=$1; src=$2; mpiexec=$3
 # The consumer must stay C++-only, or this test stops catching a config that needs language C.
 grep -q "^project(gphr_embedding LANGUAGES CXX)$" "$src/examples/embedding/CMakeLists.txt" \
   || { echo "FAIL: examples/embedding must declare LANGUAGES CXX only"; exit 1; }
+grep -q "^project(gphr_query LANGUAGES CXX)$" "$src/examples/query/CMakeLists.txt" \
+  || { echo "FAIL: examples/query must declare LANGUAGES CXX only"; exit 1; }
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cmake --install "$build" --prefix "$work/prefix" > /dev/null
 test -f "$work/prefix/lib/cmake/GPHR/GPHRConfig.cmake"
@@ -17,3 +20,19 @@ cmake -S "$src/examples/embedding" -B "$work/embed" -G Ninja -DCMAKE_PREFIX_PATH
 cmake --build "$work/embed" > "$work/build.log" 2>&1 || { cat "$work/build.log"; exit 1; }
 "$work/embed/fpu_lattice"
 "$mpiexec" --allow-run-as-root --oversubscribe -np 2 "$work/embed/fpu_lattice"
+# examples/query on a model built by the installed gphr.
+cmake -S "$src/examples/query" -B "$work/query" -G Ninja -DCMAKE_PREFIX_PATH="$work/prefix" > "$work/cfg.log" \
+  || { cat "$work/cfg.log"; exit 1; }
+cmake --build "$work/query" > "$work/build.log" 2>&1 || { cat "$work/build.log"; exit 1; }
+cat > "$work/build.yaml" <<'YAML'
+gphr:
+  scene: {name: nls1d, n: 128}
+  time: {T: 1.0, dt: 0.01}
+  training: {points: [3]}
+  pipeline: {methods: [gp-deim], k: [6], m: [12]}
+  hyper: {snapshotEvery: 5}
+  build: {probes: [64]}
+  output: {progressSeconds: 0.0}
+YAML
+(cd "$work" && OPENBLAS_NUM_THREADS=1 "$work/prefix/bin/gphr" build build.yaml --model model.h5 --output art > /dev/null)
+"$work/query/query_model" "$work/model.h5" 0.92 1.0 1.08
