@@ -67,6 +67,24 @@ for f in q1/queries/*.h5; do
   done
 done
 grep -q '"queries_per_s"' q2/query_summary.json || fail "no throughput in query_summary.json"
+# Whole lifted states (states: true, the file with the basis): at the probe entries they equal the
+# probes (the same y0 + A z, summed in another order: 1e-13 relative).
+printf 'queries:\n  defaults: {T: 1.0, dt: 0.01, k: 6, m: 10, saveEvery: 25, states: true}\n  points:\n    s: {eps: 1.04}\n' > s.yaml
+"$gphr" query m/nls_basis.h5 s.yaml --output s > /dev/null 2> s.err || { cat s.err; fail "states query"; }
+dump() { h5dump -d "$2" -y -w 0 -m '%.17g' -o "$3" "$1" > /dev/null; }
+dump s/queries/s.h5 /states states.txt; dump s/queries/s.h5 /probes probes.txt
+python3 - <<'PY' || fail "states at the probes differ from the probes"
+import re
+num = lambda f: [float(x) for x in re.split(r"[,\s]+", open(f).read().strip()) if x]
+S, P = num("states.txt"), num("probes.txt")
+rows = len(P) // 3
+assert rows == 5 and len(S) == rows * 256, (rows, len(S))
+for j in range(rows):
+    for p, g in enumerate((0, 5, 130)):
+        s, q = S[j * 256 + g], P[j * 3 + p]
+        assert abs(s - q) <= 1e-13 * (1 + abs(q)), (j, g, s, q)
+print("states agree with the probes at", rows, "saved steps")
+PY
 
 # 3. Validate: statistics by hand from the CSV.
 cat > v.yaml <<'YAML'
@@ -123,6 +141,8 @@ bad no_model "it holds gp-deim k=6 m=10, gp-deim k=6 m=20" "$q
     a: {eps: 1.0, m: 30}"
 bad mistyped "key 'k' must be a whole number" "$q
     a: {eps: 1.0, k: six}"
+bad states_no_basis "states: true lifts whole states and needs the basis" "$q
+    a: {eps: 1.0, states: true}"
 bad bad_section "unknown section 'queries.point'" 'queries:
   point:
     a: {eps: 1.0}'
@@ -168,4 +188,4 @@ md5sum -c --quiet before.md5 || fail "a finished query's file changed on resume"
 for f in clean/queries/*.h5; do
   h5diff "$f" "killed/queries/$(basename "$f")" /z /z > /dev/null || fail "$(basename "$f") differs from the clean run"
 done
-echo "ok: build, query on 1/2/3 ranks bit-identical, validate statistics, 9 bad inputs, kill -9 resume ($kept kept)"
+echo "ok: build, query on 1/2/3 ranks bit-identical, validate statistics, 10 bad inputs, kill -9 resume ($kept kept)"

@@ -59,6 +59,23 @@ struct Recorder {
   size_t probeCount = 0;
 };
 
+// The physical states y0(mu) + A z at the saved steps (O(n k) each: asked for with states: true).
+void writeStates(Hdf5File& f, const ReducedModel& model, const Query& q, const std::vector<double>& z, size_t saved) {
+  const auto inst = model.scene().instantiate(selfComm(), q.mu, true);
+  const auto A = readReducedModelBasis(model.path(), q.k, inst.system->space());
+  const int r = static_cast<int>(A->getNumVectors());
+  auto local = rcp(new Map(r, 0, selfComm(), Tpetra::LocallyReplicated));
+  MultiVector Z(local, saved), Y(inst.system->map(), saved);
+  {
+    auto v = Z.getLocalViewHost(Tpetra::Access::OverwriteAll);
+    for (size_t c = 0; c < saved; ++c)
+      for (int i = 0; i < r; ++i) v(i, c) = z[c * r + i];
+  }
+  Y.multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, *A, Z, 0.0);
+  for (size_t c = 0; c < saved; ++c) Y.getVectorNonConst(c)->update(1.0, *inst.system->reference(), 1.0);
+  f.writeStates("/states", Y, inst.system->space());
+}
+
 QueryOutcome runOne(const ReducedModel& model, const Query& q, const std::string& path) {
   OnlineModel online = model.instantiate(q.method, q.k, q.m, q.mu, q.extrapolate, q.setup);
   const long steps = std::lround(q.T / q.dt);
@@ -88,6 +105,7 @@ QueryOutcome runOne(const ReducedModel& model, const Query& q, const std::string
       f.writeArray("/saved_times", rec.times, saved, 1);
       f.writeArray("/z", rec.z, saved, r);
       if (rec.probeCount) f.writeArray("/probes", rec.probes, saved, rec.probeCount);
+      if (q.states) writeStates(f, model, q, rec.z, saved);
     }
     f.setAttribute("/", "parameter", q.mu);
     f.setAttribute("/", "status", out.status);
@@ -156,7 +174,7 @@ void writeResults(const std::string& dir, const std::vector<Query>& qs) {
       Hdf5File in(queryFile(dir, q), selfComm(), Hdf5File::Mode::ReadOnly);
       const std::string g = "/queries/" + q.name;
       out.createGroup(g);
-      for (const char* name : {"/hamiltonian", "/saved_times", "/z", "/probes"}) {
+      for (const char* name : {"/hamiltonian", "/saved_times", "/z", "/probes", "/states"}) {
         if (!in.exists(name)) continue;
         size_t rows = 0, cols = 0;
         const auto v = in.readArray(name, &rows, &cols);

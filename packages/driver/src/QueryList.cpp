@@ -12,7 +12,8 @@ namespace gphr {
 
 namespace {
 
-const std::vector<std::string> kQueryKeys = {"method", "k", "m", "T", "dt", "saveEvery", "probes", "setup", "extrapolate"};
+const std::vector<std::string> kQueryKeys = {"method", "k",     "m",     "T",          "dt",
+                                             "saveEvery", "probes", "setup", "extrapolate", "states"};
 const std::vector<std::string> kPointKeys = {"T", "dt", "saveEvery", "setup"};
 
 const std::vector<std::string>& keysOf(QueryFileKind kind) {
@@ -65,6 +66,7 @@ void apply(const Teuchos::ParameterList& pl, const ReducedModelData& d, QueryFil
     else if (key == "saveEvery") q.saveEvery = wholeAt(pl, key, where, 1);
     else if (key == "probes") q.probes = flagAt(pl, key, where);
     else if (key == "extrapolate") q.extrapolate = flagAt(pl, key, where);
+    else if (key == "states") q.states = flagAt(pl, key, where);
     else if (key == "setup") {
       const std::string v = pl.isType<std::string>(key) ? pl.get<std::string>(key) : "";
       GPHR_REQUIRE(v == "interpolated" || v == "exact", InputError, where, ": key 'setup' has value '", v,
@@ -106,6 +108,9 @@ void check(const Query& q, const ReducedModel& model, QueryFileKind kind, const 
     }
     GPHR_REQUIRE(q.setup != SetupRoute::Exact || d.basis(q.k).hasBasis, InputError, where,
                  ": setup 'exact' needs the basis in the model file (build with build.withBasis: true)");
+    GPHR_REQUIRE(!q.states || d.basis(q.k).hasBasis, InputError, where,
+                 ": states: true lifts whole states and needs the basis in the model file (build with "
+                 "build.withBasis: true)");
   }
   GPHR_REQUIRE(std::isfinite(q.dt) && q.dt > 0 && std::isfinite(q.T) && q.T >= q.dt, InputError, where, ": T = ", q.T,
                ", dt = ", q.dt, "; allowed: dt > 0 and T >= dt");
@@ -156,7 +161,7 @@ void addGrid(const Teuchos::ParameterList& grid, const ReducedModelData& d, cons
 std::string Query::key() const {
   std::string s = detail::concat("name=", name, ";method=", method, ";k=", k, ";m=", m, ";saveEvery=", saveEvery,
                                  ";probes=", probes, ";setup=", setup == SetupRoute::Exact ? "exact" : "interpolated",
-                                 ";extrapolate=", extrapolate);
+                                 ";extrapolate=", extrapolate, ";states=", states);
   char buf[64];
   for (double x : mu) std::snprintf(buf, sizeof buf, ";mu=%.17g", x), s += buf;
   std::snprintf(buf, sizeof buf, ";T=%.17g;dt=%.17g", T, dt);

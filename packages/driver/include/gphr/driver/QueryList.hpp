@@ -21,6 +21,7 @@ struct Query {
   bool probes = true;
   SetupRoute setup = SetupRoute::Interpolated;
   bool extrapolate = false;
+  bool states = false;  // also the lifted states y0 + A z at the saved steps (needs the basis in the file)
   // Everything that determines the result, as text (a finished query is reused only if it matches).
   std::string key() const;
 };
