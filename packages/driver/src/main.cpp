@@ -10,11 +10,13 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <unistd.h>
 
 #include <Teuchos_Time.hpp>
 
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/Commands.hpp"
+#include "gphr/driver/Console.hpp"
 #include "gphr/driver/Config.hpp"
 #include "gphr/driver/Report.hpp"
 #include "gphr/models/SceneFactory.hpp"
@@ -23,18 +25,24 @@ namespace {
 
 struct Args {
   enum Command { Run, Build, Query, Validate, Help } command = Run;
+  enum Verbosity { Quiet, Normal, Verbose } verbosity = Normal;
   std::string config, output = "gphr-output", model, queries;
 };
 
 const char* kUsage = "usage: gphr [--output DIR] | run CONFIG [--output DIR] | build CONFIG --model FILE.h5 "
-                     "[--output DIR] | query MODEL.h5 QUERIES.yaml [--output DIR] | validate MODEL.h5 TESTS.yaml [--output DIR] | --help";
+                     "[--output DIR] | query MODEL.h5 QUERIES.yaml [--output DIR] | validate MODEL.h5 TESTS.yaml "
+                     "[--output DIR] | --help; each command also takes --verbose or --quiet";
 
-// --output DIR and --model FILE after the positional arguments.
+// --output DIR, --model FILE, --verbose and --quiet after the positional arguments.
 void options(Args& a, const std::vector<std::string>& v, size_t from, bool model) {
   for (size_t i = from; i < v.size(); ++i) {
     if (v[i] == "--output" && i + 1 < v.size()) a.output = v[++i];
     else if (model && v[i] == "--model" && i + 1 < v.size()) a.model = v[++i];
-    else throw gphr::InputError("unknown argument '" + v[i] + "'; allowed: --output DIR" + (model ? ", --model FILE" : ""));
+    else if (v[i] == "--verbose") a.verbosity = Args::Verbose;
+    else if (v[i] == "--quiet") a.verbosity = Args::Quiet;
+    else
+      throw gphr::InputError("unknown argument '" + v[i] + "'; allowed: --output DIR" + (model ? ", --model FILE" : "") +
+                             ", --verbose, --quiet");
   }
 }
 
@@ -42,9 +50,8 @@ Args parseArgs(int argc, char** argv) {
   Args a;
   std::vector<std::string> v(argv + 1, argv + argc);
   if (v.empty()) return a;  // default scene
-  if (v[0] == "--output") {  // default scene into DIR
-    GPHR_REQUIRE(v.size() == 2, gphr::InputError, kUsage);
-    a.output = v[1];
+  if (v[0] == "--output" || v[0] == "--verbose" || v[0] == "--quiet") {  // the default scene
+    options(a, v, 0, false);
     return a;
   }
   if (v[0] == "--help" || v[0] == "-h" || v[0] == "help") {
@@ -67,6 +74,16 @@ Args parseArgs(int argc, char** argv) {
   GPHR_REQUIRE(a.command != Args::Build || !a.model.empty(), gphr::InputError, "'gphr build' needs --model FILE.h5 (",
                kUsage, ")");
   return a;
+}
+
+// --quiet: progress (stderr) and results (stdout) go to /dev/null; errors to the returned stream,
+// a copy of the original stderr.
+FILE* quiet() {
+  FILE* errors = fdopen(dup(fileno(stderr)), "w");
+  std::fflush(stdout), std::fflush(stderr);
+  if (!std::freopen("/dev/null", "w", stdout) || !std::freopen("/dev/null", "w", stderr) || !errors) return stderr;
+  std::cout.flush();
+  return errors;
 }
 
 int runMain(const Args& args, const gphr::RCP<const gphr::Comm>& comm) {
@@ -102,9 +119,9 @@ int runMain(const Args& args, const gphr::RCP<const gphr::Comm>& comm) {
   const FomResult fom = runFullModel(ctx.config, *ctx.scene, ctx.mu, comm);
   if (rom && std::find(methods.begin(), methods.end(), "rom") != methods.end()) runRom(ctx, fom, *rom);
   if (rom) runHyperReduction(ctx, fom, *rom);
-  const std::string summary = writeReport(ctx, fom, rom.get());
-  if (root) std::cout << summary << "\n";
-  Teuchos::TimeMonitor::summarize(comm.ptr(), std::cout);
+  writeReport(ctx, fom, rom.get());
+  if (root) std::cout << runTable(ctx, fom, rom.get());
+  if (args.verbosity == Args::Verbose) Teuchos::TimeMonitor::summarize(comm.ptr(), std::cout);
   return 0;
 }
 
@@ -119,24 +136,26 @@ int main(int argc, char** argv) {
   Tpetra::ScopeGuard scope(&argc, &argv);
   auto comm = Tpetra::getDefaultComm();
   const bool root = comm->getRank() == 0;
+  FILE* errors = stderr;
   try {
     const Args args = parseArgs(argc, argv);
     if (args.command == Args::Help) {
       if (root) std::cout << gphr::helpText();
       return 0;
     }
+    if (args.verbosity == Args::Quiet) errors = quiet();
     if (args.command == Args::Build) return gphr::runBuild(args.config, args.model, args.output, comm);
     if (args.command == Args::Query) return gphr::runQuery(args.model, args.queries, args.output, comm);
     if (args.command == Args::Validate) return gphr::runValidate(args.model, args.queries, args.output, comm);
     return runMain(args, comm);
   } catch (const gphr::InputError& e) {
-    if (root) std::fprintf(stderr, "gphr: error: %s\n", e.what());
+    if (root) std::fprintf(errors, "gphr: error: %s\n", e.what());
     return 2;
   } catch (const gphr::SolverError& e) {
-    if (root) std::fprintf(stderr, "gphr: solver failure: %s\n", e.what());
+    if (root) std::fprintf(errors, "gphr: solver failure: %s\n", e.what());
     return 3;
   } catch (const std::exception& e) {
-    if (root) std::fprintf(stderr, "gphr: internal error: %s\n", e.what());
+    if (root) std::fprintf(errors, "gphr: internal error: %s\n", e.what());
     return 1;
   }
 }

@@ -1,0 +1,14 @@
+#pragma once
+// What `gphr run` prints on stdout by default: one line per evaluated model (method, k, m,
+// status, E_L2, online seconds, speed-up over the full model's online time) and where the report
+// is; summary.json and report.md hold the rest.
+#include <string>
+
+#include "gphr/driver/FomStage.hpp"
+#include "gphr/driver/Pipeline.hpp"
+
+namespace gphr {
+
+std::string runTable(const RunContext& ctx, const FomResult& fom, const RomStages* rom);
+
+}  // namespace gphr
