@@ -250,7 +250,18 @@ std::string helpText() {
         "                                (default ./gphr-output)\n"
         "  gphr run CONFIG [--output DIR]  run the stages of CONFIG (.yaml/.yml/.xml), outputs in DIR\n"
         "                                (default ./gphr-output): artifacts.h5, summary.json, *.csv, *.png\n"
-        "  gphr --help                   this text\n\n"
+        "  gphr build CONFIG --model FILE.h5 [--output DIR]\n"
+        "                                offline stages of CONFIG (artifacts reused from DIR) -> a reduced-model\n"
+        "                                file holding only the online data (section 'build')\n"
+        "  gphr query FILE.h5 QUERIES.yaml [--output DIR]\n"
+        "                                the file's models at many parameters, spread over the ranks:\n"
+        "                                DIR/results.h5, DIR/queries.csv (default ./gphr-queries)\n"
+        "  gphr validate FILE.h5 TESTS.yaml [--output DIR]\n"
+        "                                every model of the file and the ROM against the full model at test\n"
+        "                                points: DIR/validation.md (default ./gphr-validation)\n"
+        "  gphr --help                   this text\n"
+        "  any command: --verbose (also the timer tables), --quiet (errors only)\n"
+        "  QUERIES.yaml / TESTS.yaml: doc/model-file.md\n\n"
         "CONFIG has one top-level key 'gphr'. Keys (generated from the validators):\n\n";
   for (const auto& scene : sceneNames()) {
     os << "--- scene.name: " << scene << " ---\n";
