@@ -14,9 +14,10 @@ for f in report.md runs.csv adeim_updates.csv rom_history.csv; do
   [ -s "$work/out/$f" ] || { echo "FAIL: the first run wrote no $f"; exit 1; }
 done
 "$gphr" run "$work/b.yaml" --output "$work/out" > /dev/null 2> "$work/err" || { echo "FAIL: second run, exit $?"; cat "$work/err"; exit 1; }
-left=$(cd "$work/out" && ls | grep -v -x -e summary.json -e fom_history.csv -e artifacts.h5)
+left=$(cd "$work/out" && ls | grep -v -x -e summary.json -e fom_history.csv -e artifacts.h5 -e config.yaml)
 [ -z "$left" ] || { echo "FAIL: files of the first run left beside the second's summary: $left"; exit 1; }
 grep -q '"steps": 10' "$work/out/summary.json" || { echo "FAIL: summary.json is not the second run's"; exit 1; }
+grep -q 'T: 0.1' "$work/out/config.yaml" || { echo "FAIL: config.yaml is not the second run's"; exit 1; }
 mkdir -p "$work/user" && echo "my notes" > "$work/user/report.md" && echo "x" > "$work/user/runs.csv"
 "$gphr" run "$work/b.yaml" --output "$work/user" > /dev/null 2> "$work/err" || { echo "FAIL: run into a user directory, exit $?"; cat "$work/err"; exit 1; }
 [ "$(cat "$work/user/report.md")" = "my notes" ] && [ "$(cat "$work/user/runs.csv")" = "x" ] || {

@@ -11,6 +11,12 @@
 #ifndef GPHR_VERSION_STRING
 #define GPHR_VERSION_STRING "unknown"
 #endif
+#ifndef GPHR_BUILD_TYPE
+#define GPHR_BUILD_TYPE "unknown"
+#endif
+#ifndef GPHR_CXX_FLAGS
+#define GPHR_CXX_FLAGS "unknown"
+#endif
 
 namespace gphr {
 
@@ -49,5 +55,7 @@ void prepareOutputDir(RunContext& ctx, bool removeSummary) {
 }
 
 const char* gphrVersion() { return GPHR_VERSION_STRING; }
+const char* gphrBuildType() { return GPHR_BUILD_TYPE; }
+const char* gphrCxxFlags() { return GPHR_CXX_FLAGS; }
 
 }  // namespace gphr

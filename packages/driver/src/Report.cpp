@@ -8,12 +8,14 @@
 #include <cstdio>
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <fstream>
 #include <sstream>
 #include <thread>
 
+#include "gphr/driver/Commands.hpp"
 #include "gphr/driver/Config.hpp"
 #include "gphr/driver/HyperReport.hpp"
 #include "gphr/io/Hdf5File.hpp"
@@ -34,6 +36,70 @@ JsonObject machineInfo(const RCP<const Comm>& comm) {
 
 namespace {
 
+
+// A validated ParameterList as JSON: sublists nested, arrays of numbers as arrays, others by value.
+JsonObject configJson(const Teuchos::ParameterList& pl) {
+  JsonObject j;
+  for (auto it = pl.begin(); it != pl.end(); ++it) {
+    const std::string& key = pl.name(it);
+    if (pl.isSublist(key)) j.set(key, configJson(pl.sublist(key)));
+    else if (pl.isType<bool>(key)) j.set(key, pl.get<bool>(key));
+    else if (pl.isType<int>(key)) j.set(key, static_cast<long>(pl.get<int>(key)));
+    else if (pl.isType<double>(key)) j.set(key, pl.get<double>(key));
+    else if (pl.isType<std::string>(key)) j.set(key, pl.get<std::string>(key));
+    else if (pl.isType<Teuchos::Array<int>>(key)) {
+      const auto& a = pl.get<Teuchos::Array<int>>(key);
+      j.set(key, std::vector<double>(a.begin(), a.end()));
+    } else if (pl.isType<Teuchos::Array<double>>(key)) {
+      const auto& a = pl.get<Teuchos::Array<double>>(key);
+      j.set(key, std::vector<double>(a.begin(), a.end()));
+    } else if (pl.isType<Teuchos::Array<std::string>>(key)) {
+      std::string joined;  // the writer has no array of strings: comma-separated
+      for (const auto& x : pl.get<Teuchos::Array<std::string>>(key)) joined += (joined.empty() ? "" : ",") + x;
+      j.set(key, joined);
+    } else {
+      std::ostringstream os;
+      os << pl.entry(it).getAny(false);
+      j.set(key, os.str());
+    }
+  }
+  return j;
+}
+
+// The config as run, re-readable by gphr: Teuchos' YAML reader refuses the empty arrays its writer
+// emits, and an empty array is every such key's default, so they are left out.
+std::string configYaml(const Teuchos::ParameterList& cfg) {
+  std::function<void(Teuchos::ParameterList&)> prune = [&](Teuchos::ParameterList& pl) {
+    std::vector<std::string> empty;
+    for (auto it = pl.begin(); it != pl.end(); ++it) {
+      const std::string& key = pl.name(it);
+      if (pl.isSublist(key)) prune(pl.sublist(key));
+      else if ((pl.isType<Teuchos::Array<int>>(key) && pl.get<Teuchos::Array<int>>(key).empty()) ||
+               (pl.isType<Teuchos::Array<double>>(key) && pl.get<Teuchos::Array<double>>(key).empty()) ||
+               (pl.isType<Teuchos::Array<std::string>>(key) && pl.get<Teuchos::Array<std::string>>(key).empty()))
+        empty.push_back(key);
+    }
+    for (const auto& key : empty) pl.remove(key);
+  };
+  Teuchos::ParameterList copy(cfg);
+  copy.setName("gphr");
+  prune(copy);
+  return toYaml(copy);
+}
+
+JsonObject provenance(const Teuchos::ParameterList& cfg) {
+  const auto& integ = cfg.sublist("integrator");
+  const auto& ls = integ.sublist("linearSolver");
+  JsonObject solvers, build;
+  solvers.set("newton", integ.get<std::string>("newtonSolver"))
+      .set("linear", ls.get<std::string>("method") + " + " + ls.get<std::string>("preconditioner"))
+      .set("deim_indices", cfg.sublist("hyper").get<std::string>("indices"))
+      .set("deim_svd", cfg.sublist("hyper").get<std::string>("svd"));
+  build.set("gphr_version", gphrVersion()).set("build_type", gphrBuildType()).set("cxx_flags", gphrCxxFlags());
+  JsonObject p;
+  p.set("solvers", solvers).set("build", build).set("config", configJson(cfg));
+  return p;
+}
 
 JsonObject parametersJson(const Scene& scene, const std::vector<double>& mu) {
   JsonObject p;
@@ -140,7 +206,8 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
   const long saveEvery = ctx.config.sublist("output").get<int>("saveEvery");
   RenameOnCommit json(ctx.outputDir + "/summary.json", ctx.comm), csv(ctx.outputDir + "/fom_history.csv", ctx.comm),
       romCsv(ctx.outputDir + "/rom_history.csv", ctx.comm), png(ctx.outputDir + "/hamiltonian.png", ctx.comm),
-      svCsv(ctx.outputDir + "/singular_values.csv", ctx.comm), svPng(ctx.outputDir + "/singular_values.png", ctx.comm);
+      svCsv(ctx.outputDir + "/singular_values.csv", ctx.comm), svPng(ctx.outputDir + "/singular_values.png", ctx.comm),
+      configFile(ctx.outputDir + "/config.yaml", ctx.comm);
   // artifacts.h5: written in place when it already holds the training cache, else written to a
   // temporary name and renamed.
   const bool inPlace = std::filesystem::exists(ctx.artifactsPath());
@@ -163,6 +230,8 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
       .set("integrator", ctx.config.sublist("integrator").get<std::string>("scheme"))
       .set("parameters", parametersJson(*ctx.scene, ctx.mu))
       .set("machine", machineInfo(ctx.comm))
+      .set("gphr_version", gphrVersion())
+      .set("provenance", provenance(ctx.config))
       .set("runs", runs);
   bool plotted = false;
   std::string why;
@@ -190,6 +259,7 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
       plotted = plotHamiltonian(csv.tempPath(), firstRom ? romCsv.tempPath() : "", png.tempPath(), why);
     if (!plotted && !why.empty()) std::fprintf(stderr, "[gphr] no plots: %s\n", why.c_str());
     std::ofstream(json.tempPath()) << summary.str() << "\n";
+    std::ofstream(configFile.tempPath()) << configYaml(ctx.config);
   }
   int plottedAll = plotted;
   Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(plottedAll));
@@ -208,6 +278,7 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
   };
   if (!inPlace) h5.commit();
   csv.commit();
+  configFile.commit();
   commitOrDrop(romCsv, firstRom != nullptr);
   commitOrDrop(svCsv, rom != nullptr);
   int svPlotted = root && std::filesystem::exists(svPng.tempPath());

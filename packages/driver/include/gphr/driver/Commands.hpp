@@ -24,7 +24,10 @@ int runQuery(const std::string& modelPath, const std::string& queriesPath, const
 int runValidate(const std::string& modelPath, const std::string& testsPath, const std::string& outputDir,
                 const RCP<const Comm>& comm);
 
-// The gphr version (git describe at configure time) for provenance.
+// Provenance: the gphr version (git describe at configure time), the CMake build type and the
+// C++ flags of that build type.
 const char* gphrVersion();
+const char* gphrBuildType();
+const char* gphrCxxFlags();
 
 }  // namespace gphr
