@@ -54,7 +54,10 @@ CachedDeimBasis deimBasisFor(const RunContext& ctx, const RomStages& st, const M
   const std::string name = "/deim/k" + std::to_string(k);
   // The algorithm's revision is part of the key: a basis cached by an earlier one is recomputed
   // (2: the randomized range finder draws random signs instead of Gaussian numbers).
-  const std::string key = basisKey(ctx.config) + toYaml(hyp) + "deim basis revision 2, m <= " +
+  // hyper.deimSnapshots configures the classic DEIM baseline only: out of this basis's key.
+  Teuchos::ParameterList keyed = hyp;
+  keyed.remove("deimSnapshots", false);
+  const std::string key = basisKey(ctx.config) + toYaml(keyed) + "deim basis revision 2, m <= " +
                           std::to_string(*std::max_element(ms.begin(), ms.end())) + ", k = " + std::to_string(k);
   Teuchos::Time clock("deim basis");
   clock.start();
