@@ -73,6 +73,11 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
   setIntParameter(hyp, "blockSnapshots", 0, 0, 100000,
                   "reduced-Jacobian snapshots per incremental POD step; 0: about maxRank columns per step");
   setChoiceParameter(hyp, "podRoute", "auto", routes, "svd exact: the incremental SVD's step route, as reduction.podRoute");
+  setChoiceParameter(hyp, "deimSnapshots", "full", Teuchos::tuple<std::string>("full", "projected"),
+                     "snapshots of the classic DEIM baseline (method deim): full = grad N(y) - grad N(y0) at the full "
+                     "model's training states (Chaturantabut-Sorensen with the shift of paper Sec. 3.3; the model adds "
+                     "grad N(y0) back), projected = grad N(y0 + A A^T (y - y0)) at the training states projected on "
+                     "the reduced basis, unshifted");
   pl.sublist("adeim") = adeimValidParameters();
   auto& bld = pl.sublist("build");
   bld.set("withBasis", false,

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "gphr/driver/Config.hpp"
+#include "gphr/driver/ModelEvaluation.hpp"
 #include "gphr/driver/Report.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
 
@@ -29,6 +30,17 @@ std::string fmt(double x, const char* f = "%.3g") {
   char b[64];
   std::snprintf(b, sizeof b, f, x);
   return b;
+}
+
+bool anyUnbounded(const RomStages& st) {
+  return std::any_of(st.runs.begin(), st.runs.end(), [](const ModelRun& r) { return r.unboundedAt >= 0; });
+}
+
+// A gnuplot series of runs.csv's unbounded runs (E_L2 against column x), crosses: they ran to the end,
+// so their errors exist, but they are not among the methods' curves of ok runs.
+std::string unboundedPoints(const std::string& runsCsv, const std::string& x) {
+  return "'" + runsCsv + "' every ::1 using (strcol(4) eq 'unbounded' ? " + x +
+         " : 1/0):5 with points pt 2 ps 2 lw 2 lc rgb 'red' title 'unbounded (any method)'";
 }
 
 void writeRunsCsv(const RomStages& st, double fomOnline, const std::string& path) {
@@ -151,12 +163,18 @@ std::string reportMd(const RunContext& ctx, const FomResult& fom, const RomStage
        << fmt(r.tOnline, "%.3f") << " | " << fmt(tRom / r.tOnline, "%.2f") << "x | " << fmt(fomOnline / r.tOnline, "%.2f")
        << "x |\n";
   }
+  for (const auto& r : st.runs)
+    if (r.unboundedAt >= 0)
+      md << "\n" << r.label() << " is unbounded: it ran to the end, but from step " << r.unboundedAt
+         << " its lift left the full model's range (" << r.unboundedReason << "; thresholds: relative "
+         << "Hamiltonian error " << kUnboundedHamiltonian << ", state norm " << kUnboundedNorm
+         << " x the full model's largest).\n";
   // For each error level: the cheapest run (online time) that met it.
   md << "\n## Cheapest model per error level\n\n| E_L2 <= | cheapest | E_L2 | online s |\n|---|---|---|---|\n";
   for (double level : {1e-1, 3e-2, 1e-2, 3e-3, 1e-3, 1e-4, 1e-5}) {
     const ModelRun* best = nullptr;
     for (const auto& r : st.runs)
-      if (r.ok && r.eL2 <= level && (!best || r.tOnline < best->tOnline)) best = &r;
+      if (r.bounded() && r.eL2 <= level && (!best || r.tOnline < best->tOnline)) best = &r;
     if (best) md << "| " << fmt(level, "%.0e") << " | " << best->label() << " | " << fmt(best->eL2) << " | "
                  << fmt(best->tOnline, "%.3f") << " |\n";
   }
@@ -199,7 +217,9 @@ std::string spaceTimeData(const RunContext& ctx, const FomResult& fom, const Rom
   for (size_t j = 0; j < fom.trajectory->getNumVectors(); ++j) f.push_back(fom.trajectory->getVector(j));
   fields.push_back({"fom", f});
   for (const auto& r : st.runs)
-    if (!r.states.empty()) fields.push_back({r.label(), {r.states.begin(), r.states.end()}});
+    if (!r.states.empty())
+      fields.push_back({r.label() + (r.unboundedAt >= 0 ? " unbounded from step " + std::to_string(r.unboundedAt) : ""),
+                        {r.states.begin(), r.states.end()}});
   // Gathered on rank 0 by one Import per state (offline). Blocks are separated by two blank lines,
   // as gnuplot's `index` wants; the "# name" lines are gnuplot comments naming them.
   const RCP<const Map> map = fom.trajectory->getMap();
@@ -274,6 +294,7 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
     for (const auto& r : st.runs)
       if (r.method == "rom")
         b << (first ? "" : ", ") << r.eL2 << " with lines dt 2 lw 2 title 'rom 2k=" << 2 * r.k << "'", first = false;
+    if (anyUnbounded(st)) b << ", " << unboundedPoints(runs, "$3");
     b << "\n";
     if (!curves.empty() && gnuplot(p.at("error_vs_m.png"), b.str())) written.push_back("error_vs_m.png");
   }
@@ -290,6 +311,7 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
         << "' && strcol(4) eq 'ok') ? $6 : 1/0):5 with points pt 7 ps 1.5 title '" << m << "'";
       first = false;
     }
+    if (anyUnbounded(st)) b << (first ? "" : ", ") << unboundedPoints(runs, "$6"), first = false;
     b << "\n";
     if (!first && gnuplot(p.at("pareto.png"), b.str())) written.push_back("pareto.png");
   }

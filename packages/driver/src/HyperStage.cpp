@@ -49,7 +49,10 @@ CachedDeimBasis deimBasisFor(const RunContext& ctx, const RomStages& st, const M
   const std::string name = "/deim/k" + std::to_string(k);
   // The algorithm's revision is part of the key: a basis cached by an earlier one is recomputed
   // (2: the randomized range finder draws random signs instead of Gaussian numbers).
-  const std::string key = basisKey(ctx.config) + toYaml(hyp) + "deim basis revision 2, m <= " +
+  // hyper.deimSnapshots configures the classic DEIM baseline only: out of this basis's key.
+  Teuchos::ParameterList keyed = hyp;
+  keyed.remove("deimSnapshots", false);
+  const std::string key = basisKey(ctx.config) + toYaml(keyed) + "deim basis revision 2, m <= " +
                           std::to_string(*std::max_element(ms.begin(), ms.end())) + ", k = " + std::to_string(k);
   Teuchos::Time clock("deim basis");
   clock.start();
@@ -240,16 +243,23 @@ void runGpAdeim(const RunContext& ctx, const FomResult& fom, RomStages& st, cons
 void runGradientDeim(const RunContext& ctx, const FomResult& fom, RomStages& st, const SceneInstance& inst,
                      const MultiVector& A, int k, const ReducedLinearPart& linear, bool classic, bool sdeim) {
   const auto ms = mList(ctx.config);
+  const std::string snapshots = ctx.config.sublist("hyper").get<std::string>("deimSnapshots");
+  const GradientSnapshots kind = snapshots == "full" ? GradientSnapshots::Full : GradientSnapshots::Projected;
   auto evaluate = [&](const std::string& method, const MultiVector& Ug, int m, double tBasis) {
     Teuchos::Time clock("pair");
     clock.start();
-    GradientDeimModel model(*inst.system, A, makeGradientDeimPair(Ug, m, A), linear);
+    GradientDeimPair pair = makeGradientDeimPair(Ug, m, A);
+    // The classic DEIM of full snapshots interpolates grad N - grad N(y0) (gradientDeimBasis):
+    // grad N(y0) at the test parameter is added back. SDEIM interpolates grad N itself.
+    if (method == "deim" && kind == GradientSnapshots::Full) pair = withReferenceGradient(std::move(pair), *inst.system, A);
+    GradientDeimModel model(*inst.system, A, pair, linear);
     const double tPair = clock.stop();
     ModelRun run = evaluateReducedModel(ctx, fom, *inst.system, A, model, false, method, k, m,
                                         method == "sdeim");
     run.run.set("kernel_rows_per_evaluation", static_cast<long>(model.kernelRowsPerEvaluation()))
         .set("t_deim_basis_s", tBasis)
         .set("t_deim_pair_s", tPair)
+        .set("deim_snapshots", method == "deim" ? snapshots : std::string("-"))
         .set("t_offline_s", st.training.seconds + st.basisSeconds + tBasis + tPair);
     st.runs.push_back(std::move(run));
   };
@@ -258,7 +268,7 @@ void runGradientDeim(const RunContext& ctx, const FomResult& fom, RomStages& st,
     clock.start();
     const int maxRank = *std::max_element(ms.begin(), ms.end()) + 32;
     auto Ug = gradientDeimBasis(trainingSystems(ctx, st.training), st.training.snapshots, A, maxRank,
-                                ctx.config.sublist("hyper").get<int>("snapshotEvery"));
+                                ctx.config.sublist("hyper").get<int>("snapshotEvery"), kind);
     const double t = clock.stop();
     for (int m : ms) {
       if (m > static_cast<int>(Ug->getNumVectors())) {

@@ -85,8 +85,9 @@ class DeferredLift {
     for (int c = 0; c < count; ++c) {
       const RCP<Vector> y = Yc->getVectorNonConst(c);
       run_.hamiltonian.push_back(sys_.hamiltonian(*y));  // H_s(A z) = H(y0 + A z)
-      if (!isSavedStep(storedSteps_[c0 + c], steps_, saveEvery_)) continue;
       if (!ref.is_null()) y->update(1.0, *ref, 1.0);  // physical state y0 + A z
+      run_.stateNorms.push_back(y->norm2());
+      if (!isSavedStep(storedSteps_[c0 + c], steps_, saveEvery_)) continue;
       if (keepStates_) run_.states.push_back(rcp(new Vector(*y, Teuchos::Copy)));
       const auto yf = fom_.trajectory->getVector(saved_++);
       y->update(-1.0, *yf, 1.0);
@@ -111,6 +112,24 @@ class DeferredLift {
   double num_ = 0.0, den_ = 0.0, final_ = 0.0;
   RCP<MultiVector> Z_, Y_;
 };
+// The first step where a finished run's lift left the full model's range (kUnboundedHamiltonian,
+// kUnboundedNorm), with the figures that say so; -1 and "" when it stayed within it.
+long firstUnboundedStep(const FomResult& fom, const ModelRun& run, std::string& why) {
+  std::vector<double> fomNorms(fom.trajectory->getNumVectors());
+  fom.trajectory->norm2(fomNorms);
+  const double normCap = kUnboundedNorm * *std::max_element(fomNorms.begin(), fomNorms.end());
+  const double H0 = fom.hamiltonian.front(), hCap = kUnboundedHamiltonian * std::abs(H0);
+  for (size_t j = 0; j < run.hamiltonian.size() && j < run.stateNorms.size(); ++j) {
+    const double dH = std::abs(run.hamiltonian[j] - H0);
+    if (H0 != 0.0 && dH > hCap)
+      why = detail::concat("|H(y0 + A z^j) - H(y^0)| / |H(y^0)| = ", dH / std::abs(H0), " > ", kUnboundedHamiltonian);
+    else if (run.stateNorms[j] > normCap)
+      why = detail::concat("||y0 + A z^j|| = ", run.stateNorms[j], " > ", kUnboundedNorm,
+                           " x the full model's largest ||y|| = ", normCap / kUnboundedNorm);
+    if (!why.empty()) return static_cast<long>(j);
+  }
+  return -1;
+}
 }  // namespace
 
 ModelRun evaluateReducedModel(const RunContext& ctx, const FomResult& fom, const HamiltonianSystem& sys,
@@ -127,7 +146,7 @@ ModelRun evaluateReducedModel(const RunContext& ctx, const FomResult& fom, const
   double obsSeconds = 0.0;
   long lastStep = 0;
   Teuchos::Time wall("model"), obs("obs");
-  std::string status = "ok", why;
+  std::string why;
   RunStats stats;
   wall.start();
   try {
@@ -142,7 +161,6 @@ ModelRun evaluateReducedModel(const RunContext& ctx, const FomResult& fom, const
       if (afterStep) afterStep(j, zj);
     });
   } catch (const SolverError& e) {
-    status = "diverged";
     why = e.what();
     run.ok = false;
     if (obs.isRunning()) obsSeconds += obs.stop();
@@ -186,8 +204,15 @@ ModelRun evaluateReducedModel(const RunContext& ctx, const FomResult& fom, const
       .set("t_online_runs_s", times)
       .set("newton_iters_avg", run.ok ? double(stats.newtonIterations) / steps : nan)
       .set("newton_matrices", run.ok ? stats.newtonMatrices : -1L)
-      .set("errors_at", "saved steps (every output.saveEvery-th and the last)")
-      .set("status", status);
+      .set("errors_at", "saved steps (every output.saveEvery-th and the last)");
+  if (run.ok) run.unboundedAt = firstUnboundedStep(fom, run, run.unboundedReason);
+  if (run.unboundedAt >= 0) {
+    run.run.set("unbounded_at_step", run.unboundedAt).set("unbounded_reason", run.unboundedReason);
+    if (ctx.comm->getRank() == 0)
+      std::fprintf(stderr, "[gphr] %s unbounded from step %ld: %s\n", run.label().c_str(), run.unboundedAt,
+                   run.unboundedReason.c_str());
+  }
+  run.run.set("status", run.status());
   if (hasHamiltonian && run.ok) run.run.set("H_model_err_max", maxDeviation(run.modelHamiltonian, run.modelHamiltonian.front()));
   if (!run.ok) run.run.set("diverged_at_step", lastStep + 1).set("diverged_reason", why);
   if (!run.ok && ctx.comm->getRank() == 0)

@@ -99,6 +99,64 @@ DenseMatrix deimCoefficients(const DenseMatrix& PtU, const DenseMatrix& PtF) {
   return product(NO_TRANS, NO_TRANS, inv, PtF);
 }
 
+namespace {
+// X <- H_1 ... H_k X: the first k Householder reflectors of a GEQRF or GEQP3 factor QR applied from
+// the left (ORMQR after its workspace query).
+void applyReflectors(const DenseMatrix& QR, int k, const std::vector<double>& tau, DenseMatrix& X) {
+  Teuchos::LAPACK<int, double> lapack;
+  std::vector<double> work(1);
+  int info = 0;
+  lapack.ORMQR('L', 'N', X.numRows(), X.numCols(), k, QR.values(), QR.stride(), tau.data(), X.values(), X.stride(),
+               work.data(), -1, &info);
+  work.resize(std::max<size_t>(1, static_cast<size_t>(work[0])));
+  lapack.ORMQR('L', 'N', X.numRows(), X.numCols(), k, QR.values(), QR.stride(), tau.data(), X.values(), X.stride(),
+               work.data(), static_cast<int>(work.size()), &info);
+  GPHR_REQUIRE(info == 0, SolverError, "GP-ADEIM: LAPACK ORMQR (", X.numRows(), " x ", X.numCols(), ") failed, info = ",
+               info);
+}
+
+// T^+ = T^T (T T^T)^{-1} of T = [R11 R12] Pi^T (r_C x m, full row rank r_C; Ct holds R11 R12 in
+// its upper triangle, jpvt is Pi): the minimum-norm right inverse. Its columns span range(T^T) =
+// range(C) (C ~ T^T Q_1^T), so b = T^+ w is the b of least norm with T b = w, the paper's
+// b = Q_j z after theo:minprob_eig_equivalence. Any other right inverse, such as
+// Pi [R11^{-1}; 0] when R12 != 0, adds to b a part in null(C^T): the objective of eq:min_prob does
+// not see it, but U_{j+1} turns in directions no data asked for. With r_C = m (no R12), T is square
+// and T^+ = T^{-1} = Pi R11^{-1} (one TRTRI); otherwise from the thin QR T^T = Q_T R_T (GEQRF):
+// T^+ = Q_T R_T^{-T} (TRTRI, then ORMQR applies Q_T), never forming the Gram matrix T T^T.
+DenseMatrix pseudoInverse(const DenseMatrix& T, const DenseMatrix& Ct, const std::vector<int>& jpvt) {
+  const int rc = T.numRows(), m = T.numCols();
+  DenseMatrix Tplus(m, rc);
+  if (rc == 0) return Tplus;
+  const bool square = rc == m;
+  DenseMatrix QR(m, rc, false), Rinv(rc, rc);
+  for (int j = 0; j < rc; ++j)
+    for (int i = 0; i < m; ++i) QR(i, j) = T(j, i);
+  std::vector<double> tau(rc), work(1);
+  int info = 0;
+  Teuchos::LAPACK<int, double> lapack;
+  if (!square) {
+    lapack.GEQRF(m, rc, QR.values(), QR.stride(), tau.data(), work.data(), -1, &info);
+    work.resize(std::max<size_t>(1, static_cast<size_t>(work[0])));
+    lapack.GEQRF(m, rc, QR.values(), QR.stride(), tau.data(), work.data(), static_cast<int>(work.size()), &info);
+    GPHR_REQUIRE(info == 0, SolverError, "GP-ADEIM: LAPACK GEQRF of T^T (", m, " x ", rc, ") failed, info = ", info);
+  }
+  const DenseMatrix& R = square ? Ct : QR;  // R11 (of C^T's pivoted QR) or R_T
+  for (int j = 0; j < rc; ++j)
+    for (int i = 0; i <= j; ++i) Rinv(i, j) = R(i, j);
+  lapack.TRTRI('U', 'N', rc, Rinv.values(), Rinv.stride(), &info);
+  GPHR_REQUIRE(info == 0, SolverError, "GP-ADEIM: LAPACK TRTRI of the kept triangular factor failed, info = ", info);
+  if (square) {
+    for (int i = 0; i < rc; ++i)
+      for (int l = 0; l < rc; ++l) Tplus(jpvt[i] - 1, l) = Rinv(i, l);
+    return Tplus;
+  }
+  for (int j = 0; j < rc; ++j)
+    for (int i = j; i < rc; ++i) Tplus(i, j) = Rinv(j, i);  // [R_T^{-T}; 0]
+  applyReflectors(QR, rc, tau, Tplus);
+  return Tplus;
+}
+}  // namespace
+
 // C^T Pi = Q R by LAPACK GEQP3 (Householder QR with column pivoting, |R_11| >= |R_22| >= ...):
 // the rank-revealing factorization the paper prescribes after theo:minprob_eig_equivalence, on
 // the tall C^T so that Q spans C's row space, where C^T b lives. Cut where |R_ll| <= tol |R_11|:
@@ -126,30 +184,18 @@ CoefficientFactor factorCoefficients(const DenseMatrix& PtU, const DenseMatrix& 
     const double r11 = std::abs(Ct(0, 0));
     while (rc < k && std::abs(Ct(rc, rc)) > 0.0 && std::abs(Ct(rc, rc)) > tol * r11) ++rc;
   }
-  // T = [R11 R12] Pi^T (r_C x m) and its right inverse Pi [R11^{-1}; 0] (m x r_C).
+  // T = [R11 R12] Pi^T (r_C x m) and its pseudo-inverse T^+ (m x r_C).
   f.T.shape(rc, m);
-  f.Tinv.shape(m, rc);
-  DenseMatrix R11inv(rc, rc);
   for (int j = 0; j < m; ++j)
     for (int i = 0; i < std::min(rc, j + 1); ++i) f.T(i, jpvt[j] - 1) = Ct(i, j);
-  for (int j = 0; j < rc; ++j)
-    for (int i = 0; i <= j; ++i) R11inv(i, j) = Ct(i, j);
+  f.Tinv = pseudoInverse(f.T, Ct, jpvt);
   if (rc > 0) {
-    lapack.TRTRI('U', 'N', rc, R11inv.values(), R11inv.stride(), &info);
-    GPHR_REQUIRE(info == 0, SolverError, "GP-ADEIM: LAPACK TRTRI of the kept R11 failed, info = ", info);
-    for (int i = 0; i < rc; ++i)
-      for (int l = 0; l < rc; ++l) f.Tinv(jpvt[i] - 1, l) = R11inv(i, l);
     // Q_1 = H_1 ... H_rc [I; 0] by ORMQR, not ORGQR: below its crossover (128 columns) ORGQR runs
     // the unblocked DORG2R, while ORMQR applies the reflectors in blocks (0.69 against 0.88 ms at
     // 400 x 100, one thread).
     f.Q.shape(wbar, rc);
     for (int l = 0; l < rc; ++l) f.Q(l, l) = 1.0;
-    lapack.ORMQR('L', 'N', wbar, rc, rc, Ct.values(), Ct.stride(), tau.data(), f.Q.values(), f.Q.stride(), work.data(),
-                 -1, &info);
-    work.resize(std::max<size_t>(work.size(), static_cast<size_t>(work[0])));
-    lapack.ORMQR('L', 'N', wbar, rc, rc, Ct.values(), Ct.stride(), tau.data(), f.Q.values(), f.Q.stride(), work.data(),
-                 static_cast<int>(work.size()), &info);
-    GPHR_REQUIRE(info == 0, SolverError, "GP-ADEIM: LAPACK ORMQR failed, info = ", info);
+    applyReflectors(Ct, rc, tau, f.Q);
   } else {
     f.Q.shape(wbar, 0);
   }
@@ -160,8 +206,9 @@ CoefficientFactor factorCoefficients(const DenseMatrix& PtU, const DenseMatrix& 
 // eq:gen_eval is solved through the factor of C instead of LAPACK's SYGV on the pencil: with
 // C^T ~ Q_1 T (rank r_C after the cut-off) and y = T b, ||C^T b|| = ||y|| and S^T R C^T b =
 // M y with M = X Q_1 (m_s x r_C), X = S^T R. The pencil (C X^T X C^T, C C^T) becomes the standard
-// symmetric eigenproblem of M^T M: lambda_i = sigma_i(M)^2, and b_i = T^+ w_i solves T b_i = w_i,
-// w_i the right singular vectors of M (GESDD). This never forms C C^T, whose condition number is
+// symmetric eigenproblem of M^T M: lambda_i = sigma_i(M)^2, and b_i = T^+ w_i is the solution of
+// T b_i = w_i of least norm, w_i the right singular vectors of M (GESDD): of all b with the same
+// C^T b (the same objective of eq:min_prob), the one in range(C), as in the paper's b_i = Q_j z_i. This never forms C C^T, whose condition number is
 // cond(C)^2. (The tests check the result against SYGV on well-conditioned data.)
 AdeimUpdate computeAdeimUpdate(const DenseMatrix& PtU, const DenseMatrix& PtF, const DenseMatrix& StU,
                                const DenseMatrix& StF, const AdeimUpdateOptions& opt) {
@@ -338,9 +385,12 @@ AdeimUpdate computeAdeimUpdate(const CoefficientFactor& cf, const DenseMatrix& S
   for (int i = 0; i < rbar; ++i) up.eigenvalues.push_back(sigma[i] * sigma[i]);
   const int r = test ? std::min(count, rbar) : std::min(opt.rank, rbar);
   up.rank = r;
-  // b_i = T^+ w_i, w_i the right singular vectors of M. Then C^T b_i = Q_1 w_i (T^+ = Pi [R11^{-1};
-  // 0] puts b where the cut part of C^T is zero), so ||C^T b_i|| = 1 and eq:ai_from_bi,
-  // a_i = -S^T R C^T b_i / ||C^T b_i||^2, is -M w_i: no product over wbar. With r = r_C (most
+  // b_i = T^+ w_i, w_i the right singular vectors of M: the least-norm b_i with T b_i = w_i, in
+  // range(C) as the paper's b_i = Q_j z_i (see pseudoInverse). Then (Q_1 T)^T b_i = Q_1 w_i, so
+  // ||C^T b_i|| = 1 and eq:ai_from_bi, a_i = -S^T R C^T b_i / ||C^T b_i||^2, is -M w_i: no product
+  // over wbar. After a cut this is the update for C's rank-r_C truncation T^T Q_1^T (the route of
+  // Peherstorfer & Willcox's Lemma 3.4 the paper follows); the dropped part of C^T, below
+  // coefficientTol |R_11|, is left out of the objective as it is left out of C. With r = r_C (most
   // updates: 534 of 600 on the paper's NLS run) W is square and orthogonal, and only a b^T =
   // -M W W^T T^+^T = -M T^+^T enters U: then (a, b) = (-M, T^+) is the same update without the
   // singular vectors (their columns span what the eigenvectors span, not the eigenvectors).

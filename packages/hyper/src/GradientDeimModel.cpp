@@ -41,28 +41,59 @@ GradientDeimPair makeGradientDeimPair(const MultiVector& Ug, int m, const MultiV
   return out;
 }
 
+namespace {
+// A A^T Y: states projected on the reduced basis (A orthonormal).
+RCP<MultiVector> projectOnto(const MultiVector& A, const MultiVector& Y) {
+  const int r = static_cast<int>(A.getNumVectors());
+  auto local = rcp(new Map(r, 0, A.getMap()->getComm(), Tpetra::LocallyReplicated));
+  MultiVector Z(local, Y.getNumVectors());
+  Z.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, A, Y, 0.0);
+  auto P = rcp(new MultiVector(Y.getMap(), Y.getNumVectors()));
+  P->multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, A, Z, 0.0);
+  return P;
+}
+}  // namespace
+
+GradientDeimPair withReferenceGradient(GradientDeimPair pair, const HamiltonianSystem& system, const MultiVector& A) {
+  const int r = static_cast<int>(A.getNumVectors()), m = static_cast<int>(pair.entries.size());
+  GPHR_REQUIRE(pair.B.numRows() == r && pair.B.numCols() == m, InputError, "gradient DEIM: the pair is ",
+               pair.B.numRows(), " x ", pair.B.numCols(), " for a basis of ", r, " columns and ", m, " entries");
+  Vector zero(system.map()), g0(system.map());
+  system.nonlinearGradient(zero, g0);
+  auto local = rcp(new Map(r, 0, A.getMap()->getComm(), Tpetra::LocallyReplicated));
+  MultiVector Atg(local, 1);
+  Atg.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, A, g0, 0.0);
+  const auto g0P = gatherRows(g0, pair.entries);
+  auto a = Atg.getLocalViewHost(Tpetra::Access::ReadOnly);
+  pair.offset.size(r);
+  for (int i = 0; i < r; ++i) {
+    double s = a(i, 0);
+    for (int j = 0; j < m; ++j) s -= pair.B(i, j) * g0P[j];
+    pair.offset(i) = s;
+  }
+  return pair;
+}
+
 RCP<MultiVector> gradientDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& systems,
                                    const std::vector<RCP<const MultiVector>>& states, const MultiVector& A,
-                                   int maxRank, int snapshotEvery, std::vector<double>* singularValues) {
+                                   int maxRank, int snapshotEvery, GradientSnapshots kind,
+                                   std::vector<double>* singularValues) {
+  GPHR_REQUIRE(snapshotEvery >= 1, InputError, "gradient DEIM: snapshotEvery = ", snapshotEvery, " (need >= 1)");
   const auto& map = systems[0]->map();
-  const int r = static_cast<int>(A.getNumVectors());
+  const bool projected = kind == GradientSnapshots::Projected;
   StreamingPod pod(map, static_cast<int>(std::min<GO>(maxRank, map->getGlobalNumElements())), 64);
-  auto local = rcp(new Map(r, 0, map->getComm(), Tpetra::LocallyReplicated));
+  Vector zero(map), g0(map);
   for (size_t j = 0; j < systems.size(); ++j) {
-    MultiVector Z(local, states[j]->getNumVectors());
-    Z.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, A, *states[j], 0.0);
     std::vector<size_t> cols;
     for (size_t c = 0; c < states[j]->getNumVectors(); c += snapshotEvery) cols.push_back(c);
-    MultiVector Y(map, cols.size()), G(map, cols.size());
-    MultiVector Zsel(local, cols.size());
-    {
-      auto zs = Zsel.getLocalViewHost(Tpetra::Access::OverwriteAll);
-      auto z = Z.getLocalViewHost(Tpetra::Access::ReadOnly);
-      for (size_t c = 0; c < cols.size(); ++c)
-        for (int i = 0; i < r; ++i) zs(i, c) = z(i, cols[c]);
+    auto Y = states[j]->subCopy(Teuchos::ArrayView<const size_t>(cols));
+    if (projected) Y = projectOnto(A, *Y);
+    MultiVector G(map, cols.size());
+    for (size_t c = 0; c < cols.size(); ++c) systems[j]->nonlinearGradient(*Y->getVector(c), *G.getVectorNonConst(c));
+    if (!projected) {  // minus grad N at the training system's state 0 (its y0)
+      systems[j]->nonlinearGradient(zero, g0);
+      for (size_t c = 0; c < cols.size(); ++c) G.getVectorNonConst(c)->update(-1.0, g0, 1.0);
     }
-    Y.multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, A, Zsel, 0.0);  // A A^T y_s
-    for (size_t c = 0; c < cols.size(); ++c) systems[j]->nonlinearGradient(*Y.getVector(c), *G.getVectorNonConst(c));
     pod.add(G);
   }
   GPHR_REQUIRE(pod.rank() > 0, InputError, "gradient DEIM: every grad N snapshot is zero (nothing to hyper-reduce)");
@@ -93,7 +124,10 @@ std::vector<GO> rowsTouching(const NonlinearTerm& term, const std::vector<GO>& e
 
 GradientDeimModel::GradientDeimModel(const HamiltonianSystem& system, const MultiVector& A,
                                      const GradientDeimPair& pair, ReducedLinearPart linear)
-    : linear_(std::move(linear)), B_(pair.B) {
+    : linear_(std::move(linear)), B_(pair.B), offset_(pair.offset) {
+  GPHR_REQUIRE(offset_.length() == 0 || offset_.length() == linear_.L.numRows(), InputError,
+               "gradient DEIM: an offset of ", offset_.length(), " entries for a reduced dimension of ",
+               linear_.L.numRows());
   const NonlinearTerm& term = system.nonlinearTerm();
   const auto rows = rowsTouching(term, pair.entries);
   const auto v = gatherWeights(term, rows);
@@ -114,6 +148,7 @@ void GradientDeimModel::gradient(const DenseVector& z, DenseVector& g) {
   rows_->entryGradients(entrySlot_, static_cast<int>(gP_.size()), gP_.data());
   g.multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, linear_.L, z, 0.0);
   g += linear_.f;
+  if (offset_.length() > 0) g += offset_;
   for (int i = 0; i < dim(); ++i)
     for (size_t j = 0; j < gP_.size(); ++j) g(i) += B_(i, static_cast<int>(j)) * gP_[j];
 }

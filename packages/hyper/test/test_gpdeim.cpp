@@ -138,7 +138,7 @@ TEST(GpDeim, ClassicDeimAndSdeimFieldsAreNotGradients) {
   std::vector<RCP<const HamiltonianSystem>> systems{hc.test.system};
   auto tr = Nls1d(48, 5.0).instantiate(test::comm(), {1.0}, true);
   auto states = test::fomSnapshots(tr, "avf", 0.05, 100);
-  const auto Ug = gradientDeimBasis({tr.system}, {states}, *hc.basis.A, 48, 1);
+  const auto Ug = gradientDeimBasis({tr.system}, {states}, *hc.basis.A, 48, 1, GradientSnapshots::Projected);
   GradientDeimModel deim(sys, *hc.basis.A, makeGradientDeimPair(*Ug, 12, *hc.basis.A), reduceLinearPart(sys, *hc.basis.A));
   GradientDeimModel sdeim(sys, *hc.basis.A, makeGradientDeimPair(*hc.basis.A, 8, *hc.basis.A),
                           reduceLinearPart(sys, *hc.basis.A));
@@ -153,6 +153,149 @@ TEST(GpDeim, ClassicDeimAndSdeimFieldsAreNotGradients) {
     DenseMatrix diff(fdJacobianOfGradient(*model, z));
     diff -= H;
     EXPECT_LE(diff.normInf(), kFdTol * H.normInf());
+  }
+}
+
+// The training runs of an nlsCase (eps 0.95 and 1.05): shifted systems and the full model's states.
+struct TrainingRuns {
+  std::vector<RCP<const HamiltonianSystem>> systems;
+  std::vector<RCP<const MultiVector>> states;
+};
+
+TrainingRuns nlsTraining(GO n) {
+  TrainingRuns t;
+  for (double eps : {0.95, 1.05}) {
+    auto tr = Nls1d(n, 5.0).instantiate(test::comm(), {eps}, true);
+    t.states.push_back(test::fomSnapshots(tr, "avf", 0.05, 100));
+    t.systems.push_back(tr.system);
+  }
+  return t;
+}
+
+double frobenius(const MultiVector& X) {
+  std::vector<double> norms(X.getNumVectors());
+  X.norm2(norms);
+  double s = 0.0;
+  for (double v : norms) s += v * v;
+  return std::sqrt(s);
+}
+
+RCP<MultiVector> classicDeimBasis(const TrainingRuns& t, const MultiVector& A, int maxRank, GradientSnapshots kind,
+                                  int every = 1) {
+  return gradientDeimBasis(t.systems, t.states, A, maxRank, every, kind);
+}
+
+// ||a - b|| / ||b|| of the fields (or Hessians) of two models at the probe point.
+double fieldDiff(DenseHamiltonian& model, DenseHamiltonian& reference) {
+  const int r = reference.dim();
+  DenseVector z = probePoint(r), g(r), ref(r);
+  model.gradient(z, g);
+  reference.gradient(z, ref);
+  g -= ref;
+  return g.normFrobenius() / ref.normFrobenius();
+}
+
+double hessianDiff(DenseHamiltonian& model, DenseHamiltonian& reference) {
+  const int r = reference.dim();
+  const DenseVector z = probePoint(r);
+  DenseMatrix H(r, r), ref(r, r);
+  model.addHessian(z, 1.0, H);
+  reference.addHessian(z, 1.0, ref);
+  H -= ref;
+  return H.normFrobenius() / ref.normFrobenius();
+}
+
+// With m = 2n (every state entry sampled) P_g^T U_g is a row permutation of the orthogonal U_g,
+// so U_g (P_g^T U_g)^{-1} P_g^T = I and the classic DEIM of full-state snapshots is the Galerkin
+// ROM: field and Hessian agree to round-off. 1e-12 relative: cond(P_g^T U_g) = 1 and sums of
+// O(n) terms. (The offset A^T g0 - B P_g^T g0 is round-off here; the next test checks it.)
+TEST(GpDeim, ClassicDeimOfFullRankIsTheRom) {
+  const GO n = 16;
+  auto hc = test::nlsCase(n, 4, test::comm());
+  const auto& A = *hc.basis.A;
+  const auto Ug = classicDeimBasis(nlsTraining(n), A, static_cast<int>(2 * n), GradientSnapshots::Full);
+  ASSERT_EQ(Ug->getNumVectors(), static_cast<size_t>(2 * n)) << "the snapshots must span R^{2n} for this test";
+  const GradientDeimPair pair = withReferenceGradient(makeGradientDeimPair(*Ug, static_cast<int>(2 * n), A),
+                                                      *hc.test.system, A);
+  EXPECT_NEAR(pair.conditionNumber, 1.0, 1e-12);
+  GradientDeimModel deim(*hc.test.system, A, pair, reduceLinearPart(*hc.test.system, A));
+  GalerkinRom rom(hc.test.system, hc.basis.A);
+  std::printf("m = 2n: field %.3g, Hessian %.3g relative to the ROM's\n", fieldDiff(deim, rom), hessianDiff(deim, rom));
+  EXPECT_LE(fieldDiff(deim, rom), 1e-12);
+  EXPECT_LE(hessianDiff(deim, rom), 1e-12);
+}
+
+// The shift of Sec. 3.3: full snapshots are grad N(y) - grad N(y0), the model adds grad N(y0)
+// back, so at the reference state (z = 0, y = y0) the field is the ROM's for any m, as
+// G_s(y0) = 0 makes GP-DEIM exact there. Tolerance 1e-12 relative: F(0) = f_r + A^T g0 +
+// (B P^T g0 - B P^T g0), whose cancellation leaves ~eps ||B|| ||P^T g0|| (||B|| ~ cond(P^T U) < 1e2
+// here). The projected snapshots (the test parameter eps = 1 is not a training one) interpolate
+// grad N(y0) itself with a DEIM error above 1e-6 relative: the two snapshot kinds give different
+// models, so an option that picked the wrong one would be seen.
+TEST(GpDeim, ClassicDeimOfFullSnapshotsIsExactAtTheReferenceState) {
+  const GO n = 48;
+  auto hc = test::nlsCase(n, 4, test::comm());
+  const auto& A = *hc.basis.A;
+  const auto& sys = *hc.test.system;
+  GalerkinRom rom(hc.test.system, hc.basis.A);
+  const DenseVector z0(rom.dim());
+  DenseVector ref(rom.dim()), g(rom.dim());
+  rom.gradient(z0, ref);
+  const TrainingRuns training = nlsTraining(n);
+  const auto full = classicDeimBasis(training, A, 48, GradientSnapshots::Full);
+  const auto projected = classicDeimBasis(training, A, 48, GradientSnapshots::Projected);
+  for (int m : {4, 12}) {
+    const GradientDeimPair pair = makeGradientDeimPair(*full, m, A);
+    GradientDeimModel shifted(sys, A, withReferenceGradient(pair, sys, A), reduceLinearPart(sys, A));
+    shifted.gradient(z0, g);
+    g -= ref;
+    const double exact = g.normFrobenius() / ref.normFrobenius();
+    GradientDeimModel plain(sys, A, makeGradientDeimPair(*projected, m, A), reduceLinearPart(sys, A));
+    plain.gradient(z0, g);
+    g -= ref;
+    const double interpolated = g.normFrobenius() / ref.normFrobenius();
+    std::printf("m = %d: F(0) against the ROM's, full %.3g, projected %.3g (cond(P^T U) %.3g)\n", m, exact,
+                interpolated, pair.conditionNumber);
+    EXPECT_LE(exact, 1e-12) << "m = " << m;
+    EXPECT_GT(interpolated, 1e-6) << "m = " << m;
+  }
+}
+
+// The textbook snapshots, formed here state by state: grad N(y_s) - grad N(0) of each training
+// system at every 10th state of its full-model run (22 snapshots, one of them zero, in R^64). The
+// POD keeps up to 64 columns, more than the snapshots' rank, so the full basis spans them exactly:
+// the part of S outside span(U_g) is round-off (1e-12 relative: orthonormal U_g, QR-based POD).
+// The projected basis (grad N at projected states, unshifted) leaves an O(1e-2) part or more.
+TEST(GpDeim, ClassicDeimBasisSpansTheTextbookSnapshots) {
+  const GO n = 32;
+  auto hc = test::nlsCase(n, 4, test::comm());
+  const TrainingRuns training = nlsTraining(n);
+  const int every = 10, perRun = 11;
+  MultiVector S(training.systems[0]->map(), 2 * perRun);
+  Vector zero(training.systems[0]->map()), g0(training.systems[0]->map());
+  for (size_t j = 0; j < 2; ++j) {
+    training.systems[j]->nonlinearGradient(zero, g0);
+    for (int c = 0; c < perRun; ++c) {
+      auto col = S.getVectorNonConst(j * perRun + c);
+      training.systems[j]->nonlinearGradient(*training.states[j]->getVector(c * every), *col);
+      col->update(-1.0, g0, 1.0);
+    }
+  }
+  const double sNorm = frobenius(S);
+  for (GradientSnapshots kind : {GradientSnapshots::Full, GradientSnapshots::Projected}) {
+    const auto Ug = classicDeimBasis(training, *hc.basis.A, static_cast<int>(2 * n), kind, every);
+    auto local = rcp(new Map(Ug->getNumVectors(), 0, test::comm(), Tpetra::LocallyReplicated));
+    MultiVector C(local, S.getNumVectors()), R(S, Teuchos::Copy);
+    C.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, *Ug, S, 0.0);
+    R.multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, -1.0, *Ug, C, 1.0);
+    const double outside = frobenius(R) / sNorm;
+    const bool full = kind == GradientSnapshots::Full;
+    std::printf("%s snapshots: %zu vectors, ||(I - U U^T) S|| / ||S|| = %.3g\n", full ? "full" : "projected",
+                Ug->getNumVectors(), outside);
+    if (full)
+      EXPECT_LE(outside, 1e-12);
+    else
+      EXPECT_GT(outside, 1e-3);
   }
 }
 

@@ -29,15 +29,24 @@ struct ModelRun {
   std::vector<double> hamiltonian;       // H(y0 + A z^j) per step: the true Hamiltonian of the lift
   std::vector<double> modelHamiltonian;  // the model's own H_r / H_hr per step (empty without one)
   std::vector<double> errors;            // ||y^j - (y0 + A z^j)|| at the saved steps
+  std::vector<double> stateNorms;        // ||y0 + A z^j|| per step
   std::vector<RCP<Vector>> states;       // lifted physical states at the saved steps (space-time plots)
   std::vector<AdeimUpdateRecord> adeimUpdates;  // gp-adeim: one record per adaptation
   double eL2 = 0.0, tOnline = 0.0;
   bool ok = true;
   bool available = true;  // false: not run, the offline data cannot support this (k, m)
+  long unboundedAt = -1;  // >= 0: ran to the end, but its lift left the full model's range at this step
+  std::string unboundedReason;  // which bound it passed, with the figures
   JsonObject run;
   std::string label() const;
-  const char* status() const { return ok ? "ok" : available ? "diverged" : "unavailable"; }  // runs.csv
-  std::string statusText() const { return ok || !available ? status() : std::string("**") + status() + "**"; }  // report.md
+  // ok | unbounded (finished, left the full model's range: ModelEvaluation.hpp) | diverged | unavailable
+  const char* status() const {
+    return !ok ? (available ? "diverged" : "unavailable") : unboundedAt >= 0 ? "unbounded" : "ok";
+  }
+  bool bounded() const { return ok && unboundedAt < 0; }  // status ok
+  std::string statusText() const {  // report.md: a run that failed or blew up in bold
+    return bounded() || !available ? status() : std::string("**") + status() + "**";
+  }
 };
 
 struct RomStages {

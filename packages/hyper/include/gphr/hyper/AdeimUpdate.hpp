@@ -8,6 +8,7 @@
 //   S^T R_j = S^T U_j C_j - S^T F_j                                 residual at the sampling rows
 //   (a, b) = argmin_{rank r} || S^T R_j + a b^T C_j ||_F            eq:min_prob
 //   b_i: eigenvectors of  C (S^T R)^T (S^T R) C^T v = lambda C C^T v  for the r largest lambda  eq:gen_eval
+//        taken in range(C_j) (b_i = Q_j z_i when C_j is rank-deficient, after theo:minprob_eig_equivalence)
 //   a_i = -S^T R C^T b_i / ||C^T b_i||^2                            eq:ai_from_bi
 //   S^T U_{j+1} = S^T U_j + a b^T,  the other rows unchanged       eq:Uupdate, eq:Scheck
 #include <Teuchos_Comm.hpp>
@@ -46,7 +47,9 @@ struct AdeimUpdate {
   DenseMatrix C;                    // DEIM coefficients C_j (m x wbar)
   // U_{j+1} = U_j + S a b^T. With r < r_C the columns are eq:gen_eval's eigenvectors b_i and
   // eq:ai_from_bi's a_i; with r = r_C (every direction of C kept) only a b^T is defined by the
-  // update, and (a, b) = (-S^T R Q_1, T^+) is returned without the eigenvectors.
+  // update, and (a, b) = (-S^T R Q_1, T^+) is returned without the eigenvectors. Either way the
+  // columns of b lie in range(C_j) (b = T^+ W): of all minimisers of eq:min_prob, a b^T has the
+  // least Frobenius norm (a part of b in null(C_j^T) would leave the objective unchanged).
   DenseMatrix a;                    // m_s x r: the update of the rows S
   DenseMatrix b;                    // m x r
   std::vector<double> eigenvalues;  // all non-zero lambda of eq:gen_eval, descending (r-bar of them)
@@ -65,7 +68,8 @@ struct CoefficientFactor {
   DenseMatrix C;     // m x wbar
   DenseMatrix Q;     // wbar x r_C, orthonormal columns spanning C's (numerical) row space
   DenseMatrix T;     // r_C x m: C^T ~ Q T
-  DenseMatrix Tinv;  // m x r_C: Pi [R11^{-1}; 0], a right inverse of T (T Tinv = I)
+  DenseMatrix Tinv;  // m x r_C: T^+ = T^T (T T^T)^{-1}, the minimum-norm right inverse (T Tinv = I,
+                     // columns in range(T^T) = range(C)); Pi R11^{-1} when r_C = m
   bool cut = false;  // r_C < min(m, wbar): directions of C dropped
   int rank() const { return Q.numCols(); }
 };
