@@ -177,12 +177,13 @@ std::vector<std::vector<double>> trainingParameters(const Teuchos::ParameterList
   const auto& values = tr.get<Teuchos::Array<double>>("values");
   std::vector<std::vector<double>> out;
   if (!values.empty()) {
-    GPHR_REQUIRE(values.size() % p == 0, InputError, "key 'training.values' has ", values.size(),
+    GPHR_REQUIRE(values.size() % static_cast<long>(p) == 0, InputError, "key 'training.values' has ", values.size(),
                  " numbers; allowed: a multiple of ", p, " (one value per parameter of the box, in order)");
-    for (size_t i = 0; i < values.size(); i += p) out.emplace_back(values.begin() + i, values.begin() + i + p);
+    const size_t count = values.size();
+    for (size_t i = 0; i < count; i += p) out.emplace_back(values.begin() + i, values.begin() + i + p);
   } else {
     const auto& pts = tr.get<Teuchos::Array<int>>("points");
-    GPHR_REQUIRE(pts.size() == p, InputError, "key 'training.points' has ", pts.size(), " entries; allowed: ", p,
+    GPHR_REQUIRE(static_cast<size_t>(pts.size()) == p, InputError, "key 'training.points' has ", pts.size(), " entries; allowed: ", p,
                  " (one per parameter of the box)");
     std::vector<size_t> idx(p, 0);
     for (int c : pts) GPHR_REQUIRE(c >= 1 && c <= 10000, InputError, "key 'training.points' has entry ", c,

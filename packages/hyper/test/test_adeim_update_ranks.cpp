@@ -100,7 +100,9 @@ TEST(AdeimUpdateRanks, DistributedRowsGiveTheSerialUpdate) {
     const std::string what = "wbar " + std::to_string(c.wbar) + ", rank " + std::to_string(c.rank) + ", rankTol " +
                              std::to_string(c.rankTol);
     ASSERT_GT(ref.rank, 0) << what;
-    if (c.rankTol > 0.1) ASSERT_LT(ref.rank, ref.coefficientRank) << what << ": the tolerance should bind";
+    if (c.rankTol > 0.1) {
+      ASSERT_LT(ref.rank, ref.coefficientRank) << what << ": the tolerance should bind";
+    }
     EXPECT_EQ(up.rank, ref.rank) << what;
     EXPECT_EQ(up.coefficientRank, ref.coefficientRank) << what;
     EXPECT_NEAR(up.residualBefore, ref.residualBefore, 1e-12 * ref.residualBefore) << what;
