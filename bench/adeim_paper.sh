@@ -99,8 +99,9 @@ adeim() {  # adeim "KEY: VALUE, ..." -> the adeim section: the paper's settings,
 
 # The machine's speed at the update's dense algebra, before and after the case: this machine's
 # speed has swung by half from hour to hour (shared host), and the adaptive runs' times with it.
-# The same code printed factorCoefficients 2.35-3.18 ms and computeAdeimUpdate 3.54-3.62 ms in the
-# eighth session, when the paper run took 10.9-15.3 s; 3.4 and 6.0 ms in a slow hour of the ninth.
+# The same code printed factorCoefficients 2.35-3.18 ms and computeAdeimUpdate 3.54-3.62 ms in quiet
+# hours, when the paper run took 10.9-15.3 s; 3.4 and 6.0 ms in a slow hour (doc/benchmarks.md,
+# 'adeim_update_micro').
 calibrate() {
   if [ -x "$build/bench/adeim_update_micro" ]; then echo "calibration ($1): $("$build/bench/adeim_update_micro" 100)"; fi
 }

@@ -115,7 +115,7 @@ void writeAdeimUpdates(const FomResult& fom, const std::vector<ModelRun>& runs, 
 // GP-ADEIM runs whose window has fewer columns than m (2k w < m): C_j then has rank at most 2k w,
 // and at least m - 2k w directions of U are left out of each update. Harmless on small NLS runs
 // (the default job has one), but the SWE at 2k = 80 diverged with m = 150, w = 1 and reached the
-// ROM's error with w = 2 and every row sampled (design notes, seventh session), so the report
+// ROM's error with w = 2 and every row sampled (doc/design.md, 'GP-ADEIM', window), so the report
 // says so. Runs never evaluated (unavailable) are not listed.
 std::string adeimWindowCaution(const RunContext& ctx, const RomStages& st) {
   std::ostringstream md;

@@ -29,7 +29,7 @@ Teuchos::ParameterList integratorValidParameters() {
   setChoiceParameter(pl, "newtonSolver", "gphr", Teuchos::tuple<std::string>("gphr", "nox"),
                      "Newton driver of the full model's steps: gphr (GPHR's own loop) or nox (NOX::Thyra, configured "
                      "by the nox section: line searches, trust regions; same iterates with its defaults, ~15-25% more "
-                     "CPU time, see doc/design-notes.md); reduced models always use GPHR's loop (dense LU)");
+                     "CPU time, see doc/design.md, 'Newton'); reduced models always use GPHR's loop (dense LU)");
   pl.sublist("linearSolver") = FullModelBackend::validParameters();
   pl.sublist("nox") = noxValidParameters();
   return pl;

@@ -30,7 +30,7 @@ using Teuchos::rcp;
 
 // Row kernels run on the host execution space: Debian's Kokkos has only Serial, and a Kokkos
 // built with OpenMP threads these loops unchanged. (A CUDA build would need device views of the
-// stencil buffers; see doc/design-notes.md.)
+// stencil buffers; see doc/design.md, 'Row kernels and assembly'.)
 using ExecSpace = Kokkos::DefaultHostExecutionSpace;
 using HostView1 = Kokkos::View<Scalar*, Kokkos::HostSpace>;
 using IndexView = Kokkos::View<LO*, Kokkos::HostSpace>;

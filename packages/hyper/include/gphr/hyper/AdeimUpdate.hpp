@@ -26,8 +26,8 @@ struct AdeimUpdateOptions {
   // fig:error_vs_ctime_2k: C's singular values can spread over ten decades (NLS 2k = 160,
   // m = 100), and S^T R C^T weighs each residual direction by them, so a cut at 1e-8 or 1e-10
   // kept on average 28 or 54 of 100 directions and the directions left behind grew until the
-  // model failed (with coefficientTol 1e-12: E_L2 0.69 or 0.37 against 3.0e-3 at 1e-12; design
-  // notes, seventh session).
+  // model failed (with coefficientTol 1e-12: E_L2 0.69 or 0.37 against 3.0e-3 at 1e-12;
+  // doc/design.md, 'GP-ADEIM', rank cut-offs).
   int rank = 0;
   double rankTol = 1e-12;
   // Directions of C with |R_ll| <= coefficientTol |R_11| in the column-pivoted QR of C^T are

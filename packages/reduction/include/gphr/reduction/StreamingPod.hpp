@@ -16,8 +16,8 @@
 //               by ORMQR; its local work divides with the ranks, it takes any rank count, and
 //               where ranks hold fewer rows than columns it costs about what `replicated` costs.
 // PodRoute::Auto (the default) takes the stacked route for every step: at the paper's NLS size
-// (4096 rows, steps of up to 1120 columns) it was the fastest on 1, 2 and 4 ranks (doc/design-
-// notes.md, "POD routes"; Tpetra's TSQR node kernels were 5x slower there). Tsqr refuses a step
+// (4096 rows, steps of up to 1120 columns) it is the fastest on 1, 2 and 4 ranks (doc/design.md,
+// 'Symplectic bases and the streaming POD'; Tpetra's TSQR was 3-5x slower there). Tsqr refuses a step
 // that does not fit (InputError naming its columns and the rows per rank); Stacked and Replicated
 // take that route for every step.
 #include <string>
