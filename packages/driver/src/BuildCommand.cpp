@@ -43,8 +43,9 @@ void printBuild(const std::string& path, const ReducedModelData& data, double se
   std::printf("gphr build: %s (%.1f kB): %s; scene %s, offline %.1f s on %d rank(s)\n", path.c_str(), bytes / 1024.0,
               data.modelList().c_str(), data.sceneName.c_str(), seconds, ranks);
   for (const auto& b : data.bases)
-    std::printf("  k = %d: parameter interpolant %zu nodes, relative error between nodes: L_r %.1e, f_r %.1e, "
-                "c %.1e, reference rows %.1e\n", b.k, b.interpolant.numNodes(), b.interpolationError.at("L"),
+    std::printf("  k = %d: parameter interpolants of %zu and %zu nodes, relative error between nodes: L_r %.1e, "
+                "f_r %.1e, c %.1e, reference rows %.1e\n", b.k, b.interpolant.numNodes(), b.constant.numNodes(),
+                b.interpolationError.at("L"),
                 b.interpolationError.at("f"), b.interpolationError.at("c"), b.interpolationError.at("reference"));
 }
 

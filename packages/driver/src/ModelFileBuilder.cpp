@@ -48,22 +48,31 @@ OnlineParameterData exactAt(const Scene& scene, const RCP<const Comm>& comm, con
   return d;
 }
 
+// c = H(y0(mu)) of the shifted system (no projection needed).
+double exactConstant(const Scene& scene, const RCP<const Comm>& comm, const std::vector<double>& mu) {
+  return scene.instantiate(comm, mu, true).system->constant();
+}
+
 double relativeError(const std::vector<double>& a, const std::vector<double>& b, size_t i0, size_t i1) {
   double num = 0.0, den = 0.0;
   for (size_t i = i0; i < i1; ++i) num += (a[i] - b[i]) * (a[i] - b[i]), den += b[i] * b[i];
   return den > 0.0 ? std::sqrt(num / den) : std::sqrt(num);
 }
 
-// The interpolant's largest relative error per piece at points between the nodes.
+// The interpolants' largest relative error per piece at points between the nodes of every
+// parameter: a scene that declared a parameter's entries wrongly shows up here.
 void checkInterpolant(const Scene& scene, const RCP<const Comm>& comm, const MultiVector& A, StoredBasisData& b) {
-  const size_t r = 2 * static_cast<size_t>(b.k), nL = r * r, nf = nL + r, nc = nf + 1;
+  const size_t r = 2 * static_cast<size_t>(b.k), nL = r * r, nf = nL + r;
   for (const char* piece : {"L", "f", "c", "reference"}) b.interpolationError[piece] = 0.0;
-  for (const auto& mu : b.interpolant.checkPoints(8)) {
-    const auto exact = b.pack(exactAt(scene, comm, A, b.referenceGids, mu)), approx = b.interpolant.evaluate(mu);
+  for (const auto& mu : b.constant.checkPoints(8)) {
+    const auto data = exactAt(scene, comm, A, b.referenceGids, mu);
+    const auto exact = b.pack(data), approx = b.pack(b.at(mu));
     auto worst = [&](const char* piece, size_t i0, size_t i1) {
       b.interpolationError[piece] = std::max(b.interpolationError[piece], relativeError(approx, exact, i0, i1));
     };
-    worst("L", 0, nL), worst("f", nL, nf), worst("c", nf, nc), worst("reference", nc, exact.size());
+    worst("L", 0, nL), worst("f", nL, nf), worst("reference", nf, exact.size());
+    const double c = std::abs(b.at(mu).linear.c - data.linear.c) / std::max(std::abs(data.linear.c), 1e-300);
+    b.interpolationError["c"] = std::max(b.interpolationError["c"], c);
   }
 }
 
@@ -80,10 +89,23 @@ StoredBasisData basisData(const Scene& scene, const RCP<const Comm>& comm, const
   for (const auto& m : models) gids.insert(m.sample.stencil.gids.begin(), m.sample.stencil.gids.end());
   b.referenceGids.assign(gids.begin(), gids.end());
   const auto& box = scene.parameterBox();
-  const std::vector<int> counts(box.bounds.size(), opt.interpolationNodes);
-  b.interpolant = ParameterInterpolant(box.bounds, counts, 4 * k * k + 2 * k + 1 + b.referenceGids.size());
-  for (size_t j = 0; j < b.interpolant.numNodes(); ++j)
-    b.interpolant.setNodeValues(j, b.pack(exactAt(scene, comm, A, b.referenceGids, b.interpolant.node(j))));
+  std::vector<std::pair<double, double>> sub;
+  std::vector<double> centre;
+  for (size_t p = 0; p < box.bounds.size(); ++p) {
+    centre.push_back(0.5 * (box.bounds[p].first + box.bounds[p].second));
+    if (box.enters.at(p) & (EntersLinearPart | EntersInitialState)) b.interpolated.push_back(p), sub.push_back(box.bounds[p]);
+  }
+  b.interpolant = ParameterInterpolant(sub, std::vector<int>(sub.size(), opt.interpolationNodes),
+                                       4 * k * k + 2 * k + b.referenceGids.size());
+  for (size_t j = 0; j < b.interpolant.numNodes(); ++j) {
+    auto mu = centre;  // the other parameters do not change these pieces (the scene's declaration)
+    const auto node = b.interpolant.node(j);
+    for (size_t i = 0; i < b.interpolated.size(); ++i) mu[b.interpolated[i]] = node[i];
+    b.interpolant.setNodeValues(j, b.pack(exactAt(scene, comm, A, b.referenceGids, mu)));
+  }
+  b.constant = ParameterInterpolant(box.bounds, std::vector<int>(box.bounds.size(), opt.interpolationNodes), 1);
+  for (size_t j = 0; j < b.constant.numNodes(); ++j)
+    b.constant.setNodeValues(j, {exactConstant(scene, comm, b.constant.node(j))});
   checkInterpolant(scene, comm, A, b);
   return b;
 }

@@ -67,6 +67,9 @@ TEST(ReducedModelFile, RoundTripReproducesTheInProcessModel) {
   writeFile(hc, *scene, 4, {6, 8}, "avf", false, path, kDt * kSteps, kDt);
   const ReducedModel rm(path, scene);
   EXPECT_EQ(rm.data().models.size(), 2u);
+  // eps enters only the row kernel: L_r, f_r and y0 are stored once, c over eps's nodes.
+  EXPECT_EQ(rm.data().basis(4).interpolant.numNodes(), 1u);
+  EXPECT_EQ(rm.data().basis(4).constant.numNodes(), 7u);
   // At the test parameter (eps = 1.0, between interpolation nodes) and at another one: the NLS
   // parameter enters only the row kernel and c (affine in eps), which the interpolant reproduces
   // to round-off, so both trajectories agree with the in-process models to round-off. 1e-12 is
@@ -119,6 +122,7 @@ TEST(ReducedModelFile, SweExactRouteReproducesAndInterpolatedRouteIsClose) {
   writeFile(hc, *scene, 4, {12}, "imr", true, path, 0.5, 0.01);
   const ReducedModel rm(path, scene);
   const auto& err = rm.data().basis(4).interpolationError;
+  EXPECT_EQ(rm.data().basis(4).interpolant.numNodes(), 49u);  // beta and gamma both change L_r, f_r or y0
   std::printf("SWE interpolant (7 x 7 nodes), relative error between nodes: L %.1e f %.1e c %.1e reference %.1e\n",
               err.at("L"), err.at("f"), err.at("c"), err.at("reference"));
   const std::vector<double> mu{1.537, 0.912};  // no node: beta's Gaussian width enters the reference rows

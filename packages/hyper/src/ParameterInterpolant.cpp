@@ -21,7 +21,7 @@ ParameterInterpolant::ParameterInterpolant(std::vector<std::pair<double, double>
 }
 
 size_t ParameterInterpolant::numNodes() const {
-  size_t n = box_.empty() ? 0 : 1;
+  size_t n = 1;  // no parameter: one node, the constant
   for (int c : counts_) n *= static_cast<size_t>(c);
   return n;
 }

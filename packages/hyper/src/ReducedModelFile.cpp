@@ -50,6 +50,21 @@ std::vector<double> readMatrix(const Hdf5File& f, const std::string& name) {
   return rows == 0 ? std::vector<double>() : f.readArray(name);
 }
 
+// A list attribute that may be empty (an HDF5 attribute cannot): its length first.
+template <class T>
+void setList(Hdf5File& f, const std::string& object, const std::string& key, const std::vector<T>& v) {
+  std::vector<double> out{double(v.size())};
+  out.insert(out.end(), v.begin(), v.end());
+  f.setAttribute(object, key, out);
+}
+template <class T>
+std::vector<T> getList(const Hdf5File& f, const std::string& object, const std::string& key) {
+  const auto v = f.doubleAttribute(object, key);
+  GPHR_REQUIRE(!v.empty() && v[0] == double(v.size() - 1), InputError, "attribute '", key, "' of '", object,
+               "' is damaged");
+  return fromDoubles<T>(std::vector<double>(v.begin() + 1, v.end()));
+}
+
 void writeProvenance(Hdf5File& f, const ReducedModelData& d) {
   f.setAttribute("/", "format", std::string(kFormat));
   f.setAttribute("/", "schema_version", std::vector<double>{double(d.schemaVersion)});
@@ -81,11 +96,16 @@ void writeBasisData(Hdf5File& f, const StoredBasisData& b, const RCP<const Multi
   writeMatrix(f, g + "/reference_gids", toDoubles(b.referenceGids), b.referenceGids.size(), 1);
   const auto& I = b.interpolant;
   f.writeArray(g + "/interpolation_values", I.values(), I.numNodes(), I.valuesPerNode());
-  f.setAttribute(g + "/interpolation_values", "nodes_per_parameter",
-                 std::vector<double>(I.nodesPerParameter().begin(), I.nodesPerParameter().end()));
+  setList(f, g + "/interpolation_values", "nodes_per_parameter", I.nodesPerParameter());
+  setList(f, g + "/interpolation_values", "interpolated_parameters", b.interpolated);
   f.setAttribute(g + "/interpolation_values", "layout",
-                 std::string("per node (Chebyshev-Lobatto tensor grid, last parameter fastest): L_r (2k x 2k, "
-                             "column-major), f_r (2k), c, y0 at reference_gids"));
+                 std::string("per node (Chebyshev-Lobatto tensor grid over interpolated_parameters, last one "
+                             "fastest; one node if none): L_r (2k x 2k, column-major), f_r (2k), y0 at reference_gids"));
+  const auto& C = b.constant;
+  f.writeArray(g + "/constant_values", C.values(), C.numNodes(), 1);
+  setList(f, g + "/constant_values", "nodes_per_parameter", C.nodesPerParameter());
+  f.setAttribute(g + "/constant_values", "layout",
+                 std::string("c = H(y0) per node of the tensor grid over every parameter (last one fastest)"));
   for (const auto& [piece, err] : b.interpolationError)
     f.setAttribute(g + "/interpolation_values", "error_" + piece, std::vector<double>{err});
   writeMatrix(f, g + "/probe_gids", toDoubles(b.probeGids), b.probeGids.size(), 1);
@@ -110,12 +130,17 @@ void writeModel(Hdf5File& f, const StoredHyperModel& m) {
 StoredBasisData readBasisData(const Hdf5File& f, const ReducedModelData& d, int k) {
   StoredBasisData b;
   b.k = k;
-  const std::string g = basisGroup(k), iv = g + "/interpolation_values";
+  const std::string g = basisGroup(k), iv = g + "/interpolation_values", cv = g + "/constant_values";
   b.referenceGids = fromDoubles<GO>(readMatrix(f, g + "/reference_gids"));
-  const auto counts = fromDoubles<int>(f.doubleAttribute(iv, "nodes_per_parameter"));
+  b.interpolated = getList<size_t>(f, iv, "interpolated_parameters");
+  std::vector<std::pair<double, double>> box;
+  for (size_t p : b.interpolated) box.push_back(d.box.at(p));
   const size_t r = 2 * static_cast<size_t>(k);
-  b.interpolant = ParameterInterpolant(d.box, counts, r * r + r + 1 + b.referenceGids.size());
+  b.interpolant = ParameterInterpolant(box, getList<int>(f, iv, "nodes_per_parameter"),
+                                       r * r + r + b.referenceGids.size());
   b.interpolant.setValues(f.readArray(iv));
+  b.constant = ParameterInterpolant(d.box, getList<int>(f, cv, "nodes_per_parameter"), 1);
+  b.constant.setValues(f.readArray(cv));
   for (const char* piece : {"L", "f", "c", "reference"})
     if (f.hasAttribute(iv, std::string("error_") + piece))
       b.interpolationError[piece] = f.doubleAttribute(iv, std::string("error_") + piece).at(0);
@@ -149,8 +174,14 @@ RCP<const Comm> selfComm() { return rcp(new Teuchos::SerialComm<int>()); }
 
 }  // namespace
 
+std::vector<double> StoredBasisData::restrict(const std::vector<double>& mu) const {
+  std::vector<double> sub;
+  for (size_t p : interpolated) sub.push_back(mu.at(p));
+  return sub;
+}
+
 OnlineParameterData StoredBasisData::at(const std::vector<double>& mu) const {
-  const auto v = interpolant.evaluate(mu);
+  const auto v = interpolant.evaluate(restrict(mu));
   const int r = 2 * k;
   OnlineParameterData out;
   out.linear.L.shape(r, r);
@@ -161,7 +192,7 @@ OnlineParameterData StoredBasisData::at(const std::vector<double>& mu) const {
   for (int row = 0; row < r; ++row)  // symmetric to the last bit, as reduceLinearPart makes it
     for (int c = row + 1; c < r; ++c) out.linear.L(row, c) = out.linear.L(c, row) = 0.5 * (out.linear.L(row, c) + out.linear.L(c, row));
   for (int row = 0; row < r; ++row) out.linear.f(row) = v[i++];
-  out.linear.c = v[i++];
+  out.linear.c = constant.evaluate(mu).at(0);
   out.reference.assign(v.begin() + i, v.end());
   return out;
 }
@@ -175,7 +206,6 @@ std::vector<double> StoredBasisData::pack(const OnlineParameterData& d) const {
   for (int c = 0; c < r; ++c)
     for (int row = 0; row < r; ++row) v.push_back(d.linear.L(row, c));
   for (int row = 0; row < r; ++row) v.push_back(d.linear.f(row));
-  v.push_back(d.linear.c);
   v.insert(v.end(), d.reference.begin(), d.reference.end());
   return v;
 }

@@ -17,7 +17,7 @@ class ParameterInterpolant {
  public:
   ParameterInterpolant() = default;
   // nodesPerParameter[p] >= 2 Chebyshev-Lobatto nodes on [lower_p, upper_p]; valuesPerNode values
-  // at each node (set with setNodeValues).
+  // at each node (set with setNodeValues). With no parameter it holds one node: a constant.
   ParameterInterpolant(std::vector<std::pair<double, double>> box, std::vector<int> nodesPerParameter,
                        size_t valuesPerNode);
 

@@ -36,15 +36,21 @@ struct OnlineParameterData {
 struct StoredBasisData {
   int k = 0;
   std::vector<GO> referenceGids;   // union of the models' stencil entries and the probes
-  // Per interpolation node: [L_r (2k x 2k, column-major) | f_r (2k) | c | y0 at referenceGids].
+  // L_r, f_r and y0 depend only on the parameters that enter the linear part or the initial state
+  // (ParameterEntry): the interpolant spans those (`interpolated`, indices into mu; none: one node),
+  // per node [L_r (2k x 2k, column-major) | f_r (2k) | y0 at referenceGids]. c = H(y0) depends on
+  // every parameter (through N(y0) on the row kernel's): its own interpolant over the whole box.
+  std::vector<size_t> interpolated;
   ParameterInterpolant interpolant;
+  ParameterInterpolant constant;
   std::map<std::string, double> interpolationError;  // relative error at the check points, per piece
   std::vector<GO> probeGids;       // state entries whose lifted values a query can report
   std::vector<double> probeRows;   // the rows of A at probeGids (probes x 2k, row-major)
   bool hasBasis = false;           // /k<k>/basis holds A (2k rows of 2n)
-  OnlineParameterData at(const std::vector<double>& mu) const;  // the interpolant, unpacked
-  // Packs exact data at one node for the interpolant.
+  OnlineParameterData at(const std::vector<double>& mu) const;  // the interpolants, unpacked
+  // Exact data at one point as the interpolant's values ([L_r | f_r | y0], without c).
   std::vector<double> pack(const OnlineParameterData& data) const;
+  std::vector<double> restrict(const std::vector<double>& mu) const;  // mu at `interpolated`
 };
 
 struct ReducedModelData {
