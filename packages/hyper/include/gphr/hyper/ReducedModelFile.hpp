@@ -16,7 +16,7 @@
 
 namespace gphr {
 
-constexpr int kReducedModelSchema = 1;
+constexpr int kReducedModelSchema = 2;
 
 // One hyper-reduced model: its sample mesh without the parameter-dependent reference rows.
 struct StoredHyperModel {
