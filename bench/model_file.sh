@@ -59,6 +59,7 @@ queries:
   defaults: {beta: $1, gamma: $2, T: 10.0, dt: 0.005, k: 40, m: 150, saveEvery: 100}
   points: {a: {}, b: {}, c: {}, d: {}, e: {}}
 YAML
+    rm -rf $out/q  # a fresh run: finished queries of an earlier one would be reused, with their times
     OPENBLAS_NUM_THREADS=1 "$gphr" query $out/swe.h5 $out/q.yaml --output $out/q > $out/query.log 2>&1
     inrun=$(json $out/run/summary.json "[r['t_online_s'] for r in d['runs'] if r['method'] == 'gp-deim'][0]")
     query=$(min $(csvcol $out/q/queries.csv online_s)); setup=$(min $(csvcol $out/q/queries.csv setup_s))

@@ -1,33 +1,40 @@
 #!/usr/bin/env bash
-# Every ```yaml block of the README is a config `gphr run` accepts and runs: each block, with a
-# small scene, time span and training set appended (NLS n = 256, 200 steps, three training parameters; the blocks set the
-# methods and their sections, not these), must exit 0 with a summary.json in which every method
-# of the block has at least one run with status ok. A block the parser rejects (a flow mapping
-# over several lines, say), a key the validators refuse, or a method that cannot run at the
-# block's settings fails here.
+# What the README shows exists and runs: every file it names (examples, docs, bench scripts) is in
+# the tree; every `gphr run CONFIG` of its code blocks names a config that cli_examples runs and
+# checks; every `gphr build / query / validate` command names the example files cli_model_workflow
+# runs; the two set-up commands are .ci/run's and the main job's. A renamed or deleted file, or a
+# README command that no test runs, fails here.
 # usage: readme_configs.sh GPHR README
 set -eu
 gphr=$1; readme=$2
-work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
-awk -v dir="$work" '/^```yaml/{f=1; n++; next} /^```/{f=0} f{print > (dir "/block" n ".yaml")}' "$readme"
-ls "$work"/block*.yaml > /dev/null 2>&1 || { echo "no yaml blocks in $readme"; exit 1; }
-for b in "$work"/block*.yaml; do
-  name=$(basename "$b" .yaml)
-  grep -q '^gphr:' "$b" || { echo "$name: no top-level 'gphr:'"; cat "$b"; exit 1; }
-  for line in "scene: {name: nls1d, n: 256}" "time: {T: 2.0, dt: 0.01}" "training: {points: [3]}"; do
-    grep -q "^  ${line%%:*}:" "$b" || echo "  $line" >> "$b"
-  done
-  "$gphr" run "$b" --output "$work/$name" > "$work/$name.out" 2> "$work/$name.err" || {
-    echo "$name: gphr run failed"; cat "$b"; cat "$work/$name.err"; exit 1; }
-  [ -s "$work/$name/summary.json" ] || { echo "$name: no summary.json"; exit 1; }
-  python3 - "$b" "$work/$name/summary.json" <<'PY' || exit 1
-import json, re, sys
-methods = re.search(r"methods:\s*\[([^\]]*)\]", open(sys.argv[1]).read()).group(1).replace(" ", "").split(",")
-runs = json.load(open(sys.argv[2]))["runs"]
-for m in methods:
-    st = [r.get("status") for r in runs if r.get("method") == m]
-    if "ok" not in st:
-        sys.exit("%s: no run of %s ended ok (%s)" % (sys.argv[1], m, st))
-print("%s: every method ran: %s" % (sys.argv[1].rsplit("/", 1)[-1], ", ".join(methods)))
-PY
+root=$(cd "$(dirname "$readme")" && pwd)
+fail() { echo "FAIL: $*"; exit 1; }
+[ -x "$gphr" ] || fail "no gphr binary at $gphr"
+# 1. Every path the README names exists.
+paths=$(grep -oE '(^|[ `(\[])(examples|doc|bench|scripts|packages)/[A-Za-z0-9_./{},*-]+' "$readme" |
+        sed -E 's/^[ `(\[]//; s/[.,)]*$//' | sort -u)
+[ -n "$paths" ] || fail "the README names no file"
+for p in $paths; do
+  case "$p" in *'{'*|*'*'*) continue ;; esac  # brace or glob patterns: checked below as a layout line
+  [ -e "$root/$p" ] || fail "the README names $p, which does not exist"
 done
+for pkg in core models timeint reduction hyper io driver; do [ -d "$root/packages/$pkg" ] || fail "no packages/$pkg"; done
+# 2. gphr run CONFIG: a config that cli_examples runs (examples/*.yaml, each with expectations).
+for cfg in $(grep -oE 'gphr run [^ ]+\.yaml' "$readme" | awk '{print $3}' | sort -u); do
+  [ "$(dirname "$cfg")" = examples ] || fail "README runs $cfg, which is not in examples/"
+  grep -q "^    $(basename "$cfg" .yaml))" "$root/test/cli/examples.sh" || fail "cli_examples does not check $cfg"
+done
+# 3. The build / query / validate example files are the ones cli_model_workflow runs.
+for f in nls_build.yaml nls_queries.yaml nls_validate.yaml; do
+  grep -q "examples/model/$f" "$readme" || fail "the README does not show examples/model/$f"
+  grep -q "$f" "$root/test/cli/model_workflow.sh" || fail "cli_model_workflow does not run $f"
+done
+# 4. The two set-up commands.
+ci=$(grep -E '^bash scripts/setup.sh' "$root/.ci/run")
+grep -qxF "$ci" "$readme" || fail "the README's test command is not .ci/run's ($ci)"
+grep -qx 'bash scripts/setup.sh && build/packages/driver/gphr --output gphr-output' "$readme" || fail "main-job command missing"
+# 5. Every bench script the README runs exists and says how to use it.
+for s in $(grep -oE 'bash bench/[a-z_]+\.sh' "$readme" | awk '{print $2}' | sort -u); do
+  grep -q "^# usage:" "$root/$s" || fail "$s has no usage line"
+done
+echo "ok: $(echo "$paths" | wc -w) paths, the README's commands are run by cli_examples, cli_model_workflow and .ci/run"
