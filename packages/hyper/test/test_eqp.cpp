@@ -159,6 +159,98 @@ TEST(Eqp, DerivativesMatchFiniteDifferencesAndAvfConservesHhr) {
   }
 }
 
+TEST(Eqp, DegenerateInputsGiveAResultOrAClearError) {
+  auto hc = test::nlsCase(32, 3, test::comm());
+  // Zero snapshots: every training run with no stored state.
+  std::vector<RCP<const MultiVector>> none;
+  for (const auto& s : hc.snapshots) none.push_back(rcp(new MultiVector(s->getMap(), 0)));
+  try {
+    buildQuadratureTraining(hc.training, none, *hc.basis.A, QuadratureOptions());
+    FAIL() << "zero snapshots were accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no training states"), std::string::npos) << e.what();
+  }
+  const auto t = trainingOf(hc);
+  const auto linear = reduceLinearPart(*hc.test.system, *hc.basis.A);
+  // Budget 1 and a budget above d: a model with finite weights and a finite trajectory.
+  for (int budget : {1, 32 + 10}) {
+    const QuadratureFit fit = nnlsQuadrature(t, budget, 0.0);
+    EXPECT_GE(fit.terms.size(), 1u);
+    EXPECT_LE(fit.terms.size(), std::min<size_t>(budget, 32));
+    for (double w : fit.weights) EXPECT_TRUE(std::isfinite(w) && w > 0.0) << "budget " << budget;
+    auto hr = buildQuadratureModel(*hc.test.system, *hc.basis.A, fit, linear);
+    for (const auto& z : test::trajectory(*hr, "avf", 0.05, 50))
+      for (int i = 0; i < z.length(); ++i) ASSERT_TRUE(std::isfinite(z(i))) << "budget " << budget;
+  }
+  // Budget 0 and a negative tolerance: errors naming the value.
+  EXPECT_THROW(nnlsQuadrature(t, 0, 0.0), InputError);
+  EXPECT_THROW(nnlsQuadrature(t, 4, -1.0), InputError);
+  // A zero target (v = 0 on a synthetic system): nothing to fit, said so.
+  try {
+    nnlsQuadrature(synthetic(10, 20, [](GO) { return 0.0; }), 4, 0.0);
+    FAIL() << "a zero target was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("is zero"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Eqp, DuplicatedSnapshotsGiveTheSameFit) {
+  auto hc = test::nlsCase(32, 3, test::comm());
+  const auto once = nnlsQuadrature(trainingOf(hc), 8, 0.0);
+  auto twice = hc;
+  twice.training.insert(twice.training.end(), hc.training.begin(), hc.training.end());
+  twice.snapshots.insert(twice.snapshots.end(), hc.snapshots.begin(), hc.snapshots.end());
+  const auto two = nnlsQuadrature(trainingOf(twice), 8, 0.0);
+  // Every row twice scales C^T C and C^T b by 2: the same correlations, the same solution; only
+  // the order of the sums differs (1e-12 relative: round-off of R ~ 1e3-term sums).
+  EXPECT_EQ(once.terms, two.terms);
+  ASSERT_EQ(once.weights.size(), two.weights.size());
+  for (size_t j = 0; j < once.weights.size(); ++j) EXPECT_NEAR(two.weights[j], once.weights[j], 1e-12 * once.weights[j]);
+  EXPECT_NEAR(two.residual, once.residual, 1e-12);
+}
+
+// The refit's weights minimise the same residual GP-DEIM's weights have on the same terms, so its
+// residual is never larger; exactRowsResidual (streamed, no C held) agrees with the fit's own
+// residual on the same exact rows; the energy rows keep xi = v an exact fit.
+TEST(Eqp, RefitNeverFitsWorseThanDeimWeightsAndResidualsAgree) {
+  auto hc = test::nlsCase(32, 3, test::comm());
+  QuadratureOptions o;
+  o.energyWeight = 1.0;
+  const auto t = trainingOf(hc, o);
+  const int m = 8;
+  QuadratureFit deim;
+  deim.terms = selectDeimIndices(*hc.deim.U, m);
+  deim.weights = computeDeimWeights(*hc.deim.U, deim.terms, *hc.test.system->nonlinearTerm().weights()).weights;
+  const QuadratureFit refit = refitQuadrature(t, deim.terms);
+  const double deimRes = exactRowsResidual(hc.training, hc.snapshots, *hc.basis.A, o, deim);
+  std::printf("[eqp] NLS 2k = 6, m = %d: residual DEIM weights %.3e, refit %.3e\n", m, deimRes, refit.residual);
+  EXPECT_LE(refit.residual, deimRes * (1.0 + 1e-12));
+  // Both are the same sum of squares in another order: 1e-10 relative.
+  EXPECT_NEAR(exactRowsResidual(hc.training, hc.snapshots, *hc.basis.A, o, refit), refit.residual, 1e-10 * refit.residual);
+  EXPECT_LE(nnlsQuadrature(t, 32, 0.0).residual, 1e-10);  // as in EveryTermAndZeroTolerance...
+}
+
+// A CountSketch of the rows: the fit on it is a fit (weights > 0, finite) and its exact-rows
+// residual is reported beside the exact rows' fit (printed: the cost in accuracy).
+TEST(Eqp, SketchedRowsGiveAFitAndItsExactResidual) {
+  auto hc = test::nlsCase(48, 4, test::comm());
+  const QuadratureFit exact = nnlsQuadrature(trainingOf(hc), 12, 0.0);
+  for (int rows : {200, 800}) {
+    QuadratureOptions o;
+    o.sketchRows = rows;
+    const auto t = trainingOf(hc, o);
+    EXPECT_TRUE(t.sketched);
+    const QuadratureFit fit = nnlsQuadrature(t, 12, 0.0);
+    for (double w : fit.weights) EXPECT_TRUE(std::isfinite(w) && w > 0.0);
+    const double onExact = exactRowsResidual(hc.training, hc.snapshots, *hc.basis.A, o, fit);
+    std::printf("[eqp] NLS 2k = 8, m = 12, %d exact rows: residual %.3e; sketch %d rows: %.3e (on the exact rows %.3e)\n",
+                2 * 101 * 8, exact.residual, rows, fit.residual, onExact);
+    // No bound either way: the greedy selection on other rows picks other terms (at 800 rows it
+    // found a fit 4x better on the exact rows than the exact rows' own greedy fit).
+    EXPECT_TRUE(std::isfinite(onExact) && onExact >= 0.0);
+  }
+}
+
 double largestEigenvalue(const DenseMatrix& H) {
   DenseMatrix minus(H);
   minus.scale(-1.0);
