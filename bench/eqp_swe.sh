@@ -23,7 +23,7 @@ gphr:
   integrator: {scheme: imr, jacobianLag: true}
   training: {points: [3, 3], snapshotEvery: 10}
   reduction: {k: 20}
-  pipeline: {rom: true, methods: [rom, gp-deim, gp-eqp, gp-eqp-refit], m: [$(echo $ms | tr ' ' ',')]}
+  pipeline: {rom: true, methods: [rom, gp-deim, gp-eqp, gp-eqp-refit], m: [$(echo $ms | tr ' ' ',')], onlineRepeats: 5}
   hyper: {snapshotEvery: 2}
   eqp: {snapshotEvery: 1${EQP:+, $EQP}}
   output: {saveEvery: 10, plots: true, progressSeconds: 0.0}
