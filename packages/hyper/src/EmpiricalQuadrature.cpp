@@ -250,10 +250,13 @@ QuadratureFit nnlsQuadrature(const QuadratureTraining& t, int budget, double tol
   fit.stop = "budget";
   std::vector<double> r = t.target;
   const double bn = norm2(t.target);
+  // Below ~10 eps ||b|| the residual is the least-squares solve's round-off: a column correlating
+  // with it would enter for noise, so that is where a zero tolerance stops.
+  const double stopAt = std::max(tolerance, 10.0 * std::numeric_limits<double>::epsilon());
   // Each selection adds one term; the inner loop may drop some again. 4 budget + 16 selections
   // bound the run (Lawson-Hanson terminates in exact arithmetic; round-off could cycle).
   for (int it = 0; static_cast<int>(s.terms.size()) < budget && it < 4 * budget + 16; ++it) {
-    if (norm2(r) <= tolerance * bn) {
+    if (norm2(r) <= stopAt * bn) {
       fit.stop = "tolerance";
       break;
     }

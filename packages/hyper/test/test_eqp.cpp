@@ -126,10 +126,38 @@ TEST(Eqp, DependentColumnsNeverEnterTogether) {
   for (double w : fit.weights) EXPECT_TRUE(std::isfinite(w) && w > 0.0);
 }
 
+// A term that barely moves (column 1e-9 of the others) is not a candidate at the default floor,
+// so it cannot take the unbounded weight that fitting its own direction would need.
+TEST(Eqp, NegligibleColumnsAreNotCandidates) {
+  auto t = synthetic(12, 40, [](GO e) { return e == 7 ? 1.0 : 0.0; });
+  const LO l = t.termMap->getLocalElement(7);
+  if (l >= 0) {
+    for (int i = 0; i < t.numRows; ++i) t.columns[static_cast<size_t>(l) * t.numRows + i] *= 1e-9;
+    t.norms[l] *= 1e-9;
+  }
+  t.target.assign(t.numRows, 0.0);
+  const std::vector<double> c7 = [&] {  // b = c_7 (tiny), replicated
+    std::vector<double> mine(t.numRows, 0.0), all(t.numRows);
+    if (l >= 0) std::copy_n(t.columns.data() + static_cast<size_t>(l) * t.numRows, t.numRows, mine.data());
+    Teuchos::reduceAll(*test::comm(), Teuchos::REDUCE_SUM, t.numRows, mine.data(), all.data());
+    return all;
+  }();
+  t.target = c7;
+  t.columnFloor = QuadratureOptions().columnFloor;
+  const QuadratureFit fit = nnlsQuadrature(t, 12, 0.0);
+  EXPECT_EQ(std::count(fit.terms.begin(), fit.terms.end(), 7), 0) << "the negligible column was selected";
+  for (double w : fit.weights) EXPECT_TRUE(std::isfinite(w) && w >= 0.0);
+  t.columnFloor = 0.0;  // admitted, it fits b exactly with weight 1 and nothing else is needed
+  const QuadratureFit all = nnlsQuadrature(t, 12, 0.0);
+  EXPECT_EQ(all.terms, std::vector<GO>{7});
+}
+
 TEST(Eqp, EveryTermAndZeroToleranceReproducesTheReducedModel) {
   const GO n = 32;
   auto hc = test::nlsCase(n, 4, test::comm());
-  const auto t = trainingOf(hc);
+  QuadratureOptions every;
+  every.columnFloor = 0.0;  // every term a candidate (the default floor drops 3 of 32 here)
+  const auto t = trainingOf(hc, every);
   const QuadratureFit fit = nnlsQuadrature(t, static_cast<int>(n), 0.0);
   // C has full column rank d (the soliton moves every row), so the NNLS solution is xi = v = 1 with
   // residual at round-off: eps cond(C) ~ 1e-14 measured; 1e-10 leaves room for cond up to 1e6.
@@ -216,6 +244,7 @@ TEST(Eqp, RefitNeverFitsWorseThanDeimWeightsAndResidualsAgree) {
   auto hc = test::nlsCase(32, 3, test::comm());
   QuadratureOptions o;
   o.energyWeight = 1.0;
+  o.columnFloor = 0.0;  // every term a candidate, for the exact fit at the end
   const auto t = trainingOf(hc, o);
   const int m = 8;
   QuadratureFit deim;

@@ -23,7 +23,7 @@ struct QuadratureOptions {
   int snapshotEvery = 1;      // use every N-th stored training state
   double energyWeight = 0.0;  // > 0: one more row per state, energyWeight (G_e(y_s) - G_e(y0)); 0: none
   int sketchRows = 0;         // > 0: CountSketch of the rows to this many; 0: the exact rows
-  double columnFloor = 1e-6;  // columns with norm <= columnFloor * the largest are not candidates
+  double columnFloor = 1e-3;  // columns with norm <= columnFloor * the largest are not candidates
   // The exact rows are held as local terms x rows doubles per rank; above this the training stops
   // with an error that names eqp.sketchRows and eqp.snapshotEvery.
   double maxNumbersPerRank = 2.5e8;  // 2 GB
