@@ -90,9 +90,7 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
                      "gradient rows only");
   setDoubleParameter(eq, "columnFloor", 1e-3, 0.0, 0.999999,
                      "terms whose column norm is at most this times the largest are not candidates (a term that "
-                     "never moves in training would get an unbounded weight; on the NLS at 2k = 160, m = 100, 1e-6 "
-                     "admitted far-field terms with weights up to 1.1e3 and 1e-3 kept them below 61, E_L2 2.2 -> 1.5x "
-                     "the ROM's)");
+                     "never moves in training would get an unbounded weight; doc/eqp.md measures 1e-6 against 1e-3)");
   setIntParameter(eq, "seed", 20261124, 0, 2147483647, "sketchRows > 0: the sketch's hash seed");
   auto& out = pl.sublist("output");
   setIntParameter(out, "saveEvery", 10, 1, 1000000000, "keep every N-th state of the trajectory in artifacts.h5");

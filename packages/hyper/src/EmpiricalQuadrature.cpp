@@ -276,6 +276,9 @@ QuadratureFit nnlsQuadrature(const QuadratureTraining& t, int budget, double tol
     if (std::find(s.terms.begin(), s.terms.end(), gid) == s.terms.end()) markExcluded(t, excluded, gid);
     r = residualOf(s.CP, R, s.xi, t.target);
   }
+  GPHR_REQUIRE(!s.terms.empty(), InputError, "empirical quadrature: no candidate term correlates positively with the "
+               "target (", fit.iterations, " selections; candidates are columns above eqp.columnFloor = ", t.columnFloor,
+               " x the largest)");
   fit.terms = s.terms, fit.weights = s.xi;
   fit.residual = relativeResidual(s, t);
   if (fit.stop == "budget" && static_cast<int>(fit.terms.size()) < budget) fit.stop = "iterations";

@@ -198,6 +198,15 @@ TEST(Eqp, DegenerateInputsGiveAResultOrAClearError) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("no training states"), std::string::npos) << e.what();
   }
+  // Rows beyond the memory guard: an error naming the keys that reduce them.
+  QuadratureOptions small;
+  small.maxNumbersPerRank = 100.0;
+  try {
+    trainingOf(hc, small);
+    FAIL() << "a training system above the memory guard was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("eqp.sketchRows"), std::string::npos) << e.what();
+  }
   const auto t = trainingOf(hc);
   const auto linear = reduceLinearPart(*hc.test.system, *hc.basis.A);
   // Budget 1 and a budget above d: a model with finite weights and a finite trajectory.
