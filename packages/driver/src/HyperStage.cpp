@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/Config.hpp"
@@ -201,27 +202,39 @@ class QuadratureFits {
       : ctx_(ctx), st_(st), A_(A), k_(k), test_(test), opt_(quadratureOptionsFrom(ctx.config.sublist("eqp"))) {}
 
   CachedFit get(const std::string& method, int m) {
-    const std::string name = "/eqp/" + method + "_k" + std::to_string(k_) + "_m" + std::to_string(m);
     const bool refit = method == "gp-eqp-refit";
-    const std::string key = basisKey(ctx_.config) + toYaml(ctx_.config.sublist("eqp")) +
-                            (refit ? toYaml(ctx_.config.sublist("hyper")) : std::string()) +
-                            "eqp revision 1, k = " + std::to_string(k_) + ", m = " + std::to_string(m);
     CachedFit out;
-    if (read(name, key, out)) return out;
-    Teuchos::Time clock("eqp fit");
-    clock.start();
-    const double tTraining = trainingSeconds_;
-    out.fit = refit ? refitQuadrature(training(), deimTerms(m))
-                    : nnlsQuadrature(training(), m, ctx_.config.sublist("eqp").get<double>("tolerance"));
+    if (read(name(method, m), key(method, m), out)) return out;
+    if (refit) {
+      computed_[m] = refitQuadrature(training(), deimTerms(m));
+    } else if (!computed_.count(m)) {
+      // One greedy path for every budget of pipeline.m not in the cache (each budget's fit is
+      // the path up to it, and its time the path's time to it).
+      std::vector<int> budgets;
+      for (int b : mList(ctx_.config))
+        if (CachedFit c; !read(name(method, b), key(method, b), c)) budgets.push_back(b);
+      const auto path = nnlsQuadraturePath(training(), budgets, ctx_.config.sublist("eqp").get<double>("tolerance"));
+      for (size_t i = 0; i < budgets.size(); ++i) computed_[budgets[i]] = path[i];
+    }
+    out.fit = computed_.at(m);
     out.exactResidual = opt_.sketchRows > 0 ? exactRowsResidual(systems(), st_.training.snapshots, A_, opt_, out.fit)
                                             : out.fit.residual;
-    out.fitSeconds = clock.stop() - (trainingSeconds_ - tTraining);
+    out.fitSeconds = out.fit.seconds;
     out.trainingSeconds = trainingSeconds_;
-    store(name, key, out);
+    store(name(method, m), key(method, m), out);
+    computed_.erase(m);
     return out;
   }
 
  private:
+  std::string name(const std::string& method, int m) const {
+    return "/eqp/" + method + "_k" + std::to_string(k_) + "_m" + std::to_string(m);
+  }
+  std::string key(const std::string& method, int m) const {
+    return basisKey(ctx_.config) + toYaml(ctx_.config.sublist("eqp")) +
+           (method == "gp-eqp-refit" ? toYaml(ctx_.config.sublist("hyper")) : std::string()) +
+           "eqp revision 1, k = " + std::to_string(k_) + ", m = " + std::to_string(m);
+  }
   // Separate opens: the DEIM basis of the refit opens the same file in between.
   bool read(const std::string& name, const std::string& key, CachedFit& out) const {
     Hdf5File f(ctx_.artifactsPath(), ctx_.comm, Hdf5File::Mode::ReadWrite);
@@ -288,6 +301,7 @@ class QuadratureFits {
   std::vector<RCP<const HamiltonianSystem>> systems_;
   QuadratureTraining training_;
   double trainingSeconds_ = 0.0;
+  std::map<int, QuadratureFit> computed_;  // fits of the current path not yet returned
 };
 
 // gp-eqp (NNLS terms and weights, pipeline.m the term budget) or gp-eqp-refit (GP-DEIM's terms,

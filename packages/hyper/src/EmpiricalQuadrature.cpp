@@ -2,6 +2,7 @@
 
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_LAPACK.hpp>
+#include <Teuchos_Time.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -238,36 +239,62 @@ QuadratureTraining buildQuadratureTraining(const std::vector<RCP<const Hamiltoni
   return t;
 }
 
-QuadratureFit nnlsQuadrature(const QuadratureTraining& t, int budget, double tolerance) {
-  GPHR_REQUIRE(budget >= 1, InputError, "empirical quadrature: term budget ", budget, " (allowed: >= 1)");
+namespace {
+QuadratureFit snapshotOf(const ActiveSet& s, const QuadratureTraining& t, const std::string& stop, int selections,
+                         double seconds) {
+  GPHR_REQUIRE(!s.terms.empty(), InputError, "empirical quadrature: no candidate term correlates positively with the "
+               "target (", selections, " selections; candidates are columns above eqp.columnFloor = ", t.columnFloor,
+               " x the largest)");
+  QuadratureFit fit;
+  fit.terms = s.terms, fit.weights = s.xi, fit.stop = stop, fit.iterations = selections, fit.seconds = seconds;
+  fit.residual = relativeResidual(s, t);
+  return fit;
+}
+}  // namespace
+
+std::vector<QuadratureFit> nnlsQuadraturePath(const QuadratureTraining& t, const std::vector<int>& budgets,
+                                              double tolerance) {
+  GPHR_REQUIRE(!budgets.empty(), InputError, "empirical quadrature: no term budget given");
+  for (int b : budgets) GPHR_REQUIRE(b >= 1, InputError, "empirical quadrature: term budget ", b, " (allowed: >= 1)");
   GPHR_REQUIRE(tolerance >= 0.0 && tolerance < 1.0, InputError, "eqp.tolerance = ", tolerance,
                " (allowed: [0, 1))");
   requireTarget(t);
+  Teuchos::Time clock("eqp path");
+  clock.start();
   const int R = t.numRows;
   std::vector<char> excluded = nonCandidates(t);
   ActiveSet s;
-  QuadratureFit fit;
-  fit.stop = "budget";
+  std::vector<QuadratureFit> fits(budgets.size());
+  std::vector<char> done(budgets.size(), 0);
+  size_t open = budgets.size();
+  // Records the current active set for every budget still open that `reached` says is done.
+  auto record = [&](const std::string& stop, int selections, auto&& reached) {
+    for (size_t i = 0; i < budgets.size(); ++i)
+      if (!done[i] && reached(budgets[i])) fits[i] = snapshotOf(s, t, stop, selections, clock.totalElapsedTime(true)), done[i] = 1, --open;
+  };
   std::vector<double> r = t.target;
   const double bn = norm2(t.target);
   // Below ~10 eps ||b|| the residual is the least-squares solve's round-off: a column correlating
   // with it would enter for noise, so that is where a zero tolerance stops.
   const double stopAt = std::max(tolerance, 10.0 * std::numeric_limits<double>::epsilon());
+  int selections = 0;
   // Each selection adds one term; the inner loop may drop some again. 4 budget + 16 selections
-  // bound the run (Lawson-Hanson terminates in exact arithmetic; round-off could cycle).
-  for (int it = 0; static_cast<int>(s.terms.size()) < budget && it < 4 * budget + 16; ++it) {
+  // bound a budget's run (Lawson-Hanson terminates in exact arithmetic; round-off could cycle).
+  for (int it = 0; open > 0; ++it) {
+    record("iterations", selections, [&](int b) { return it >= 4 * b + 16; });
+    if (open == 0) break;
     if (norm2(r) <= stopAt * bn) {
-      fit.stop = "tolerance";
+      record("tolerance", selections, [](int) { return true; });
       break;
     }
     std::vector<char> skip(excluded);
     for (GO g : s.terms) markExcluded(t, skip, g);  // the active columns
     const GO gid = selectTerm(t, skip, r);
     if (gid < 0) {
-      fit.stop = "optimal";
+      record("optimal", selections, [](int) { return true; });
       break;
     }
-    ++fit.iterations;
+    ++selections;
     const std::vector<double> c = gatherColumn(t, gid);
     s.terms.push_back(gid), s.xi.push_back(0.0), s.CP.insert(s.CP.end(), c.begin(), c.end());
     inner(s, R, t.target);
@@ -275,18 +302,19 @@ QuadratureFit nnlsQuadrature(const QuadratureTraining& t, int budget, double tol
     // is never selected again; columns dropped later return to the candidates, as in Lawson-Hanson.
     if (std::find(s.terms.begin(), s.terms.end(), gid) == s.terms.end()) markExcluded(t, excluded, gid);
     r = residualOf(s.CP, R, s.xi, t.target);
+    record("budget", selections, [&](int b) { return static_cast<int>(s.terms.size()) >= b; });
   }
-  GPHR_REQUIRE(!s.terms.empty(), InputError, "empirical quadrature: no candidate term correlates positively with the "
-               "target (", fit.iterations, " selections; candidates are columns above eqp.columnFloor = ", t.columnFloor,
-               " x the largest)");
-  fit.terms = s.terms, fit.weights = s.xi;
-  fit.residual = relativeResidual(s, t);
-  if (fit.stop == "budget" && static_cast<int>(fit.terms.size()) < budget) fit.stop = "iterations";
-  return fit;
+  return fits;
+}
+
+QuadratureFit nnlsQuadrature(const QuadratureTraining& t, int budget, double tolerance) {
+  return nnlsQuadraturePath(t, {budget}, tolerance).front();
 }
 
 QuadratureFit refitQuadrature(const QuadratureTraining& t, const std::vector<GO>& terms) {
   requireTarget(t);
+  Teuchos::Time clock("eqp refit");
+  clock.start();
   GPHR_REQUIRE(!terms.empty(), InputError, "empirical quadrature refit: no terms given");
   ActiveSet s;
   for (GO gid : terms) {
@@ -300,6 +328,7 @@ QuadratureFit refitQuadrature(const QuadratureTraining& t, const std::vector<GO>
   QuadratureFit fit;
   fit.terms = s.terms, fit.weights = s.xi, fit.stop = "refit";
   fit.residual = relativeResidual(s, t);
+  fit.seconds = clock.stop();
   return fit;
 }
 

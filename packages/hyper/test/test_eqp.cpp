@@ -152,6 +152,23 @@ TEST(Eqp, NegligibleColumnsAreNotCandidates) {
   EXPECT_EQ(all.terms, std::vector<GO>{7});
 }
 
+// The greedy path through several budgets gives each budget's own fit: the same arithmetic in the
+// same order, so the same numbers exactly.
+TEST(Eqp, PathGivesEachBudgetsOwnFit) {
+  auto hc = test::nlsCase(48, 4, test::comm());
+  const auto t = trainingOf(hc);
+  const std::vector<int> budgets = {20, 3, 8};
+  const auto path = nnlsQuadraturePath(t, budgets, 0.0);
+  ASSERT_EQ(path.size(), budgets.size());
+  for (size_t i = 0; i < budgets.size(); ++i) {
+    const QuadratureFit one = nnlsQuadrature(t, budgets[i], 0.0);
+    EXPECT_EQ(path[i].terms, one.terms) << "budget " << budgets[i];
+    EXPECT_EQ(path[i].weights, one.weights) << "budget " << budgets[i];
+    EXPECT_EQ(path[i].stop, one.stop) << "budget " << budgets[i];
+    EXPECT_EQ(path[i].terms.size(), static_cast<size_t>(budgets[i]));
+  }
+}
+
 TEST(Eqp, EveryTermAndZeroToleranceReproducesTheReducedModel) {
   const GO n = 32;
   auto hc = test::nlsCase(n, 4, test::comm());

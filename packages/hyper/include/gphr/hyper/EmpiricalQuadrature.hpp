@@ -56,12 +56,17 @@ struct QuadratureFit {
   std::vector<double> weights;   // xi_e >= 0 (nnls) or signed (refit), one per term
   double residual = 0.0;         // ||C xi - b|| / ||b|| on the fitted rows
   int iterations = 0;            // outer (selection) steps
-  std::string stop;              // budget | tolerance | optimal (no term improves the fit)
+  std::string stop;              // budget | tolerance | optimal (no term improves the fit) | iterations
+  double seconds = 0.0;          // the solve (nnls: along the path up to this budget)
 };
 
 // Greedy Lawson-Hanson NNLS: at most `budget` terms, stopping early once the relative residual is
 // <= tolerance or no candidate improves it. Deterministic on any rank count. Collective.
 QuadratureFit nnlsQuadrature(const QuadratureTraining& training, int budget, double tolerance);
+// The same for several budgets in one pass: the greedy path passes through each budget in turn, so
+// fits[i] equals nnlsQuadrature(training, budgets[i], tolerance) at the cost of the largest alone.
+std::vector<QuadratureFit> nnlsQuadraturePath(const QuadratureTraining& training, const std::vector<int>& budgets,
+                                              double tolerance);
 
 // Signed least-squares weights for given terms (e.g. GP-DEIM's P) on the same rows. Collective.
 QuadratureFit refitQuadrature(const QuadratureTraining& training, const std::vector<GO>& terms);
