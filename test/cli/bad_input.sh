@@ -22,6 +22,7 @@ case $case in
   malformed_yaml)  printf 'gphr:\n  scene: [\n    name: : nls1d\n' > "$cfg"; expect="malformed YAML" ;;
   wrong_type)      printf '%s\n  integrator:\n    scheme: rk4\n' "$base" > "$cfg"; expect="integrator.scheme' has value rk4; allowed: one of 'imr' 'avf'" ;;
   missing_file)    cfg=$work/nope.yaml; expect="cannot read config file" ;;
+  eqp_floor)       printf '%s\n  eqp:\n    columnFloor: 1.5\n' "$base" > "$cfg"; expect="eqp.columnFloor' has value 1.5" ;;
   *) echo "unknown case $case"; exit 1 ;;
 esac
 "$gphr" run "$cfg" --output "$work/out" > "$work/stdout" 2> "$work/stderr"

@@ -48,9 +48,10 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
   pipe.set("methods", Teuchos::Array<std::string>(),
            "models to evaluate beside the full model, any of: rom, gp-deim (gradient-preserving DEIM, the paper's), "
            "gp-adeim (its adaptive variant, section adeim), deim (classic DEIM of the gradient), sdeim (DEIM with the "
-           "symplectic basis, m = 2k); empty: rom if pipeline.rom");
+           "symplectic basis, m = 2k), gp-eqp (terms and non-negative weights by NNLS, section eqp; m is its term "
+           "budget), gp-eqp-refit (GP-DEIM's terms, weights refit by least squares); empty: rom if pipeline.rom");
   pipe.set("k", Teuchos::Array<int>(), "reduced half-sizes k to evaluate (2k = reducedDim); empty: reduction.k");
-  pipe.set("m", Teuchos::Array<int>(), "DEIM sizes m to evaluate for gp-deim, gp-adeim and deim (each at most d)");
+  pipe.set("m", Teuchos::Array<int>(), "DEIM sizes m to evaluate for gp-deim, gp-adeim and deim (each at most d); the term budgets of gp-eqp and gp-eqp-refit");
   setIntParameter(pipe, "onlineRepeats", 1, 1, 100000,
                   "time each rom / gp-deim / deim / sdeim online run this many times and report the fastest as "
                   "t_online_s (short runs are at the mercy of scheduler and cache noise); the first run gives the "
@@ -89,6 +90,23 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
   setIntParameter(bld, "interpolationNodes", 7, 2, 33,
                   "gphr build: Chebyshev-Lobatto nodes per parameter of the interpolant of L_r, f_r, c and the "
                   "reference rows over the box (the n-independent set-up route of a query; its error is reported)");
+  auto& eq = pl.sublist("eqp");
+  setDoubleParameter(eq, "tolerance", 0.0, 0.0, 0.999999,
+                     "gp-eqp: stop adding terms once the relative fit residual ||C xi - b|| / ||b|| is at most this; "
+                     "0: pipeline.m terms (or fewer, when no further term improves the fit)");
+  setIntParameter(eq, "snapshotEvery", 1, 1, 1000000,
+                  "gp-eqp, gp-eqp-refit: fit the reduced gradient at every N-th stored training state");
+  setIntParameter(eq, "sketchRows", 0, 0, 100000000,
+                  "rows of the fit: 0, the exact rows (training states x 2k, held as terms x rows per rank: refused "
+                  "above 2.5e8 numbers); > 0, a CountSketch of them to this many rows (the fit's residual on the "
+                  "exact rows is reported beside, as eqp_fit_residual_exact_rows)");
+  setDoubleParameter(eq, "energyWeight", 0.0, 0.0, 1e12,
+                     "> 0: one more row per training state fitting the energy G_e - G_e(y0), scaled by this; 0: the "
+                     "gradient rows only");
+  setDoubleParameter(eq, "columnFloor", 1e-3, 0.0, 0.999999,
+                     "terms whose column norm is at most this times the largest are not candidates (a term that "
+                     "never moves in training would get an unbounded weight; doc/eqp.md measures 1e-6 against 1e-3)");
+  setIntParameter(eq, "seed", 20261124, 0, 2147483647, "sketchRows > 0: the sketch's hash seed");
   auto& out = pl.sublist("output");
   setIntParameter(out, "saveEvery", 10, 1, 1000000000, "keep every N-th state of the trajectory in artifacts.h5");
   setDoubleParameter(out, "progressSeconds", 2.0, 0.0, 1e9, "seconds between progress lines on stderr (0: none)");
@@ -210,12 +228,17 @@ std::vector<std::vector<double>> trainingParameters(const Teuchos::ParameterList
   return out;
 }
 
+namespace {
+const std::vector<std::string> kMethods = {"fom", "rom", "gp-deim", "gp-adeim", "deim", "sdeim", "gp-eqp", "gp-eqp-refit"};
+}  // namespace
+
 std::vector<std::string> pipelineMethods(const Teuchos::ParameterList& cfg) {
   const auto& pipe = cfg.sublist("pipeline");
   std::vector<std::string> out;
   for (const auto& m : pipe.get<Teuchos::Array<std::string>>("methods")) {
-    GPHR_REQUIRE(m == "rom" || m == "gp-deim" || m == "gp-adeim" || m == "deim" || m == "sdeim" || m == "fom",
-                 InputError, "key 'pipeline.methods' has entry '", m, "'; allowed: fom, rom, gp-deim, gp-adeim, deim, sdeim");
+    GPHR_REQUIRE(std::find(kMethods.begin(), kMethods.end(), m) != kMethods.end(), InputError,
+                 "key 'pipeline.methods' has entry '", m,
+                 "'; allowed: fom, rom, gp-deim, gp-adeim, deim, sdeim, gp-eqp, gp-eqp-refit");
     if (m != "fom" && std::find(out.begin(), out.end(), m) == out.end()) out.push_back(m);
   }
   if (pipe.get<bool>("rom") && std::find(out.begin(), out.end(), "rom") == out.end()) out.insert(out.begin(), "rom");
@@ -224,11 +247,10 @@ std::vector<std::string> pipelineMethods(const Teuchos::ParameterList& cfg) {
   const auto& ms = pipe.get<Teuchos::Array<int>>("m");
   for (int m : ms) GPHR_REQUIRE(m >= 1, InputError, "key 'pipeline.m' has entry ", m, "; allowed: integers >= 1");
   const bool adaptive = std::find(out.begin(), out.end(), "gp-adeim") != out.end();
-  const bool wantsM = adaptive || std::find(out.begin(), out.end(), "gp-deim") != out.end() ||
-                      std::find(out.begin(), out.end(), "deim") != out.end();
+  const bool wantsM = std::any_of(out.begin(), out.end(), [](const std::string& m) { return m != "rom" && m != "sdeim"; });
   GPHR_REQUIRE(!wantsM || !ms.empty(), InputError,
-               "key 'pipeline.m' is empty but pipeline.methods asks for gp-deim, gp-adeim or deim; allowed: a list of "
-               "DEIM sizes");
+               "key 'pipeline.m' is empty but pipeline.methods asks for gp-deim, gp-adeim, deim, gp-eqp or "
+               "gp-eqp-refit; allowed: a list of DEIM sizes / term budgets");
   if (adaptive)
     for (int m : ms) adeimOptionsFrom(cfg.sublist("adeim"), m);  // the adeim constraints that involve m
   return out;

@@ -144,6 +144,30 @@ std::string adeimWindowCaution(const RunContext& ctx, const RomStages& st) {
   return md.str();
 }
 
+// The term-weighted models side by side (DESIGN.md "Term weights"): the weights' range, the
+// smallest eigenvalue of Hess H_hr(z0) beside the reduced model's and, for the quadrature fits,
+// the terms used and the fit residual (on the fitted rows and, when sketched, on the exact ones).
+std::string termWeightsTable(const RomStages& st) {
+  std::ostringstream md;
+  for (const auto& r : st.runs) {
+    const bool eqp = r.method == "gp-eqp" || r.method == "gp-eqp-refit";
+    if ((!eqp && r.method != "gp-deim") || !r.available) continue;
+    if (md.tellp() == 0)
+      md << "\n## Term weights: GP-DEIM and empirical quadrature\n\n"
+            "| method | k | m | status | E_L2 | terms | weight min | weight max | fit residual | exact rows | "
+            "lambda_min Hess H_hr(z0) | lambda_min rom | convexity lost |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    const auto num = [&](const char* key) { return r.run.number(key); };
+    const std::string w = eqp ? "eqp_weight_" : "deim_weight_";
+    md << "| " << r.method << " | " << r.k << " | " << r.m << " | " << r.statusText() << " | " << fmt(r.eL2) << " | "
+       << (eqp ? fmt(num("eqp_terms"), "%.0f") : std::to_string(r.m)) << " | " << fmt(num((w + "min").c_str())) << " | "
+       << fmt(num((w + "max").c_str())) << " | " << (eqp ? fmt(num("eqp_fit_residual")) : "-") << " | "
+       << (eqp ? fmt(num("eqp_fit_residual_exact_rows")) : "-") << " | " << fmt(num("hess_min_eig_hr")) << " | "
+       << fmt(num("hess_min_eig_rom")) << " | " << (num("hess_min_eig_hr") < 0.0 && num("hess_min_eig_rom") >= 0.0 ? "yes" : "no")
+       << " |\n";
+  }
+  return md.str();
+}
+
 std::string reportMd(const RunContext& ctx, const FomResult& fom, const RomStages& st) {
   std::ostringstream md;
   const double fomOnline = fom.tOnline;
@@ -200,6 +224,7 @@ std::string reportMd(const RunContext& ctx, const FomResult& fom, const RomStage
           "error vs total time: error_vs_total_time.png.\n";
     md << adeimWindowCaution(ctx, st);
   }
+  md << termWeightsTable(st);
   md << "\nDiagnostics of each GP-DEIM run (cond(P^T U), the smallest eigenvalue of Hess H_hr(z0) next to "
         "the reduced model's, and whether convexity was lost) are in summary.json; a (k, m) with "
         "`convexity_lost: true` can run away while H_hr is conserved.\n";
@@ -303,7 +328,7 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
     b << "set logscale xy\nset format y '%.0e'\nset xlabel 'online time [s]'\nset ylabel 'E_L2'\nset key outside\n"
       << "set title 'Error vs online time (pick from the lower-left front)'\nplot ";
     bool first = true;
-    for (const char* m : {"rom", "gp-deim", "deim", "sdeim"}) {
+    for (const char* m : {"rom", "gp-deim", "gp-eqp", "gp-eqp-refit", "deim", "sdeim"}) {
       bool any = false;
       for (const auto& r : st.runs) any |= r.method == m && r.ok;
       if (!any) continue;

@@ -6,12 +6,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/Config.hpp"
 #include "gphr/driver/ModelEvaluation.hpp"
 #include "gphr/driver/Pipeline.hpp"
 #include "gphr/hyper/DeimBasis.hpp"
+#include "gphr/hyper/EmpiricalQuadrature.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/hyper/GpDeimModel.hpp"
 #include "gphr/hyper/GradientDeimModel.hpp"
@@ -108,15 +110,37 @@ ModelRun unavailable(const std::string& method, int k, int m, const std::string&
   return r;
 }
 
+// The reduced model's smallest Hessian eigenvalue at z0 = 0: the convexity reference of the
+// term-weighted models (gp-deim, gp-eqp).
+double romHessianMinEig(const SceneInstance& inst, const MultiVector& A, int k) {
+  GalerkinRom rom(inst.system, rcp(new MultiVector(A, Teuchos::Copy)));
+  DenseMatrix Hr(2 * k, 2 * k);
+  rom.addHessian(DenseVector(2 * k), 1.0, Hr);
+  return smallestEigenvalue(Hr);
+}
+
+// A term-weighted model (GpDeimModel on a sample mesh: DEIM or quadrature weights) evaluated like
+// the reduced model, with the diagnostics they share: Hess H_hr(z0)'s smallest eigenvalue beside
+// the reduced model's, whether convexity was lost, and the online size.
+ModelRun evaluateTermModel(const RunContext& ctx, const FomResult& fom, const SceneInstance& inst, const MultiVector& A,
+                           GpDeimModel& model, const std::string& method, int k, int m, double lminR, bool keep) {
+  DenseMatrix Hhr(2 * k, 2 * k);
+  model.addHessian(DenseVector(2 * k), 1.0, Hhr);
+  const double lminHr = smallestEigenvalue(Hhr);
+  ModelRun run = evaluateReducedModel(ctx, fom, *inst.system, A, model, true, method, k, m, keep);
+  run.run.set("hess_min_eig_hr", lminHr)
+      .set("hess_min_eig_rom", lminR)
+      .set("convexity_lost", lminHr < 0.0 && lminR >= 0.0)
+      .set("kernel_rows_per_evaluation", static_cast<long>(model.kernelRowsPerEvaluation()))
+      .set("online_numbers_held", static_cast<long>(model.numbersHeld()));
+  return run;
+}
+
 void runGpDeim(const RunContext& ctx, const FomResult& fom, RomStages& st, const SceneInstance& inst,
                const MultiVector& A, int k, const ReducedLinearPart& linear) {
   const CachedDeimBasis db = deimBasisFor(ctx, st, A, k, *inst.system);
   if (k == stageK(ctx.config, st.basis).back()) st.deimSingularValues = db.basis.singularValues;
-  // The reduced model's Hessian at z0 = 0, for the convexity diagnostic.
-  GalerkinRom rom(inst.system, rcp(new MultiVector(A, Teuchos::Copy)));
-  DenseMatrix Hr(2 * k, 2 * k);
-  rom.addHessian(DenseVector(2 * k), 1.0, Hr);
-  const double lminR = smallestEigenvalue(Hr);
+  const double lminR = romHessianMinEig(inst, A, k);
   const std::string indices = ctx.config.sublist("hyper").get<std::string>("indices");
   for (int m : mList(ctx.config)) {
     if (m > static_cast<int>(db.basis.U->getNumVectors())) {
@@ -128,19 +152,12 @@ void runGpDeim(const RunContext& ctx, const FomResult& fom, RomStages& st, const
     clock.start();
     DeimWeights w;
     auto hr = buildGpDeimModel(*inst.system, A, *db.basis.U, m, indices, &w, &linear);
-    GpDeimModel& model = *hr;
     const double tPair = clock.stop();
-    DenseMatrix Hhr(2 * k, 2 * k);
-    model.addHessian(DenseVector(2 * k), 1.0, Hhr);
-    const double lminHr = smallestEigenvalue(Hhr);
-    const bool keep = m == 2 * k;  // the space-time comparison of fig:pcolor_n40_n60 uses m = 2k
-    ModelRun run = evaluateReducedModel(ctx, fom, *inst.system, A, model, true, "gp-deim", k, m, keep);
+    // The space-time comparison of fig:pcolor_n40_n60 uses m = 2k.
+    ModelRun run = evaluateTermModel(ctx, fom, inst, A, *hr, "gp-deim", k, m, lminR, m == 2 * k);
     run.run.set("cond_PtU", w.conditionNumber)
-        .set("hess_min_eig_hr", lminHr)
-        .set("hess_min_eig_rom", lminR)
-        .set("convexity_lost", lminHr < 0.0 && lminR >= 0.0)
-        .set("kernel_rows_per_evaluation", static_cast<long>(model.kernelRowsPerEvaluation()))
-        .set("online_numbers_held", static_cast<long>(model.numbersHeld()))
+        .set("deim_weight_min", *std::min_element(w.weights.begin(), w.weights.end()))
+        .set("deim_weight_max", *std::max_element(w.weights.begin(), w.weights.end()))
         .set("deim_basis_cached", db.cached)
         .set("deim_pod_steps_tsqr", static_cast<long>(db.basis.tsqrSteps))  // 0 when cached or randomized
         .set("deim_pod_steps_stacked", static_cast<long>(db.basis.stackedSteps))
@@ -151,6 +168,177 @@ void runGpDeim(const RunContext& ctx, const FomResult& fom, RomStages& st, const
         .set("t_deim_basis_compute_s", db.computeSeconds)
         .set("t_hyper_offline_s", db.computeSeconds + tPair)
         .set("t_total_s", db.computeSeconds + tPair + run.tOnline);
+    setBasisKeys(ctx, st, run.run);
+    st.runs.push_back(std::move(run));
+  }
+}
+
+// gp-eqp (DESIGN.md "Term weights"): the training system of section eqp, built once per k when a
+// fit is not in the cache.
+QuadratureOptions quadratureOptionsFrom(const Teuchos::ParameterList& eq) {
+  QuadratureOptions o;
+  o.snapshotEvery = eq.get<int>("snapshotEvery");
+  o.energyWeight = eq.get<double>("energyWeight");
+  o.sketchRows = eq.get<int>("sketchRows");
+  o.columnFloor = eq.get<double>("columnFloor");
+  o.seed = static_cast<unsigned long long>(eq.get<int>("seed"));
+  return o;
+}
+
+struct CachedFit {
+  QuadratureFit fit;
+  double exactResidual = NAN;  // on the unsketched rows (= fit.residual without a sketch)
+  bool cached = false;
+  double fitSeconds = 0.0;       // the NNLS / refit solve
+  double trainingSeconds = 0.0;  // building the training system of this k (each fit stands for it)
+};
+
+// The fits of one k: read from artifacts.h5 /eqp/<method>_k<k>_m<m> when their key matches,
+// else computed (the training system built on first need) and stored. The key holds the basis,
+// section eqp (and for the refit, section hyper: the DEIM terms) and the algorithm's revision.
+class QuadratureFits {
+ public:
+  QuadratureFits(const RunContext& ctx, RomStages& st, const MultiVector& A, int k, const HamiltonianSystem& test)
+      : ctx_(ctx), st_(st), A_(A), k_(k), test_(test), opt_(quadratureOptionsFrom(ctx.config.sublist("eqp"))) {}
+
+  CachedFit get(const std::string& method, int m) {
+    const bool refit = method == "gp-eqp-refit";
+    CachedFit out;
+    if (read(name(method, m), key(method, m), out)) return out;
+    if (refit) {
+      computed_[m] = refitQuadrature(training(), deimTerms(m));
+    } else if (!computed_.count(m)) {
+      // One greedy path for every budget of pipeline.m not in the cache (each budget's fit is
+      // the path up to it, and its time the path's time to it).
+      std::vector<int> budgets;
+      for (int b : mList(ctx_.config))
+        if (CachedFit c; !read(name(method, b), key(method, b), c)) budgets.push_back(b);
+      const auto path = nnlsQuadraturePath(training(), budgets, ctx_.config.sublist("eqp").get<double>("tolerance"));
+      for (size_t i = 0; i < budgets.size(); ++i) computed_[budgets[i]] = path[i];
+    }
+    out.fit = computed_.at(m);
+    out.exactResidual = opt_.sketchRows > 0 ? exactRowsResidual(systems(), st_.training.snapshots, A_, opt_, out.fit)
+                                            : out.fit.residual;
+    out.fitSeconds = out.fit.seconds;
+    out.trainingSeconds = trainingSeconds_;
+    store(name(method, m), key(method, m), out);
+    computed_.erase(m);
+    return out;
+  }
+
+ private:
+  std::string name(const std::string& method, int m) const {
+    return "/eqp/" + method + "_k" + std::to_string(k_) + "_m" + std::to_string(m);
+  }
+  std::string key(const std::string& method, int m) const {
+    return basisKey(ctx_.config) + toYaml(ctx_.config.sublist("eqp")) +
+           (method == "gp-eqp-refit" ? toYaml(ctx_.config.sublist("hyper")) : std::string()) +
+           "eqp revision 1, k = " + std::to_string(k_) + ", m = " + std::to_string(m);
+  }
+  // Separate opens: the DEIM basis of the refit opens the same file in between.
+  bool read(const std::string& name, const std::string& key, CachedFit& out) const {
+    Hdf5File f(ctx_.artifactsPath(), ctx_.comm, Hdf5File::Mode::ReadWrite);
+    if (!f.hasAttribute(name, "config") || f.stringAttribute(name, "config") != key) return false;
+    const std::vector<double> a = f.readArray(name);  // row 0 the terms, row 1 the weights
+    const size_t p = a.size() / 2;
+    for (size_t j = 0; j < p; ++j) out.fit.terms.push_back(static_cast<GO>(a[j])), out.fit.weights.push_back(a[p + j]);
+    const std::vector<double> d = f.doubleAttribute(name, "diagnostics");
+    out.fit.residual = d[0], out.exactResidual = d[1], out.fit.iterations = static_cast<int>(d[2]);
+    out.fitSeconds = d[3], out.trainingSeconds = d[4];
+    out.fit.stop = f.stringAttribute(name, "stop");
+    out.cached = true;
+    return true;
+  }
+  const std::vector<RCP<const HamiltonianSystem>>& systems() {
+    if (systems_.empty()) systems_ = trainingSystems(ctx_, st_.training);
+    return systems_;
+  }
+  const QuadratureTraining& training() {
+    if (training_.termMap.is_null()) {
+      Teuchos::Time clock("eqp training");
+      clock.start();
+      try {
+        training_ = buildQuadratureTraining(systems(), st_.training.snapshots, A_, opt_);
+      } catch (const InputError& e) {  // e.g. too many rows: name the section
+        throw InputError(detail::concat("eqp: ", e.what()));
+      }
+      trainingSeconds_ = clock.stop();
+      if (ctx_.comm->getRank() == 0)
+        std::fprintf(stderr, "[gphr] eqp training k = %d: %d rows%s from %ld states, %.1f s\n", k_, training_.numRows,
+                     training_.sketched ? " (sketched)" : "", training_.snapshots, trainingSeconds_);
+    }
+    return training_;
+  }
+  std::vector<GO> deimTerms(int m) {
+    const CachedDeimBasis db = deimBasisFor(ctx_, st_, A_, k_, test_);
+    GPHR_REQUIRE(m <= static_cast<int>(db.basis.U->getNumVectors()), InputError, "the DEIM basis has ",
+                 db.basis.U->getNumVectors(), " vectors, m = ", m);
+    return selectDeimIndices(*db.basis.U, m, ctx_.config.sublist("hyper").get<std::string>("indices"));
+  }
+  void store(const std::string& name, const std::string& key, const CachedFit& c) const {
+    Hdf5File f(ctx_.artifactsPath(), ctx_.comm, Hdf5File::Mode::ReadWrite);
+    const size_t p = c.fit.terms.size();
+    std::vector<double> a(2 * p);
+    for (size_t j = 0; j < p; ++j) a[j] = static_cast<double>(c.fit.terms[j]), a[p + j] = c.fit.weights[j];
+    if (!f.exists("/eqp")) f.createGroup("/eqp");
+    f.remove(name);
+    f.writeArray(name, a, 2, p);
+    f.setAttribute(name, "diagnostics",
+                   std::vector<double>{c.fit.residual, c.exactResidual, double(c.fit.iterations), c.fitSeconds,
+                                       c.trainingSeconds});
+    f.setAttribute(name, "stop", c.fit.stop);
+    f.setAttribute(name, "layout", std::string("row 0: the terms (rows of G), row 1: their weights; diagnostics: "
+                                               "fit residual, exact-rows residual, selections, fit seconds, training seconds"));
+    f.flush();
+    f.setAttribute(name, "config", key);  // last: marks the dataset complete
+  }
+  const RunContext& ctx_;
+  RomStages& st_;
+  const MultiVector& A_;
+  int k_;
+  const HamiltonianSystem& test_;
+  QuadratureOptions opt_;
+  std::vector<RCP<const HamiltonianSystem>> systems_;
+  QuadratureTraining training_;
+  double trainingSeconds_ = 0.0;
+  std::map<int, QuadratureFit> computed_;  // fits of the current path not yet returned
+};
+
+// gp-eqp (NNLS terms and weights, pipeline.m the term budget) or gp-eqp-refit (GP-DEIM's terms,
+// least-squares weights) for every m: the fit, then GpDeimModel on its sample mesh.
+void runGpEqp(const RunContext& ctx, const FomResult& fom, RomStages& st, const SceneInstance& inst,
+              const MultiVector& A, int k, const ReducedLinearPart& linear, const std::string& method) {
+  QuadratureFits fits(ctx, st, A, k, *inst.system);
+  const double lminR = romHessianMinEig(inst, A, k);
+  for (int m : mList(ctx.config)) {
+    CachedFit c;
+    try {
+      c = fits.get(method, m);
+    } catch (const InputError& e) {  // a budget the training cannot support: that run is unavailable
+      st.runs.push_back(unavailable(method, k, m, e.what()));
+      continue;
+    }
+    Teuchos::Time clock("eqp mesh");
+    clock.start();
+    auto hr = buildQuadratureModel(*inst.system, A, c.fit, linear);
+    const double tMesh = clock.stop();
+    ModelRun run = evaluateTermModel(ctx, fom, inst, A, *hr, method, k, m, lminR, false);
+    const auto [wmin, wmax] = std::minmax_element(c.fit.weights.begin(), c.fit.weights.end());
+    const double offline = c.trainingSeconds + c.fitSeconds + tMesh;
+    run.run.set("eqp_terms", static_cast<long>(c.fit.terms.size()))
+        .set("eqp_fit_residual", c.fit.residual)
+        .set("eqp_fit_residual_exact_rows", c.exactResidual)
+        .set("eqp_weight_min", *wmin)
+        .set("eqp_weight_max", *wmax)
+        .set("eqp_stop", c.fit.stop)
+        .set("eqp_selections", static_cast<long>(c.fit.iterations))
+        .set("eqp_cached", c.cached)
+        .set("t_eqp_training_s", c.trainingSeconds)
+        .set("t_eqp_fit_s", c.fitSeconds)
+        .set("t_eqp_mesh_s", tMesh)
+        .set("t_offline_s", st.training.seconds + st.basisSeconds + offline)
+        .set("t_hyper_offline_s", offline)
+        .set("t_total_s", offline + run.tOnline);
     setBasisKeys(ctx, st, run.run);
     st.runs.push_back(std::move(run));
   }
@@ -287,13 +475,15 @@ void runGradientDeim(const RunContext& ctx, const FomResult& fom, RomStages& st,
 void runHyperReduction(const RunContext& ctx, const FomResult& fom, RomStages& st) {
   const auto methods = pipelineMethods(ctx.config);
   const bool gp = wants(methods, "gp-deim"), classic = wants(methods, "deim"), sd = wants(methods, "sdeim"),
-             adaptive = wants(methods, "gp-adeim");
-  if (!gp && !classic && !sd && !adaptive) return;
+             adaptive = wants(methods, "gp-adeim"), eqp = wants(methods, "gp-eqp"), refit = wants(methods, "gp-eqp-refit");
+  if (!gp && !classic && !sd && !adaptive && !eqp && !refit) return;
   auto inst = ctx.scene->instantiate(ctx.comm, ctx.mu, true);
   for (int k : stageK(ctx.config, st.basis)) {
     auto A = leadingBasis(st.basis, k);
     const ReducedLinearPart linear = reduceLinearPart(*inst.system, *A);
     if (gp) runGpDeim(ctx, fom, st, inst, *A, k, linear);
+    if (eqp) runGpEqp(ctx, fom, st, inst, *A, k, linear, "gp-eqp");
+    if (refit) runGpEqp(ctx, fom, st, inst, *A, k, linear, "gp-eqp-refit");
     if (adaptive) runGpAdeim(ctx, fom, st, inst, A, k, linear);
     if (classic || sd) runGradientDeim(ctx, fom, st, inst, *A, k, linear, classic, sd);
   }

@@ -9,44 +9,15 @@
 #include <random>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/hyper/JacobianSnapshots.hpp"
 #include "gphr/reduction/DenseQr.hpp"
 #include "gphr/reduction/DenseSvd.hpp"
-#include "gphr/reduction/ReducedRowKernel.hpp"
 #include "gphr/reduction/StreamingPod.hpp"
 #include "gphr/reduction/SymmetricEigen.hpp"
 
 namespace gphr {
 
 namespace {
-
-// Calls fn(jac, index) for every used reduced-Jacobian snapshot, jac = this rank's rows of
-// J_G(y0_j + A A^T y_s) A (row-major, local rows x 2k). Written once for every pass of both SVDs.
-template <class Fn>
-long forEachJacobianSnapshot(const std::vector<RCP<const HamiltonianSystem>>& systems,
-                             const std::vector<RCP<const MultiVector>>& states, const MultiVector& A, int every,
-                             std::vector<Scalar>& jac, Fn&& fn) {
-  const RCP<const Map> rowMap = systems[0]->nonlinearTerm().rowMap();
-  const int r = static_cast<int>(A.getNumVectors());
-  auto local = rcp(new Map(r, 0, rowMap->getComm(), Tpetra::LocallyReplicated));
-  long used = 0;
-  for (size_t j = 0; j < systems.size(); ++j) {
-    const HamiltonianSystem& sys = *systems[j];
-    GPHR_REQUIRE(sys.nonlinearTerm().rowMap()->isSameAs(*rowMap), InputError, "DEIM basis: training system ", j,
-                 " has another row map of G");
-    ReducedRowKernel kernel(sys.nonlinearTermPtr(), ownedRowSample(sys, A), sys.space().comm());
-    MultiVector Z(local, states[j]->getNumVectors());
-    Z.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, A, *states[j], 0.0);  // z = A^T y_s
-    auto zv = Z.getLocalViewHost(Tpetra::Access::ReadOnly);
-    Teuchos::SerialDenseVector<int, double> z(r);
-    for (size_t c = 0; c < states[j]->getNumVectors(); c += every) {
-      for (int i = 0; i < r; ++i) z(i) = zv(i, c);
-      kernel.evaluate(z, true, false);
-      kernel.reducedJacobian(jac.data());
-      fn(jac, used++);
-    }
-  }
-  return used;
-}
 
 void checkInputs(const std::vector<RCP<const HamiltonianSystem>>& systems,
                  const std::vector<RCP<const MultiVector>>& states, const DeimBasisOptions& opt) {

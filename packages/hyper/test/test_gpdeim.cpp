@@ -31,56 +31,15 @@ TEST(GpDeim, FullDeimSizeReproducesReducedModel) {
   }
 }
 
-// Central differences with step h: truncation h^2/6 |f'''| plus round-off eps |f| / h. With
-// h = 1e-5 and O(1) derivatives both are <= 1e-9 relative; 1e-6 leaves a wide margin and still
-// catches any wrong term (a sign or factor error is O(1) relative).
-constexpr double kFdStep = 1e-5, kFdTol = 1e-6;
-
-DenseVector probePoint(int dim) {
-  DenseVector z(dim);
-  for (int i = 0; i < dim; ++i) z(i) = 0.3 * std::sin(1.7 * i + 0.4);
-  return z;
-}
-
-DenseMatrix fdJacobianOfGradient(DenseHamiltonian& model, const DenseVector& z) {
-  const int r = model.dim();
-  DenseMatrix J(r, r);
-  DenseVector zp(z), zm(z), gp(r), gm(r);
-  for (int c = 0; c < r; ++c) {
-    zp.assign(z), zm.assign(z);
-    zp(c) += kFdStep, zm(c) -= kFdStep;
-    model.gradient(zp, gp);
-    model.gradient(zm, gm);
-    for (int i = 0; i < r; ++i) J(i, c) = (gp(i) - gm(i)) / (2 * kFdStep);
-  }
-  return J;
-}
-
 TEST(GpDeim, DerivativesMatchFiniteDifferencesAndFormAGradientField) {
   auto hc = test::nlsCase(48, 4, test::comm());
   for (int m : {3, 8, 20}) {
     auto hr = test::gpDeimModel(hc, m);
-    const int r = hr->dim();
-    const DenseVector z = probePoint(r);
-    DenseVector g(r), zp(z), zm(z);
-    hr->gradient(z, g);
-    double err = 0.0;
-    for (int c = 0; c < r; ++c) {
-      zp.assign(z), zm.assign(z);
-      zp(c) += kFdStep, zm(c) -= kFdStep;
-      const double fd = (hr->hamiltonian(zp) - hr->hamiltonian(zm)) / (2 * kFdStep);
-      err = std::max(err, std::abs(fd - g(c)));
-    }
-    EXPECT_LE(err, kFdTol * g.normInf()) << "grad H_hr vs FD, m = " << m;
-    DenseMatrix H(r, r);
-    hr->addHessian(z, 1.0, H);
-    const DenseMatrix Jfd = fdJacobianOfGradient(*hr, z);
-    DenseMatrix diff(Jfd), asym(Jfd, Teuchos::TRANS);
-    diff -= H;
-    asym -= Jfd;
-    EXPECT_LE(diff.normInf(), kFdTol * H.normInf()) << "Hess H_hr vs FD of grad, m = " << m;
+    const auto d = test::checkDerivatives(*hr);
+    EXPECT_LE(d.gradErr, test::kFdTol * d.gradNorm) << "grad H_hr vs FD, m = " << m;
+    EXPECT_LE(d.hessErr, test::kFdTol * d.hessNorm) << "Hess H_hr vs FD of grad, m = " << m;
     // A gradient field has a symmetric Jacobian; the FD Jacobian's asymmetry is FD error only.
-    EXPECT_LE(asym.normInf(), 1e-7 * Jfd.normInf()) << "m = " << m;
+    EXPECT_LE(d.asym, 1e-7 * d.fdNorm) << "m = " << m;
   }
 }
 
@@ -93,7 +52,7 @@ TEST(GpDeim, ReducedJacobianRowsMatchFiniteDifferences) {
   ReducedRowKernel kernel(hc.test.system->nonlinearTermPtr(), ownedRowSample(*hc.test.system, *hc.basis.A),
                           Teuchos::null);
   const int r = kernel.reducedDim(), rows = kernel.numRows(), ld = r + 3;
-  const DenseVector z = probePoint(r);
+  const DenseVector z = test::probePoint(r);
   kernel.evaluate(z, true, false);
   std::vector<double> J(static_cast<size_t>(rows) * r), wide(static_cast<size_t>(rows) * ld, -7.0);
   kernel.reducedJacobian(J.data());
@@ -109,22 +68,22 @@ TEST(GpDeim, ReducedJacobianRowsMatchFiniteDifferences) {
     kernel.setWeights(w);
     for (int c = 0; c < r; ++c) {
       zp.assign(z), zm.assign(z);
-      zp(c) += kFdStep, zm(c) -= kFdStep;
+      zp(c) += test::kFdStep, zm(c) -= test::kFdStep;
       kernel.evaluate(zp, false, false);
       const double gp = kernel.value();
       kernel.evaluate(zm, false, false);
-      const double fd = (gp - kernel.value()) / (2 * kFdStep);
+      const double fd = (gp - kernel.value()) / (2 * test::kFdStep);
       err = std::max(err, std::abs(fd - J[i * r + c]));
       scale = std::max(scale, std::abs(J[i * r + c]));
     }
   }
   EXPECT_GT(scale, 0.0);
-  EXPECT_LE(err, kFdTol * scale);
+  EXPECT_LE(err, test::kFdTol * scale);
 }
 
 // ||J - J^T|| / ||J|| of the FD Jacobian of a model's vector field at the probe point.
 double fieldAsymmetry(DenseHamiltonian& model) {
-  const DenseMatrix Jfd = fdJacobianOfGradient(model, probePoint(model.dim()));
+  const DenseMatrix Jfd = test::fdJacobianOfGradient(model, test::probePoint(model.dim()));
   DenseMatrix asym(Jfd, Teuchos::TRANS);
   asym -= Jfd;
   return asym.normInf() / Jfd.normInf();
@@ -147,12 +106,12 @@ TEST(GpDeim, ClassicDeimAndSdeimFieldsAreNotGradients) {
   EXPECT_LE(fieldAsymmetry(*test::gpDeimModel(hc, 12)), 1e-7) << "GP-DEIM, same m";
   // The baselines' Jacobian (Newton's matrix) is still right: FD of their field.
   for (DenseHamiltonian* model : {static_cast<DenseHamiltonian*>(&deim), static_cast<DenseHamiltonian*>(&sdeim)}) {
-    const DenseVector z = probePoint(model->dim());
+    const DenseVector z = test::probePoint(model->dim());
     DenseMatrix H(model->dim(), model->dim());
     model->addHessian(z, 1.0, H);
-    DenseMatrix diff(fdJacobianOfGradient(*model, z));
+    DenseMatrix diff(test::fdJacobianOfGradient(*model, z));
     diff -= H;
-    EXPECT_LE(diff.normInf(), kFdTol * H.normInf());
+    EXPECT_LE(diff.normInf(), test::kFdTol * H.normInf());
   }
 }
 
@@ -188,7 +147,7 @@ RCP<MultiVector> classicDeimBasis(const TrainingRuns& t, const MultiVector& A, i
 // ||a - b|| / ||b|| of the fields (or Hessians) of two models at the probe point.
 double fieldDiff(DenseHamiltonian& model, DenseHamiltonian& reference) {
   const int r = reference.dim();
-  DenseVector z = probePoint(r), g(r), ref(r);
+  DenseVector z = test::probePoint(r), g(r), ref(r);
   model.gradient(z, g);
   reference.gradient(z, ref);
   g -= ref;
@@ -197,7 +156,7 @@ double fieldDiff(DenseHamiltonian& model, DenseHamiltonian& reference) {
 
 double hessianDiff(DenseHamiltonian& model, DenseHamiltonian& reference) {
   const int r = reference.dim();
-  const DenseVector z = probePoint(r);
+  const DenseVector z = test::probePoint(r);
   DenseMatrix H(r, r), ref(r, r);
   model.addHessian(z, 1.0, H);
   reference.addHessian(z, 1.0, ref);
@@ -303,18 +262,8 @@ TEST(GpDeim, AvfConservesHyperReducedHamiltonian) {
   auto hc = test::nlsCase(48, 4, test::comm());
   for (int m : {4, 8, 16, 48}) {  // 48 = d
     auto hr = test::gpDeimModel(hc, m);
-    DenseModelIntegrator avf(*hr, test::denseIntegrator("avf"), 4);
-    DenseVector z(hr->dim()), g(hr->dim());
-    const double H0 = hr->hamiltonian(z);
-    double bound = 0.0, worst = 0.0;
-    // Per step |dH| = |gbar^T R| <= |gbar| |R| (AveragedGradientScheme), summed over the steps,
-    // plus the round-off of evaluating H twice (1e-13 (1 + |H0|): sums of ~1e2 terms of size |H0|).
-    avf.run(z, 0.05, 1000, [&](long j, double, const DenseVector& zj, const StepReport& rep) {
-      if (j == 0) return;
-      bound += avf.scheme().averageGradient().normFrobenius() * rep.residualNorm;
-      worst = std::max(worst, std::abs(hr->hamiltonian(zj) - H0) - bound - 1e-13 * (1.0 + std::abs(H0)));
-    });
-    EXPECT_LE(worst, 0.0) << "m = " << m << ": |H_hr(z_j) - H_hr(z_0)| exceeds the AVF bound";
+    EXPECT_LE(test::avfDriftBeyondBound(*hr, 0.05, 1000), 0.0)
+        << "m = " << m << ": |H_hr(z_j) - H_hr(z_0)| exceeds the AVF bound";
   }
 }
 

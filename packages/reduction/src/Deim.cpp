@@ -130,9 +130,9 @@ std::vector<GO> greedyDeim(const MultiVector& U, int m) {
   return idx;
 }
 
-// Global argmax of |x_l| over this rank's rows l not in `exclude` (ties: the smallest gid, so
-// every rank count agrees); returns (gid, |x|), gid -1 if no row qualifies. One gatherAll.
-std::pair<GO, double> argmaxAbs(const Map& map, const std::vector<double>& x, const std::vector<char>& exclude) {
+}  // namespace
+
+std::pair<GO, double> globalArgmaxAbs(const Map& map, const std::vector<double>& x, const std::vector<char>& exclude) {
   double best[2] = {-1.0, -1.0};  // |x|, gid (exact in a double below 2^53)
   for (LO i = 0; i < static_cast<LO>(map.getNodeNumElements()); ++i) {
     if (exclude[i]) continue;
@@ -149,8 +149,6 @@ std::pair<GO, double> argmaxAbs(const Map& map, const std::vector<double>& x, co
   }
   return out;
 }
-
-}  // namespace
 
 std::vector<GO> replaceDeimIndices(const MultiVector& U, std::vector<GO> P, const std::vector<int>& columns) {
   const Map& map = *U.getMap();
@@ -183,7 +181,7 @@ std::vector<GO> replaceDeimIndices(const MultiVector& U, std::vector<GO> P, cons
       const double cj = c[cb++];
       for (LO l = 0; l < nl; ++l) res[l] -= u(l, b) * cj;
     }
-    const auto [gid, val] = argmaxAbs(map, res, exclude);
+    const auto [gid, val] = globalArgmaxAbs(map, res, exclude);
     GPHR_REQUIRE(gid >= 0 && val > 0.0 && std::isfinite(val), InputError, "DEIM point update: the residual of column ",
                  i + 1, " against the other ", k, " vanishes (", val, ")");
     P[i] = gid;

@@ -273,6 +273,10 @@ void ReducedRowKernel::reducedJacobian(Scalar* out, size_t ld) const {
       });
 }
 
+void ReducedRowKernel::rowValues(Scalar* out) const {
+  for (LO i = 0; i < numRows(); ++i) out[i] = batch_.g(i) - gRef_(i);
+}
+
 RowSample ownedRowSample(const HamiltonianSystem& system, const MultiVector& A) {
   const NonlinearTerm& term = system.nonlinearTerm();
   const RCP<const Map> overlap = term.jacobianGraph()->getColMap();  // owned + ghost state entries

@@ -5,6 +5,7 @@
 //   deimWeights = (U^T P)^{-1} U^T v      (the nonzeros of w = P (U^T P)^{-1} U^T v)
 // are all that is kept of U online.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gphr/core/Types.hpp"
@@ -27,6 +28,11 @@ std::vector<GO> selectDeimIndices(const MultiVector& U, int m, const std::string
 // O(d m) and two collectives per column instead of greedy DEIM's O(d m^2). Returns the new P;
 // InputError if that residual vanishes (u_i depends on the other columns at P_{-i}).
 std::vector<GO> replaceDeimIndices(const MultiVector& U, std::vector<GO> P, const std::vector<int>& columns);
+
+// Global argmax of |x_l| over this rank's rows l of `map` not in `exclude` (ties: the smallest
+// gid, so every rank count agrees); returns (gid, |x|), gid -1 if no row qualifies. One gatherAll.
+// The greedy selections over distributed rows (DEIM's point update, the empirical quadrature's terms).
+std::pair<GO, double> globalArgmaxAbs(const Map& map, const std::vector<double>& x, const std::vector<char>& exclude);
 
 struct DeimWeights {
   std::vector<double> weights;    // (U^T P)^{-1} U^T v, one per index

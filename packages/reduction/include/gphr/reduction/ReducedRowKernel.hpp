@@ -71,6 +71,8 @@ class ReducedRowKernel {
   // After evaluate(z, true, ...): rows of J_G(y) A of this sample, row-major numRows() x 2k, row i
   // at out + i * ld (ld = 0: 2k; a larger ld writes into columns of a wider array).
   void reducedJacobian(Scalar* out, size_t ld = 0) const;
+  // After evaluate(): each row's own G_i(y) - G_i(yref), unweighted (out: numRows() numbers).
+  void rowValues(Scalar* out) const;
   // Entries of grad N = sum_i w_i grad G_i at state entries (classic DEIM of the gradient):
   // entrySlot[j] = slot of stencil entry j (-1: not sampled). out[slot] = sum of w_i dG_i/dy_e;
   // entryHessianRows: out (numSlots x 2k, row-major) = the rows d(grad N)_e/dz.
