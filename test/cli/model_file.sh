@@ -21,7 +21,7 @@ gphr:
   scene: {name: nls1d, n: 128}
   time: {T: 1.0, dt: 0.01}
   training: {points: [3]}
-  pipeline: {methods: [gp-deim], k: [6], m: [10, 20]}
+  pipeline: {methods: [gp-deim, gp-eqp], k: [6], m: [10, 20]}
   hyper: {snapshotEvery: 5}
   build: {probes: [0, 5, 130]}
   output: {progressSeconds: 0.0}
@@ -31,7 +31,13 @@ sed 's/probes: \[0, 5, 130\]}/probes: [0, 5, 130], withBasis: true}/' build.yaml
 # 1. Build on 2 ranks, without and with the basis.
 run 2 "$gphr" build build.yaml --model m/nls.h5 --output art > build.out 2> build.err || { cat build.err; fail "build"; }
 run 2 "$gphr" build build_basis.yaml --model m/nls_basis.h5 --output art > /dev/null 2> build.err || { cat build.err; fail "build with basis"; }
-grep -q "gp-deim k=6 m=10, gp-deim k=6 m=20" build.out || fail "build did not list its models: $(cat build.out)"
+grep -q "gp-deim k=6 m=10, gp-deim k=6 m=20, gp-eqp k=6 m=10, gp-eqp k=6 m=20" build.out \
+  || fail "build did not list its models: $(cat build.out)"
+# gp-eqp's stored weights are non-negative (the point of the method).
+h5dump -d /k6/gp-eqp/m20/weights -y -w 0 -m '%.17g' -o eqpw.txt m/nls.h5 > /dev/null
+python3 -c "
+import re; w = [float(x) for x in re.split(r'[,\s]+', open('eqpw.txt').read().strip()) if x]
+assert w and min(w) >= 0, w" || fail "gp-eqp weights in the file are not all >= 0"
 h5ls -r m/nls.h5 | grep -q "/k6/basis" && fail "the basis was stored without build.withBasis"
 h5ls -r m/nls_basis.h5 | grep -q "/k6/basis" || fail "build.withBasis did not store the basis"
 # Without the basis the largest dataset is the interpolant (7 nodes x (4k^2 + 2k + 1 + |mesh|)):
@@ -50,14 +56,15 @@ queries:
   points:
     test: {eps: 1.0932}
     big: {eps: 1.02, m: 20, T: 0.5}
+    eqp: {eps: 0.97, method: gp-eqp, m: 20}
   grid:
     eps: [0.9, 1.1, 5]
 YAML
 for np in 1 2 3; do
   run $np "$gphr" query m/nls.h5 q.yaml --output q$np > q$np.out 2> q$np.err || { cat q$np.err; fail "query on $np ranks"; }
-  grep -q "7 queries (7 run, 0 reused, 7 ok) on $np rank" q$np.out || fail "query on $np ranks: $(cat q$np.out)"
+  grep -q "8 queries (8 run, 0 reused, 8 ok) on $np rank" q$np.out || fail "query on $np ranks: $(cat q$np.out)"
 done
-[ $(wc -l < q1/queries.csv) -eq 8 ] || fail "queries.csv should have a header and 7 lines"
+[ $(wc -l < q1/queries.csv) -eq 9 ] || fail "queries.csv should have a header and 8 lines"
 for f in q1/queries/*.h5; do
   b=$(basename "$f")
   for np in 2 3; do
@@ -137,7 +144,7 @@ bad unknown_key "unknown key 'mm'; allowed: eps, method, k, m" "$q
     a: {eps: 1.0, mm: 20}"
 bad outside_box "eps = 1.3 is outside the training box [0.9, 1.1]; allowed: inside it, or extrapolate: true" "$q
     a: {eps: 1.3}"
-bad no_model "it holds gp-deim k=6 m=10, gp-deim k=6 m=20" "$q
+bad no_model "it holds gp-deim k=6 m=10, gp-deim k=6 m=20, gp-eqp k=6 m=10" "$q
     a: {eps: 1.0, m: 30}"
 bad mistyped "key 'k' must be a whole number" "$q
     a: {eps: 1.0, k: six}"

@@ -5,6 +5,7 @@
 #include <Teuchos_Time.hpp>
 
 #include <filesystem>
+#include <iterator>
 
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/Commands.hpp"
@@ -18,8 +19,36 @@ namespace gphr {
 
 namespace {
 
-// Methods a model file stores: those whose online model needs only a sample mesh.
-bool storable(const std::string& method) { return method == "gp-deim"; }
+// Methods a model file stores: those whose online model is a sample mesh with term weights.
+bool storable(const std::string& method) {
+  return method == "gp-deim" || method == "gp-eqp" || method == "gp-eqp-refit";
+}
+
+// The stored models of reduced size k: gp-deim from the DEIM basis, gp-eqp / gp-eqp-refit from
+// their fits (a budget the training cannot support is left out, with a note).
+std::vector<StoredHyperModel> modelsOfK(const RunContext& ctx, RomStages& st, const SceneInstance& inst,
+                                        const MultiVector& A, int k, const std::vector<std::string>& methods,
+                                        const std::vector<int>& ms) {
+  std::vector<StoredHyperModel> out;
+  for (const auto& method : methods) {
+    if (method == "gp-deim") {
+      const auto U = deimBasisFor(ctx, st, A, k, *inst.system).basis.U;
+      auto deim = gpDeimModels(inst, A, k, *U, ms, ctx.config.sublist("hyper").get<std::string>("indices"));
+      std::move(deim.begin(), deim.end(), std::back_inserter(out));
+      continue;
+    }
+    for (int m : ms) {
+      try {
+        const auto fit = termWeightFit(ctx, st, A, k, *inst.system, method, m);
+        out.push_back(termModel(inst, A, method, k, m, fit.terms, fit.weights));
+      } catch (const InputError& e) {
+        if (ctx.comm->getRank() == 0)
+          std::fprintf(stderr, "[gphr] build: %s k = %d, m = %d not stored: %s\n", method.c_str(), k, m, e.what());
+      }
+    }
+  }
+  return out;
+}
 
 // A section of the config as YAML with its own name at the top.
 std::string sectionYaml(const Teuchos::ParameterList& cfg, const std::string& name) {
@@ -63,7 +92,7 @@ int runBuild(const std::string& configPath, const std::string& modelPath, const 
   std::vector<std::string> stored, skipped;
   for (const auto& m : pipelineMethods(ctx.config)) (storable(m) ? stored : skipped).push_back(m);
   GPHR_REQUIRE(!stored.empty(), InputError, "config file '", configPath,
-               "': gphr build stores gp-deim models; pipeline.methods must list gp-deim");
+               "': gphr build stores gp-deim, gp-eqp and gp-eqp-refit models; pipeline.methods must list one of them");
   GPHR_REQUIRE(ctx.config.sublist("scene").get<bool>("shift"), InputError, "config file '", configPath,
                "': gphr build needs scene.shift: true (the stored models are of the shifted system)");
   prepareOutputDir(ctx, false);
@@ -92,7 +121,7 @@ int runBuild(const std::string& configPath, const std::string& modelPath, const 
   const bool withBasis = ctx.config.sublist("build").get<bool>("withBasis");
   for (int k : stageK(ctx.config, st.basis)) {
     const auto A = leadingBasis(st.basis, k);
-    addReducedBasis(data, *ctx.scene, inst, *A, k, *deimBasisFor(ctx, st, *A, k, *inst.system).basis.U, ms, opt);
+    addReducedBasis(data, *ctx.scene, inst, *A, k, modelsOfK(ctx, st, inst, *A, k, stored, ms), opt);
     bases.push_back(withBasis ? RCP<const MultiVector>(A) : Teuchos::null);
   }
   data.offlineSeconds = clock.totalElapsedTime(true);

@@ -472,6 +472,12 @@ void runGradientDeim(const RunContext& ctx, const FomResult& fom, RomStages& st,
 
 }  // namespace
 
+QuadratureFit termWeightFit(const RunContext& ctx, RomStages& st, const MultiVector& A, int k,
+                            const HamiltonianSystem& test, const std::string& method, int m) {
+  QuadratureFits fits(ctx, st, A, k, test);
+  return fits.get(method, m).fit;
+}
+
 void runHyperReduction(const RunContext& ctx, const FomResult& fom, RomStages& st) {
   const auto methods = pipelineMethods(ctx.config);
   const bool gp = wants(methods, "gp-deim"), classic = wants(methods, "deim"), sd = wants(methods, "sdeim"),

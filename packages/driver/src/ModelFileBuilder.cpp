@@ -19,25 +19,6 @@ namespace gphr {
 
 namespace {
 
-std::vector<StoredHyperModel> deimModels(const SceneInstance& inst, const MultiVector& A, int k, const MultiVector& U,
-                                         const std::vector<int>& ms, const std::string& indices) {
-  std::vector<StoredHyperModel> out;
-  for (int m : ms) {
-    GPHR_REQUIRE(m >= 1 && m <= static_cast<int>(U.getNumVectors()), InputError, "gp-deim k = ", k, ", m = ", m,
-                 ": the DEIM basis has ", U.getNumVectors(),
-                 " vectors (numerical rank of the snapshots or hyper.maxRank); allowed: 1 <= m <= that");
-    StoredHyperModel sm;
-    sm.method = "gp-deim", sm.k = k, sm.m = m;
-    const auto idx = selectDeimIndices(U, m, indices);
-    const auto w = computeDeimWeights(U, idx, *inst.system->nonlinearTerm().weights());
-    sm.sample = gatherRowSample(*inst.system, A, idx, w.weights);
-    sm.sample.reference.clear();  // parameter-dependent: from the interpolant per query
-    sm.conditionNumber = w.conditionNumber;
-    out.push_back(std::move(sm));
-  }
-  return out;
-}
-
 // Exact L_r, f_r, c and reference rows at mu (an O(n k) projection of the full system).
 OnlineParameterData exactAt(const Scene& scene, const RCP<const Comm>& comm, const MultiVector& A,
                             const std::vector<GO>& gids, const std::vector<double>& mu) {
@@ -129,13 +110,42 @@ ReducedModelData modelFileHeader(const Scene& scene, const SceneInstance& inst, 
   return d;
 }
 
+StoredHyperModel termModel(const SceneInstance& inst, const MultiVector& A, const std::string& method, int k, int m,
+                           const std::vector<GO>& rows, const std::vector<double>& weights) {
+  StoredHyperModel sm;
+  sm.method = method, sm.k = k, sm.m = m;
+  sm.sample = gatherRowSample(*inst.system, A, rows, weights);
+  sm.sample.reference.clear();  // parameter-dependent: from the interpolant per query
+  return sm;
+}
+
+std::vector<StoredHyperModel> gpDeimModels(const SceneInstance& inst, const MultiVector& A, int k, const MultiVector& U,
+                                           const std::vector<int>& ms, const std::string& indices) {
+  std::vector<StoredHyperModel> out;
+  for (int m : ms) {
+    GPHR_REQUIRE(m >= 1 && m <= static_cast<int>(U.getNumVectors()), InputError, "gp-deim k = ", k, ", m = ", m,
+                 ": the DEIM basis has ", U.getNumVectors(),
+                 " vectors (numerical rank of the snapshots or hyper.maxRank); allowed: 1 <= m <= that");
+    const auto idx = selectDeimIndices(U, m, indices);
+    const auto w = computeDeimWeights(U, idx, *inst.system->nonlinearTerm().weights());
+    out.push_back(termModel(inst, A, "gp-deim", k, m, idx, w.weights));
+    out.back().conditionNumber = w.conditionNumber;
+  }
+  return out;
+}
+
 void addReducedBasis(ReducedModelData& data, const Scene& scene, const SceneInstance& inst, const MultiVector& A,
-                     int k, const MultiVector& U, const std::vector<int>& ms, const ModelFileOptions& opt) {
+                     int k, std::vector<StoredHyperModel> models, const ModelFileOptions& opt) {
   GPHR_REQUIRE(opt.interpolationNodes >= 2 && opt.interpolationNodes <= 33, InputError, "interpolation nodes ",
                opt.interpolationNodes, "; allowed: 2 to 33");
-  auto models = deimModels(inst, A, k, U, ms, opt.indices);
+  GPHR_REQUIRE(!models.empty(), InputError, "reduced-model file: no model for k = ", k);
   data.bases.push_back(basisData(scene, inst.system->space().comm(), A, k, models, opt));
   for (auto& m : models) data.models.push_back(std::move(m));
+}
+
+void addReducedBasis(ReducedModelData& data, const Scene& scene, const SceneInstance& inst, const MultiVector& A,
+                     int k, const MultiVector& U, const std::vector<int>& ms, const ModelFileOptions& opt) {
+  addReducedBasis(data, scene, inst, A, k, gpDeimModels(inst, A, k, U, ms, opt.indices), opt);
 }
 
 }  // namespace gphr

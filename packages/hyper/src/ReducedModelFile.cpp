@@ -163,7 +163,8 @@ StoredHyperModel readModel(const Hdf5File& f, const std::string& method, int k, 
   s.reducedDim = 2 * k;
   s.shifted = f.doubleAttribute(gm, "shifted").at(0) != 0.0;
   out.conditionNumber = f.doubleAttribute(gm, "cond_PtU").at(0);
-  GPHR_REQUIRE(s.rows.size() == static_cast<size_t>(m) && s.weights.size() == s.rows.size() &&
+  // m is the budget: gp-eqp may stop with fewer terms (no further term improves its fit).
+  GPHR_REQUIRE(!s.rows.empty() && s.rows.size() <= static_cast<size_t>(m) && s.weights.size() == s.rows.size() &&
                    s.stencil.offsets.size() == s.rows.size() + 1 && s.stencil.offsets.back() == s.stencil.gids.size() &&
                    s.basisRows.size() == s.stencil.gids.size() * s.reducedDim,
                InputError, "model ", out.key(), " is inconsistent (rows, weights, stencils and basis rows disagree)");

@@ -19,10 +19,23 @@ struct ModelFileOptions {
 // The file's header for `scene` (instance: any shifted instance of it; supplies the degree of G).
 ReducedModelData modelFileHeader(const Scene& scene, const SceneInstance& instance, const ModelFileOptions& options);
 
-// Adds the gp-deim models of reduced size k (A: 2n x 2k) for each m (U: the reduced-Jacobian DEIM
-// basis, d x >= max m) and the basis data of k: probe rows, the parameter interpolant with its
-// error measured between the nodes. Collective over instance's communicator (the interpolant
-// instantiates the full system at each node: an O(n k) projection each).
+// A term-weighted model (its H_hr = sum_i w_i G_i over the given rows of G, paper eq:Hyperred_model)
+// as stored: the sample mesh of `rows` with `weights`. Collective.
+StoredHyperModel termModel(const SceneInstance& instance, const MultiVector& A, const std::string& method, int k,
+                           int m, const std::vector<GO>& rows, const std::vector<double>& weights);
+
+// The gp-deim models of reduced size k (A: 2n x 2k) for each m: DEIM indices of U (the
+// reduced-Jacobian DEIM basis, d x >= max m) and their weights. Collective.
+std::vector<StoredHyperModel> gpDeimModels(const SceneInstance& instance, const MultiVector& A, int k,
+                                           const MultiVector& U, const std::vector<int>& ms, const std::string& indices);
+
+// Adds the models of reduced size k and the basis data of k: probe rows, the parameter
+// interpolants with their error measured between the nodes. Collective over instance's
+// communicator (the interpolants instantiate the full system at each node: an O(n k) projection each).
+void addReducedBasis(ReducedModelData& data, const Scene& scene, const SceneInstance& instance, const MultiVector& A,
+                     int k, std::vector<StoredHyperModel> models, const ModelFileOptions& options);
+
+// The gp-deim models and the basis data in one call (gpDeimModels, then addReducedBasis).
 void addReducedBasis(ReducedModelData& data, const Scene& scene, const SceneInstance& instance, const MultiVector& A,
                      int k, const MultiVector& U, const std::vector<int>& ms, const ModelFileOptions& options);
 

@@ -10,6 +10,7 @@
 #include "gphr/driver/FomStage.hpp"
 #include "gphr/driver/RunContext.hpp"
 #include "gphr/hyper/DeimBasis.hpp"
+#include "gphr/hyper/EmpiricalQuadrature.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/reduction/SymplecticBasis.hpp"
 
@@ -80,6 +81,11 @@ struct CachedDeimBasis {
 };
 CachedDeimBasis deimBasisFor(const RunContext& ctx, const RomStages& st, const MultiVector& A, int k,
                              const HamiltonianSystem& test);
+// The terms and weights of gp-eqp (non-negative, NNLS) or gp-eqp-refit (GP-DEIM's terms, least
+// squares) for reduced size k and budget m, from the artifacts.h5 cache when its key matches, else
+// fitted (section eqp) and cached. InputError when the training cannot support the budget.
+QuadratureFit termWeightFit(const RunContext& ctx, RomStages& st, const MultiVector& A, int k,
+                            const HamiltonianSystem& test, const std::string& method, int m);
 // The hyper-reduced models of pipeline.methods (gp-deim, deim, sdeim) for every k and m.
 void runHyperReduction(const RunContext& ctx, const FomResult& fom, RomStages& stages);
 // The training and basis keys of a rom / gp-deim entry: t_training_s, t_basis_s, t_basis_cpu_s,

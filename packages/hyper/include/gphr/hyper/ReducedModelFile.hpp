@@ -20,8 +20,8 @@ constexpr int kReducedModelSchema = 2;
 
 // One hyper-reduced model: its sample mesh without the parameter-dependent reference rows.
 struct StoredHyperModel {
-  std::string method;  // gp-deim
-  int k = 0, m = 0;
+  std::string method;  // gp-deim, gp-eqp, gp-eqp-refit
+  int k = 0, m = 0;    // m: gp-deim's rows; the term budget of gp-eqp (which may use fewer)
   RowSample sample;    // reference left empty: it comes from the basis' interpolant per query
   double conditionNumber = 0.0;  // cond_2(P^T U) of the DEIM pair
   std::string key() const { return method + "/k" + std::to_string(k) + "/m" + std::to_string(m); }
