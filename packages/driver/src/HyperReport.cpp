@@ -1,6 +1,7 @@
 #include "gphr/driver/HyperReport.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -30,6 +31,14 @@ std::string fmt(double x, const char* f = "%.3g") {
   char b[64];
   std::snprintf(b, sizeof b, f, x);
   return b;
+}
+
+// The methods with a run that satisfies `keep`, in the order report.md lists them (first seen).
+std::vector<std::string> methodsWith(const RomStages& st, const std::function<bool(const ModelRun&)>& keep) {
+  std::vector<std::string> out;
+  for (const auto& r : st.runs)
+    if (keep(r) && std::find(out.begin(), out.end(), r.method) == out.end()) out.push_back(r.method);
+  return out;
 }
 
 bool anyUnbounded(const RomStages& st) {
@@ -303,9 +312,7 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
   {
     std::ostringstream b;
     b << "set logscale y\nset format y '%.0e'\nset xlabel 'm (DEIM size)'\nset ylabel 'E_L2'\nset key outside\n"
-      << "set title 'Error vs DEIM size (" << (adeim && ctx.scene->name() == "nls1d" ? "fig:error_vs_ctime_2k400, left"
-                                                                      : "fig:2dsw_errors_avf_imr")
-      << ")'\nplot ";
+      << "set title 'Relative error E_L2 against the number of sampled terms m'\nplot ";
     std::vector<std::pair<std::string, int>> curves;
     for (const auto& r : st.runs)
       if (r.method != "rom" && std::find(curves.begin(), curves.end(), std::make_pair(r.method, r.k)) == curves.end())
@@ -328,10 +335,7 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
     b << "set logscale xy\nset format y '%.0e'\nset xlabel 'online time [s]'\nset ylabel 'E_L2'\nset key outside\n"
       << "set title 'Error vs online time (pick from the lower-left front)'\nplot ";
     bool first = true;
-    for (const char* m : {"rom", "gp-deim", "gp-eqp", "gp-eqp-refit", "deim", "sdeim"}) {
-      bool any = false;
-      for (const auto& r : st.runs) any |= r.method == m && r.ok;
-      if (!any) continue;
+    for (const auto& m : methodsWith(st, [](const ModelRun& r) { return r.ok; })) {  // every method report.md lists
       b << (first ? "" : ", ") << "'" << runs << "' every ::1 using ((strcol(1) eq '" << m
         << "' && strcol(4) eq 'ok') ? $6 : 1/0):5 with points pt 7 ps 1.5 title '" << m << "'";
       first = false;
@@ -344,7 +348,7 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
     std::ostringstream b;
     const std::string csv = p.at("hamiltonian_terms.csv");
     b << "set logscale y\nset format y '%.0e'\nset xlabel 't'\nset ylabel 'Hamiltonian error'\nset key outside\n"
-      << "set title 'Hamiltonian error terms, " << terms->label() << " (fig:2dsw_hamcons)'\n"
+      << "set title 'Hamiltonian error and the terms that bound it, " << terms->label() << "'\n"
       << "plot for [c=2:5] '" << csv << "' every ::1 using 1:(column(c) > 0 ? column(c) : 1e-17) with lines lw 2 "
       << "title columnhead(c)\n";
     if (gnuplot(p.at("hamiltonian_terms.png"), b.str())) written.push_back("hamiltonian_terms.png");
@@ -375,20 +379,23 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
     std::ostringstream b;
     b << "set multiplot layout 1," << (residuals.tellp() > 0 ? 2 : 1) << "\nset key below\nset xlabel 'update j'\n";
     if (residuals.tellp() > 0)
-      b << "set logscale y\nset format y '%.0e'\nset title '||U_{j+1} C_j - F_j||_F: all rows (fig:schro_samplingstrats), "
-           "at S'\nplot " << residuals.str() << "\nunset logscale y\n";
-    b << "set format y '%g'\nset title 'rank r_j and m_s (fig:rj_and_msj)'\nplot " << ranks.str() << "\nunset multiplot\n";
+      b << "set logscale y\nset format y '%.0e'\nset title 'GP-ADEIM: residual after each update'\nplot "
+        << residuals.str() << "\nunset logscale y\n";
+    b << "set format y '%g'\nset title 'GP-ADEIM: rank r, sampled rows m_s'\nplot " << ranks.str()
+      << "\nunset multiplot\n";
     if (!first && gnuplot(p.at("adeim_updates.png"), b.str())) written.push_back("adeim_updates.png");
-    std::ostringstream t;  // fig:error_vs_ctime_2k400: error vs total hyper-reduction time
+    std::ostringstream t;  // error vs total hyper-reduction time (doc/paper-map.md: the paper's figure)
     t << "set logscale xy\nset format y '%.0e'\nset xlabel 't_total = hyper-reduction offline + online [s]'\n"
-      << "set ylabel 'E_L2'\nset key outside\nset title 'Error vs total time (fig:error_vs_ctime_2k400)'\nplot ";
+      << "set ylabel 'E_L2'\nset key outside\nset title 'Error against total cost (offline hyper-reduction + online)'\nplot ";
     std::vector<int> ks;
+    const auto totalled = methodsWith(st, [](const ModelRun& r) { return std::isfinite(r.run.number("t_total_s")); });
     for (const auto& r : st.runs)
-      if ((r.method == "gp-deim" || r.method == "gp-adeim") && std::find(ks.begin(), ks.end(), r.k) == ks.end())
+      if (std::find(totalled.begin(), totalled.end(), r.method) != totalled.end() &&
+          std::find(ks.begin(), ks.end(), r.k) == ks.end())
         ks.push_back(r.k);
     first = true;
     for (int k : ks)
-      for (const char* m : {"gp-deim", "gp-adeim"}) {
+      for (const auto& m : totalled) {
         t << (first ? "" : ", ") << "'" << runs << "' every ::1 using ((strcol(1) eq '" << m << "' && $2 == " << k
           << " && strcol(4) eq 'ok') ? $9 : 1/0):5 with linespoints lw 2 pt 7 title '" << m << " 2k=" << 2 * k << "'";
         first = false;
