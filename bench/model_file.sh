@@ -133,7 +133,7 @@ queries:
 YAML
       rm -rf $out/q
       /usr/bin/time -f "%M" -o $out/query.rss "$gphr" query $out/swe.h5 $out/q.yaml --output $out/q > /dev/null 2>&1
-      sed -e "s|nx: $nx}|nx: $nx}\n  parameters: {beta: 1.4, gamma: 1.0}|" -e "s|^  pipeline:.*|  pipeline: {methods: []}|" \
+      sed -e "s|nx: $nx}|nx: $nx}\n  parameters: {beta: 1.4, gamma: 1.0}|" -e "s|^  pipeline:.*|  pipeline: {rom: false}|" \
           -e "/^  hyper:/d" -e "/^  training:/d" -e "/^  reduction:/d" $out/build.yaml > $out/fom.yaml
       /usr/bin/time -f "%M" -o $out/fom.rss "$gphr" run $out/fom.yaml --output $out/fom > /dev/null 2>&1
       step=$(python3 -c "import csv; r=list(csv.DictReader(open('$out/q/queries.csv'))); print(min(float(x['online_s']) for x in r) / 100)")

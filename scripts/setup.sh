@@ -1,8 +1,21 @@
 #!/usr/bin/env bash
 # Installs GPHR's Debian 12 dependencies (only what is missing), configures and builds GPHR in
 # ./build (Release, Ninja, ccache). Idempotent and quick when nothing changed. Run as root.
+#
+# Options:
+#   --docs   also install doxygen (Debian's), for the API reference (`cmake --build build --target doc`)
+#            and its check, the ctest test doc_undocumented. The same as GPHR_DOCS=1 in the
+#            environment. Without it nothing about doxygen changes (an installed one is kept).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+
+docs="${GPHR_DOCS:-0}"
+for arg in "$@"; do
+  case "$arg" in
+    --docs) docs=1 ;;
+    *) echo "[setup] unknown option '$arg' (allowed: --docs)" >&2; exit 2 ;;
+  esac
+done
 
 packages=(build-essential cmake ninja-build ccache gnuplot-nox hdf5-tools python3
   libopenmpi-dev openmpi-bin libhdf5-openmpi-dev libgtest-dev libopenblas-dev
@@ -14,6 +27,7 @@ packages=(build-essential cmake ninja-build ccache gnuplot-nox hdf5-tools python
   libtrilinos-zoltan2-dev libtrilinos-teko-dev libtrilinos-ml-dev libtrilinos-ifpack-dev
   libtrilinos-amesos-dev libtrilinos-galeri-dev libtrilinos-isorropia-dev libtrilinos-trilinosss-dev
   libscotch-dev libptscotch-dev)
+if [ "$docs" = 1 ]; then packages+=(doxygen); fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -29,4 +43,8 @@ fi
 # mpirun as root (CI, containers) needs these; harmless otherwise (PLATFORM.md).
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 [ -f build/build.ninja ] || cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release > /dev/null
+# An existing build configured before doxygen was installed: configure again to add `doc`.
+if [ "$docs" = 1 ] && ! grep -qs doc_undocumented build/CTestTestfile.cmake; then
+  cmake -S . -B build > /dev/null
+fi
 cmake --build build -j "$(nproc)"

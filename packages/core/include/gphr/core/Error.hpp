@@ -1,19 +1,21 @@
 #pragma once
+/// @file
+/// GPHR's exceptions (InputError, SolverError) and the GPHR_REQUIRE check that throws them.
 #include <sstream>
 #include <stdexcept>
 #include <string>
 
 namespace gphr {
 
-// Bad input from a user (configuration, file, size mismatch): the message names the offending
-// value and what is allowed.
+/// Bad input from a user (configuration, file, size mismatch): the message names the offending
+/// value and what is allowed.
 class InputError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
 
-// A numerical solver failed (Newton did not converge, linear solve broke down): the message
-// names where (step, time) and how (residual norm).
+/// A numerical solver failed (Newton did not converge, linear solve broke down): the message
+/// names where (step, time) and how (residual norm).
 class SolverError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
@@ -31,7 +33,7 @@ std::string concat(const Args&... args) {
 
 }  // namespace gphr
 
-// GPHR_REQUIRE(cond, ErrorType, message parts...): throw ErrorType(concat(parts)) unless cond.
+/// GPHR_REQUIRE(cond, ErrorType, message parts...): throw ErrorType(concat(parts)) unless cond.
 #define GPHR_REQUIRE(cond, ErrorType, ...)                        \
   do {                                                            \
     if (!(cond)) throw ErrorType(::gphr::detail::concat(__VA_ARGS__)); \

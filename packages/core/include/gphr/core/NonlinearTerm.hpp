@@ -1,20 +1,21 @@
 #pragma once
-// The decomposed nonlinearity N(y) = v^T G(y) of paper eq:decomp, G : R^{2n} -> R^d, given
-// row by row: row i of G depends only on the entries of y in its *stencil* (s1 + s2 of them,
-// paper rmk:decomp). A scene supplies a row kernel; everything else (N, grad N = J_G^T v, J_G,
-// the Hessian of N, and later the sampled rows of the hyper-reduced model) is assembled by GPHR
-// from that one kernel.
-//
-// Row-kernel contract (a copyable functor, see RowKernelTerm below):
-//   KOKKOS_INLINE_FUNCTION
-//   void operator()(GO row, const Scalar* vals, Scalar& g, Scalar* grad, Scalar* hess) const;
-//     vals: y at the row's stencil (stencil order), g: G_row(y);
-//     grad (may be nullptr): dG_row/dvals (s entries);
-//     hess (may be nullptr): d^2 G_row/dvals^2, s x s row-major.
-// The stencils themselves (which entries, hence s) are data, given once as a Stencil of the
-// owned rows; gatherStencils (ReplicatedGather.hpp) collects those of any set of global rows.
-// The kernel may be called on any row id with any values: the full model calls it on owned
-// rows, the reduced and hyper-reduced models on rows they hold replicated.
+/// @file
+/// The decomposed nonlinearity N(y) = v^T G(y) of paper eq:decomp, G : R^{2n} -> R^d, given
+/// row by row: row i of G depends only on the entries of y in its *stencil* (s1 + s2 of them,
+/// paper rmk:decomp). A scene supplies a row kernel; everything else (N, grad N = J_G^T v, J_G,
+/// the Hessian of N, and later the sampled rows of the hyper-reduced model) is assembled by GPHR
+/// from that one kernel.
+///
+/// Row-kernel contract (a copyable functor, see RowKernelTerm below):
+///   KOKKOS_INLINE_FUNCTION
+///   void operator()(GO row, const Scalar* vals, Scalar& g, Scalar* grad, Scalar* hess) const;
+///     vals: y at the row's stencil (stencil order), g: G_row(y);
+///     grad (may be nullptr): dG_row/dvals (s entries);
+///     hess (may be nullptr): d^2 G_row/dvals^2, s x s row-major.
+/// The stencils themselves (which entries, hence s) are data, given once as a Stencil of the
+/// owned rows; gatherStencils (ReplicatedGather.hpp) collects those of any set of global rows.
+/// The kernel may be called on any row id with any values: the full model calls it on owned
+/// rows, the reduced and hyper-reduced models on rows they hold replicated.
 #include <string>
 #include <vector>
 
@@ -22,48 +23,55 @@
 
 namespace gphr {
 
-// Global stencil of this rank's rows of G: row r's entries are gids[offsets[r] .. offsets[r+1]),
-// listed in the kernel's order.
+/// Global stencil of this rank's rows of G: row r's entries are gids[offsets[r]..offsets[r+1]),
+/// listed in the kernel's order.
 struct Stencil {
-  std::vector<size_t> offsets{0};
-  std::vector<GO> gids;
-  LO numRows() const { return static_cast<LO>(offsets.size()) - 1; }
-  LO size(LO r) const { return static_cast<LO>(offsets[r + 1] - offsets[r]); }
+  std::vector<size_t> offsets{0};  ///< Row r's entries are gids[offsets[r] .. offsets[r+1]).
+  std::vector<GO> gids;  ///< Global ids (entries of y) of all stencils, row after row.
+  LO numRows() const { return static_cast<LO>(offsets.size()) - 1; }  ///< Number of rows.
+  LO size(LO r) const { return static_cast<LO>(offsets[r + 1] - offsets[r]); }  ///< Stencil size s of row r.
 };
 
-// A batch of rows to evaluate: for entry e, row id rows(e), stencil values
-// values(offsets(e) .. offsets(e+1)). Outputs are filled where their view is non-empty:
-// g(e); grad packed like values; hess at hessOffsets(e) .. + s*s.
+/// A batch of rows to evaluate: for entry e, row id rows(e), stencil values
+/// values(offsets(e)..offsets(e+1)). Outputs are filled where their view is non-empty:
+/// g(e); grad packed like values; hess at hessOffsets(e) .. + s*s.
 struct RowBatch {
-  Kokkos::View<GO*, Kokkos::HostSpace> rows;
+  Kokkos::View<GO*, Kokkos::HostSpace> rows;  ///< Row id (of G) of each entry.
+  /// Offsets of each entry's stencil values and gradient / of its s x s Hessian.
+  /// @{
   OffsetView offsets, hessOffsets;
+  /// @}
+  /// Stencil values (input); G_row, its gradient and Hessian (outputs, where non-empty).
+  /// @{
   HostView1 values, g, grad, hess;
-  LO size() const { return static_cast<LO>(rows.extent(0)); }
-  // Allocate for the given stencil layout (done once, outside any time loop).
+  /// @}
+  LO size() const { return static_cast<LO>(rows.extent(0)); }  ///< Number of entries.
+  /// Allocate for the given stencil layout (done once, outside any time loop).
   void allocate(const std::vector<GO>& rowIds, const std::vector<size_t>& stencilOffsets,
                 bool withGradient, bool withHessian);
 };
 
-// The row kernel alone, at one parameter value: what the reduced and hyper-reduced models call.
-// It holds no maps, stencils or weights (nothing of size n or d), so an online model loaded from
-// a reduced-model file runs it without the full system.
+/// The row kernel alone, at one parameter value: what the reduced and hyper-reduced models call.
+/// It holds no maps, stencils or weights (nothing of size n or d), so an online model loaded from
+/// a reduced-model file runs it without the full system.
 class RowEvaluator {
  public:
   virtual ~RowEvaluator() = default;
-  // Run the row kernel on every entry of the batch (Kokkos::parallel_for over the entries).
+  /// Run the row kernel on every entry of the batch (Kokkos::parallel_for over the entries).
   virtual void evaluate(const RowBatch& batch) const = 0;
-  // Polynomial degree of G in y (0 if not polynomial): AVF picks its quadrature from it.
+  /// Polynomial degree of G in y (0 if not polynomial): AVF picks its quadrature from it.
   int polynomialDegree() const { return degree_; }
 
  protected:
+  /// Evaluator of a row kernel whose G is a polynomial of degree `degree` (0: not polynomial).
   explicit RowEvaluator(int degree) : degree_(degree) {}
 
  private:
   int degree_;
 };
 
-// The one place a row kernel is called: a parallel_for over the rows of a batch. The virtual
-// call is per batch, never per row.
+/// The one place a row kernel is called: a parallel_for over the rows of a batch. The virtual
+/// call is per batch, never per row.
 template <class Kernel>
 void runRowKernel(const Kernel& kernel, const RowBatch& b) {
   const Kernel k = kernel;
@@ -83,10 +91,11 @@ void runRowKernel(const Kernel& kernel, const RowBatch& b) {
       });
 }
 
-// A RowEvaluator over a kernel functor (see the contract above).
+/// A RowEvaluator over a kernel functor (see the contract above).
 template <class Kernel>
 class KernelRows final : public RowEvaluator {
  public:
+  /// Wraps `kernel`; `degree` as in polynomialDegree().
   KernelRows(const Kernel& kernel, int degree) : RowEvaluator(degree), kernel_(kernel) {}
   void evaluate(const RowBatch& b) const override { runRowKernel(kernel_, b); }
 
@@ -94,25 +103,28 @@ class KernelRows final : public RowEvaluator {
   Kernel kernel_;
 };
 
+/// A RowEvaluator over a kernel functor (KernelRows).
 template <class Kernel>
 RCP<const RowEvaluator> makeRowEvaluator(const Kernel& kernel, int degree) {
   return rcp(new KernelRows<Kernel>(kernel, degree));
 }
 
-// The decomposed nonlinearity of a full system: the row kernel with the layout of the rows of G
-// (maps, stencils, weights v, the sparsity of J_G).
+/// The decomposed nonlinearity of a full system: the row kernel with the layout of the rows of G
+/// (maps, stencils, weights v, the sparsity of J_G).
 class NonlinearTerm : public RowEvaluator {
  public:
+  /// d, the number of terms (rows of G).
   GO numTerms() const { return static_cast<GO>(rowMap_->getGlobalNumElements()); }
-  const RCP<const Map>& rowMap() const { return rowMap_; }
-  const RCP<const Map>& stateMap() const { return stateMap_; }
-  const RCP<const Vector>& weights() const { return weights_; }
-  const Stencil& stencil() const { return stencil_; }
-  int maxStencilSize() const { return maxStencil_; }
-  // Sparsity of J_G (d rows x 2n columns): row map rowMap(), domain stateMap(), range rowMap().
+  const RCP<const Map>& rowMap() const { return rowMap_; }  ///< Distribution of the d rows of G.
+  const RCP<const Map>& stateMap() const { return stateMap_; }  ///< The state map (2n entries).
+  const RCP<const Vector>& weights() const { return weights_; }  ///< The weights v of N = v^T G, on rowMap().
+  const Stencil& stencil() const { return stencil_; }  ///< Stencils of this rank's rows of G.
+  int maxStencilSize() const { return maxStencil_; }  ///< Largest stencil size s over all rows.
+  /// Sparsity of J_G (d rows x 2n columns): row map rowMap(), domain stateMap(), range rowMap().
   const RCP<const CrsGraph>& jacobianGraph() const { return jacobianGraph_; }
 
  protected:
+  /// A nonlinearity with rows on `rowMap`, states on `stateMap`, this rank's stencils and weights v.
   NonlinearTerm(RCP<const Map> rowMap, RCP<const Map> stateMap, Stencil stencil,
                 RCP<const Vector> weights, int degree);
 
@@ -124,20 +136,23 @@ class NonlinearTerm : public RowEvaluator {
   RCP<const CrsGraph> jacobianGraph_;
 };
 
+/// A NonlinearTerm over a row-kernel functor (the file's row-kernel contract): what a scene supplies.
 template <class Kernel>
 class RowKernelTerm final : public NonlinearTerm {
  public:
+  /// The row kernel `kernel` with its layout (maps, stencils, weights v) and polynomial degree.
   RowKernelTerm(const Kernel& kernel, RCP<const Map> rowMap, RCP<const Map> stateMap,
                 Stencil stencil, RCP<const Vector> weights, int degree)
       : NonlinearTerm(rowMap, stateMap, std::move(stencil), weights, degree), kernel_(kernel) {}
 
-  const Kernel& kernel() const { return kernel_; }
+  const Kernel& kernel() const { return kernel_; }  ///< The row-kernel functor.
   void evaluate(const RowBatch& b) const override { runRowKernel(kernel_, b); }
 
  private:
   Kernel kernel_;
 };
 
+/// A NonlinearTerm over a row-kernel functor (RowKernelTerm).
 template <class Kernel>
 RCP<const NonlinearTerm> makeRowKernelTerm(const Kernel& kernel, RCP<const Map> rowMap,
                                            RCP<const Map> stateMap, Stencil stencil,

@@ -1,33 +1,37 @@
 #pragma once
-// The `gphr` commands besides `run`: build (offline stages -> a reduced-model file), query (the
-// file's models at many parameters, spread over the ranks) and validate (the models against the
-// full model over a set of test parameters). Each returns the process exit code; bad input is an
-// InputError (exit 2), thrown on every rank.
+/// @file
+/// The `gphr` commands besides `run`: build (offline stages -> a reduced-model file), query (the
+/// file's models at many parameters, spread over the ranks) and validate (the models against the
+/// full model over a set of test parameters). Each returns the process exit code; bad input is an
+/// InputError (exit 2), thrown on every rank.
 #include <string>
 
 #include "gphr/driver/RunContext.hpp"
 
 namespace gphr {
 
-// Creates ctx.outputDir (rank 0) and, if removeSummary, removes an earlier run's summary.json
-// (then ctx.replacesEarlierRun). Collective: a failure on rank 0 is thrown on every rank.
+/// Creates ctx.outputDir (rank 0) and, if removeSummary, removes an earlier run's summary.json
+/// (then ctx.replacesEarlierRun). Collective: a failure on rank 0 is thrown on every rank.
 void prepareOutputDir(RunContext& ctx, bool removeSummary);
 
-// Creates `dir` on rank 0; collective like prepareOutputDir.
+/// Creates `dir` on rank 0; collective like prepareOutputDir.
 void makeDirectory(const std::string& dir, const RCP<const Comm>& comm);
 
+/// `gphr build`: the offline stages of the config at `configPath` -> the reduced-model file `modelPath`.
 int runBuild(const std::string& configPath, const std::string& modelPath, const std::string& artifactsDir,
              const RCP<const Comm>& comm);
+/// `gphr query`: the model file's models at the parameters of `queriesPath`, results in `outputDir`.
 int runQuery(const std::string& modelPath, const std::string& queriesPath, const std::string& outputDir,
              const RCP<const Comm>& comm);
 
+/// `gphr validate`: the model file's models against the full model at the test parameters of `testsPath`.
 int runValidate(const std::string& modelPath, const std::string& testsPath, const std::string& outputDir,
                 const RCP<const Comm>& comm);
 
-// Provenance: the gphr version (git describe at configure time), the CMake build type and the
-// C++ flags of that build type.
+/// Provenance: the gphr version (git describe at configure time), the CMake build type and the
+/// C++ flags of that build type.
 const char* gphrVersion();
-const char* gphrBuildType();
-const char* gphrCxxFlags();
+const char* gphrBuildType();  ///< The CMake build type of this build.
+const char* gphrCxxFlags();  ///< The C++ flags of that build type.
 
 }  // namespace gphr

@@ -1,31 +1,33 @@
 #pragma once
-// The `gphr` configuration: a ParameterList read from YAML or XML with one top-level key
-// `gphr`, validated key by key (unknown keys, types and ranges) and completed with defaults.
+/// @file
+/// The `gphr` configuration: a ParameterList read from YAML or XML with one top-level key
+/// `gphr`, validated key by key (unknown keys, types and ranges) and completed with defaults.
 #include <Teuchos_ParameterList.hpp>
 #include <string>
 #include <vector>
 
 namespace gphr {
 
-// The valid list for a given scene (the scene decides its size key and parameters).
+/// The valid list for a given scene (the scene decides its size key and parameters).
 Teuchos::ParameterList configValidParameters(const std::string& sceneName);
-// Read (by extension: .yaml/.yml or .xml) and validate. InputError on any problem, one line.
+/// Read (by extension: .yaml/.yml or .xml) and validate. InputError on any problem, one line.
 Teuchos::ParameterList loadConfig(const std::string& path);
-// Validate a list already in memory (e.g. the built-in default) and return it completed.
+/// Validate a list already in memory (e.g.\ the built-in default) and return it completed.
 Teuchos::ParameterList validateConfig(Teuchos::ParameterList cfg);
-// The small default scene `gphr` runs without arguments (NLS, n = 256, T = 5).
+/// The small default scene `gphr` runs without arguments (NLS, n = 256, T = 5).
 Teuchos::ParameterList defaultConfig();
-// Number of time steps T / dt; InputError unless T >= dt and T is a whole number of steps.
+/// Number of time steps T / dt; InputError unless T >= dt and T is a whole number of steps.
 long numSteps(const Teuchos::ParameterList& cfg);
-// The training parameters: training.values (flattened) or the tensor grid training.points.
+/// The training parameters: training.values (flattened) or the tensor grid training.points.
 std::vector<std::vector<double>> trainingParameters(const Teuchos::ParameterList& cfg);
-// The reduced models to evaluate (pipeline.methods, plus rom if pipeline.rom), checked; and the
-// k values (pipeline.k, else reduction.k).
+/// The reduced models to evaluate (pipeline.methods, plus rom if pipeline.rom), checked; and the
+/// k values (pipeline.k, else reduction.k).
 std::vector<std::string> pipelineMethods(const Teuchos::ParameterList& cfg);
+/// The k values of the reduced models: pipeline.k, else reduction.k.
 std::vector<int> pipelineK(const Teuchos::ParameterList& cfg);
-// A ParameterList as YAML text (stored as provenance in artifacts.h5, compared for caching).
+/// A ParameterList as YAML text (stored as provenance in artifacts.h5, compared for caching).
 std::string toYaml(const Teuchos::ParameterList& pl);
-// `gphr --help` text: usage and every key with default, allowed values and description.
+/// `gphr --help` text: usage and every key with default, allowed values and description.
 std::string helpText();
 
 }  // namespace gphr

@@ -1,6 +1,7 @@
 #pragma once
-// The full-order-model stage of `gphr run`: integrate the scene's full model at the test
-// parameter, keep every saveEvery-th (physical) state and the Hamiltonian at every step.
+/// @file
+/// The full-order-model stage of `gphr run`: integrate the scene's full model at the test
+/// parameter, keep every saveEvery-th (physical) state and the Hamiltonian at every step.
 #include <Teuchos_ParameterList.hpp>
 #include <string>
 #include <vector>
@@ -10,19 +11,22 @@
 
 namespace gphr {
 
+/// The full model's results at the test parameter: saved states, Hamiltonian history, online time.
 struct FomResult {
-  RCP<MultiVector> trajectory;  // physical states y = y_s + y0, every saveEvery-th step and the last
-  std::vector<double> savedTimes;
-  std::vector<double> hamiltonian;  // H(y^j), j = 0..steps
-  double tOnline = 0.0;             // wall seconds of the time loop (observer excluded)
-  JsonObject run;                   // the "runs" entry of summary.json
+  RCP<MultiVector> trajectory;  ///< physical states y = y_s + y0, every saveEvery-th step and the last
+  std::vector<double> savedTimes;  ///< Times of the saved states.
+  std::vector<double> hamiltonian;  ///< H(y^j), j = 0..steps
+  double tOnline = 0.0;             ///< wall seconds of the time loop (observer excluded)
+  JsonObject run;                   ///< the "runs" entry of summary.json
 };
 
-// The steps whose states are kept (every saveEvery-th and the last), and the largest
-// |H_j - H0| of a Hamiltonian history: shared by the full and reduced model stages.
+/// The steps whose states are kept (every saveEvery-th and the last), and the largest
+/// |H_j - H0| of a Hamiltonian history: shared by the full and reduced model stages.
 inline bool isSavedStep(long j, long steps, long saveEvery) { return j % saveEvery == 0 || j == steps; }
+/// The largest |H_j - H0| of a Hamiltonian history.
 double maxDeviation(const std::vector<double>& H, double H0);
 
+/// Integrates the scene's full model at parameter `mu` with the configured integrator (see the file's description).
 FomResult runFullModel(const Teuchos::ParameterList& cfg, const Scene& scene, const std::vector<double>& mu,
                        const RCP<const Comm>& comm);
 

@@ -1,9 +1,10 @@
 #pragma once
-// The reduced-model stages of `gphr run` (issue: offline training and Galerkin ROM):
-//   train  - full model over the training set; shifted snapshots of each parameter go to
-//            DIR/artifacts.h5 /training/p<j> as soon as it finishes (resumable, see Training);
-//   reduce - symplectic basis from all snapshots, cached in /basis with its provenance;
-//   rom    - the Galerkin ROM at the test parameter, errors eq:errNR against the full model.
+/// @file
+/// The reduced-model stages of `gphr run` (issue: offline training and Galerkin ROM):
+///   train  - full model over the training set; shifted snapshots of each parameter go to
+///            DIR/artifacts.h5 `/training/p<j>` as soon as it finishes (resumable, see Training);
+///   reduce - symplectic basis from all snapshots, cached in /basis with its provenance;
+///   rom    - the Galerkin ROM at the test parameter, errors eq:errNR against the full model.
 #include <string>
 #include <vector>
 
@@ -16,82 +17,94 @@
 
 namespace gphr {
 
+/// The training stage's results: the training parameters and their shifted snapshots.
 struct TrainingResult {
-  std::vector<std::vector<double>> parameters;
-  std::vector<RCP<const MultiVector>> snapshots;  // shifted states per training parameter
-  long reused = 0;                                 // parameters taken from the file
-  double seconds = 0.0;
+  std::vector<std::vector<double>> parameters;  ///< The training parameters mu.
+  std::vector<RCP<const MultiVector>> snapshots;  ///< shifted states per training parameter
+  long reused = 0;                                 ///< parameters taken from the file
+  double seconds = 0.0;  ///< Wall seconds of the stage.
 };
 
-// One evaluated reduced or hyper-reduced model (a "runs" entry of summary.json and its histories).
+/// One evaluated reduced or hyper-reduced model (a "runs" entry of summary.json and its histories).
 struct ModelRun {
-  std::string method;  // rom | gp-deim | gp-adeim | deim | sdeim
-  int k = 0, m = 0;    // m = 0 for rom
-  std::vector<double> hamiltonian;       // H(y0 + A z^j) per step: the true Hamiltonian of the lift
-  std::vector<double> modelHamiltonian;  // the model's own H_r / H_hr per step (empty without one)
-  std::vector<double> errors;            // ||y^j - (y0 + A z^j)|| at the saved steps
-  std::vector<double> stateNorms;        // ||y0 + A z^j|| per step
-  std::vector<RCP<Vector>> states;       // lifted physical states at the saved steps (space-time plots)
-  std::vector<AdeimUpdateRecord> adeimUpdates;  // gp-adeim: one record per adaptation
+  std::string method;  ///< rom | gp-deim | gp-adeim | deim | sdeim
+  /// Reduced size k (2k columns of A) and DEIM size m; m = 0 for rom.
+  /// @{
+  int k = 0, m = 0;
+  /// @}
+  std::vector<double> hamiltonian;       ///< H(y0 + A z^j) per step: the true Hamiltonian of the lift
+  std::vector<double> modelHamiltonian;  ///< the model's own H_r / H_hr per step (empty without one)
+  std::vector<double> errors;            ///< ||y^j - (y0 + A z^j)|| at the saved steps
+  std::vector<double> stateNorms;        ///< ||y0 + A z^j|| per step
+  std::vector<RCP<Vector>> states;       ///< lifted physical states at the saved steps (space-time plots)
+  std::vector<AdeimUpdateRecord> adeimUpdates;  ///< gp-adeim: one record per adaptation
+  /// The error E_L2 (paper eq:errNR) and the online wall seconds.
+  /// @{
   double eL2 = 0.0, tOnline = 0.0;
-  bool ok = true;
-  bool available = true;  // false: not run, the offline data cannot support this (k, m)
-  long unboundedAt = -1;  // >= 0: ran to the end, but its lift left the full model's range at this step
-  std::string unboundedReason;  // which bound it passed, with the figures
-  JsonObject run;
-  std::string label() const;
-  // ok | unbounded (finished, left the full model's range: ModelEvaluation.hpp) | diverged | unavailable
+  /// @}
+  bool ok = true;  ///< False: Newton failed or the state became non-finite (status diverged), or not run (unavailable).
+  bool available = true;  ///< false: not run, the offline data cannot support this (k, m)
+  long unboundedAt = -1;  ///< >= 0: ran to the end, but its lift left the full model's range at this step
+  std::string unboundedReason;  ///< which bound it passed, with the figures
+  JsonObject run;  ///< The "runs" entry of summary.json.
+  std::string label() const;  ///< Method with k and m, as the report names the run.
+  /// ok | unbounded (finished, left the full model's range: ModelEvaluation.hpp) | diverged | unavailable
   const char* status() const {
     return !ok ? (available ? "diverged" : "unavailable") : unboundedAt >= 0 ? "unbounded" : "ok";
   }
-  bool bounded() const { return ok && unboundedAt < 0; }  // status ok
-  std::string statusText() const {  // report.md: a run that failed or blew up in bold
+  bool bounded() const { return ok && unboundedAt < 0; }  ///< status ok
+  /// report.md: a run that failed or blew up in bold
+  std::string statusText() const {
     return bounded() || !available ? status() : std::string("**") + status() + "**";
   }
 };
 
+/// The offline stages of `gphr run` and the reduced models they produced.
 struct RomStages {
-  TrainingResult training;
-  ReducedBasis basis;
-  bool basisCached = false;
-  double basisSeconds = 0.0;
-  double basisCpuSeconds = 0.0;           // rank 0's process CPU time in the basis stage
-  std::vector<ModelRun> runs;             // rom, then the hyper-reduced models
-  std::vector<double> deimSingularValues; // of the reduced-Jacobian snapshots (largest k)
+  TrainingResult training;  ///< The training stage.
+  ReducedBasis basis;  ///< The symplectic basis A.
+  bool basisCached = false;  ///< Whether the basis was read from artifacts.h5.
+  double basisSeconds = 0.0;  ///< Wall seconds of the basis stage.
+  double basisCpuSeconds = 0.0;           ///< rank 0's process CPU time in the basis stage
+  std::vector<ModelRun> runs;             ///< rom, then the hyper-reduced models
+  std::vector<double> deimSingularValues; ///< of the reduced-Jacobian snapshots (largest k)
 };
 
-// Resumable training: a parameter whose dataset is complete in the file is reused, one without
-// its `complete` mark (killed mid-write) is redone. A file of another scene or size is an
-// InputError naming the file; a changed training config starts the training over.
+/// Resumable training: a parameter whose dataset is complete in the file is reused, one without
+/// its `complete` mark (killed mid-write) is redone. A file of another scene or size is an
+/// InputError naming the file; a changed training config starts the training over.
 TrainingResult runTraining(const RunContext& ctx);
+/// The reduction stage: the symplectic basis from all training snapshots, read from the cache when its key matches.
 ReducedBasis runReduction(const RunContext& ctx, const TrainingResult& training, bool& cached);
-// The k the basis is built for: the largest of reduction.k and pipeline.k.
+/// The k the basis is built for: the largest of reduction.k and pipeline.k.
 int basisK(const Teuchos::ParameterList& cfg);
-// Provenance keys of the cached artifacts (the config text each one depends on).
+/// Provenance keys of the cached artifacts (the config text each one depends on).
 std::string trainingKey(const Teuchos::ParameterList& cfg);
+/// The provenance key of the cached basis.
 std::string basisKey(const Teuchos::ParameterList& cfg);
-// The reduced-Jacobian DEIM basis of size k (hyper section of the config), from the cache in
-// artifacts.h5 /deim/k<k> when its key matches, else computed from the training snapshots and
-// cached. `test` supplies the row map of G. Collective.
+/// The reduced-Jacobian DEIM basis of size k (hyper section of the config), from the cache in
+/// artifacts.h5 `/deim/k<k>` when its key matches, else computed from the training snapshots and
+/// cached. `test` supplies the row map of G. Collective.
 struct CachedDeimBasis {
-  DeimBasis basis;
-  bool cached = false;
-  double seconds = 0.0;         // this run: computing it, or reading the cache
-  double computeSeconds = 0.0;  // computing it (stored with the cache): the offline cost it stands for
+  DeimBasis basis;  ///< The reduced-Jacobian DEIM basis.
+  bool cached = false;  ///< Whether it was read from the cache.
+  double seconds = 0.0;         ///< this run: computing it, or reading the cache
+  double computeSeconds = 0.0;  ///< computing it (stored with the cache): the offline cost it stands for
 };
+/// The reduced-Jacobian DEIM basis of size k (see CachedDeimBasis), from the cache or computed.
 CachedDeimBasis deimBasisFor(const RunContext& ctx, const RomStages& st, const MultiVector& A, int k,
                              const HamiltonianSystem& test);
-// The terms and weights of gp-eqp (non-negative, NNLS) or gp-eqp-refit (GP-DEIM's terms, least
-// squares) for reduced size k and budget m, from the artifacts.h5 cache when its key matches, else
-// fitted (section eqp) and cached. InputError when the training cannot support the budget.
+/// The terms and weights of gp-eqp (non-negative, NNLS) or gp-eqp-refit (GP-DEIM's terms, least
+/// squares) for reduced size k and budget m, from the artifacts.h5 cache when its key matches, else
+/// fitted (section eqp) and cached. InputError when the training cannot support the budget.
 QuadratureFit termWeightFit(const RunContext& ctx, RomStages& st, const MultiVector& A, int k,
                             const HamiltonianSystem& test, const std::string& method, int m);
-// The hyper-reduced models of pipeline.methods (gp-deim, deim, sdeim) for every k and m.
+/// The hyper-reduced models of pipeline.methods (gp-deim, deim, sdeim) for every k and m.
 void runHyperReduction(const RunContext& ctx, const FomResult& fom, RomStages& stages);
-// The training and basis keys of a rom / gp-deim entry: t_training_s, t_basis_s, t_basis_cpu_s,
-// pod_route and the basis's POD steps by route.
+/// The training and basis keys of a rom / gp-deim entry: t_training_s, t_basis_s, t_basis_cpu_s,
+/// pod_route and the basis's POD steps by route.
 void setBasisKeys(const RunContext& ctx, const RomStages& stages, JsonObject& run);
-// Galerkin ROM at the test parameter for every k; errors against the full model's saved states.
+/// Galerkin ROM at the test parameter for every k; errors against the full model's saved states.
 void runRom(const RunContext& ctx, const FomResult& fom, RomStages& stages);
 
 }  // namespace gphr

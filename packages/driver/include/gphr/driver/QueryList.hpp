@@ -1,9 +1,10 @@
 #pragma once
-// The queries file of `gphr query` (doc/model-file.md): YAML with one top-level key `queries`,
-// sections `defaults` (keys every query inherits), `points` (named queries, each a mapping of
-// parameters and keys) and `grid` (per parameter [from, to, count]: the tensor grid of those values,
-// named grid-0000, ...). Every key, type and value is checked against the model file before any
-// query runs (so no rank fails alone later).
+/// @file
+/// The queries file of `gphr query` (doc/model-file.md): YAML with one top-level key `queries`,
+/// sections `defaults` (keys every query inherits), `points` (named queries, each a mapping of
+/// parameters and keys) and `grid` (per parameter [from, to, count]: the tensor grid of those values,
+/// named grid-0000, ...). Every key, type and value is checked against the model file before any
+/// query runs (so no rank fails alone later).
 #include <string>
 #include <vector>
 
@@ -11,25 +12,33 @@
 
 namespace gphr {
 
+/// One query: a model of the file (method, k, m) at parameter mu over [0, T] with step dt.
 struct Query {
-  std::string name;
-  std::vector<double> mu;
-  std::string method = "gp-deim";
+  std::string name;  ///< Name of the query (of its point, or grid-NNNN).
+  std::vector<double> mu;  ///< The parameter mu.
+  std::string method = "gp-deim";  ///< Method of the model (rom | gp-deim).
+  /// Reduced size k and DEIM size m of the model.
+  /// @{
   int k = 0, m = 0;
+  /// @}
+  /// Final time T and time step dt.
+  /// @{
   double T = 0.0, dt = 0.0;
-  long saveEvery = 10;
-  bool probes = true;
-  SetupRoute setup = SetupRoute::Interpolated;
-  bool extrapolate = false;
-  bool states = false;  // also the lifted states y0 + A z at the saved steps (needs the basis in the file)
-  // Everything that determines the result, as text (a finished query is reused only if it matches).
+  /// @}
+  long saveEvery = 10;  ///< Keep every saveEvery-th step.
+  bool probes = true;  ///< Report the lifted state at the file's probe entries.
+  SetupRoute setup = SetupRoute::Interpolated;  ///< How the parameter's pieces are set up (interpolated or exact).
+  bool extrapolate = false;  ///< Allow a parameter outside the box (result marked extrapolated).
+  bool states = false;  ///< also the lifted states y0 + A z at the saved steps (needs the basis in the file)
+  /// Everything that determines the result, as text (a finished query is reused only if it matches).
   std::string key() const;
 };
 
-// Queries (top-level key `queries`) or the test points of `gphr validate` (top-level key
-// `validate`: the same sections; each point runs every model of the file, so method, k, m and
-// probes are not keys there, and points outside the box are allowed and marked).
+/// Queries (top-level key `queries`) or the test points of `gphr validate` (top-level key
+/// `validate`: the same sections; each point runs every model of the file, so method, k, m and
+/// probes are not keys there, and points outside the box are allowed and marked).
 enum class QueryFileKind { Queries, Validation };
+/// Reads and checks a queries (or validation) file against `model`; InputError on any problem.
 std::vector<Query> readQueries(const std::string& path, const ReducedModel& model,
                                QueryFileKind kind = QueryFileKind::Queries);
 

@@ -1,14 +1,15 @@
 #pragma once
-// A reduced-model file loaded for simulation: the class an embedding code uses (and `gphr query`).
-//
-//   gphr::ReducedModel rm("nls.h5");                        // reads the file on this process
-//   auto online = rm.instantiate("gp-deim", 10, 20, {1.05}); // the model at eps = 1.05
-//   online.simulate(5.0, 0.01, [](const gphr::QueryStep& s) { ... s.z, s.hamiltonian, s.probes ... });
-//
-// Nothing here is collective and, on the default (interpolated) set-up route, nothing of size n
-// or d is allocated: the scene object only supplies its row kernel at mu, the file the sample
-// mesh and the parameter interpolant. The exact route builds the full system at mu and projects
-// it (O(n k), reported as setup time); it needs the basis in the file.
+/// @file
+/// A reduced-model file loaded for simulation: the class an embedding code uses (and `gphr query`).
+///
+///   gphr::ReducedModel rm("nls.h5");                        // reads the file on this process
+///   auto online = rm.instantiate("gp-deim", 10, 20, {1.05}); // the model at eps = 1.05
+///   online.simulate(5.0, 0.01, [](const gphr::QueryStep& s) { ... s.z, s.hamiltonian, s.probes ... });
+///
+/// Nothing here is collective and, on the default (interpolated) set-up route, nothing of size n
+/// or d is allocated: the scene object only supplies its row kernel at mu, the file the sample
+/// mesh and the parameter interpolant. The exact route builds the full system at mu and projects
+/// it (O(n k), reported as setup time); it needs the basis in the file.
 #include <functional>
 #include <memory>
 #include <string>
@@ -21,42 +22,44 @@
 
 namespace gphr {
 
-// How a query obtains what its parameter changes in L_r, f_r, c and the reference rows.
+/// How a query obtains what its parameter changes in L_r, f_r, c and the reference rows.
 enum class SetupRoute { Interpolated, Exact };
 
-// What the observer sees after each step (and at step 0): probes are the lifted physical state
-// y0 + A z at the file's probe entries (empty when the model was built without probes).
+/// What the observer sees after each step (and at step 0): probes are the lifted physical state
+/// y0 + A z at the file's probe entries (empty when the model was built without probes).
 struct QueryStep {
-  long step;
-  double time;
-  const DenseVector& z;
-  double hamiltonian;                  // H_hr(z)
-  const std::vector<double>& probes;
+  long step;  ///< Time step index j.
+  double time;  ///< Time t_j.
+  const DenseVector& z;  ///< The reduced state z^j.
+  double hamiltonian;                  ///< H_hr(z)
+  const std::vector<double>& probes;  ///< Lifted state at the probe entries.
 };
-using QueryObserver = std::function<void(const QueryStep&)>;
+using QueryObserver = std::function<void(const QueryStep&)>;  ///< Called by OnlineModel::simulate() after each step.
 
+/// The outcome and costs of one OnlineModel::simulate().
 struct SimulationStats {
-  RunStats run;
-  double onlineSeconds = 0.0;   // the time loop without the observer's share
-  double observeSeconds = 0.0;  // H_hr and probes per step, and the observer itself
-  std::string status = "ok";    // ok | diverged
-  std::string reason;           // why it diverged
-  long lastStep = 0;
+  RunStats run;  ///< Newton and time-loop statistics.
+  double onlineSeconds = 0.0;   ///< the time loop without the observer's share
+  double observeSeconds = 0.0;  ///< H_hr and probes per step, and the observer itself
+  std::string status = "ok";    ///< ok | diverged
+  std::string reason;           ///< why it diverged
+  long lastStep = 0;  ///< Last step reached.
 };
 
-// One hyper-reduced model at one parameter.
+/// One hyper-reduced model at one parameter.
 class OnlineModel {
  public:
-  int reducedDim() const { return model_->dim(); }
+  int reducedDim() const { return model_->dim(); }  ///< 2k, the reduced size.
+  /// Seconds to set the model up at its parameter (interpolated or exact route).
   double setupSeconds() const { return setupSeconds_; }
-  bool extrapolated() const { return extrapolated_; }
-  const std::vector<double>& parameter() const { return mu_; }
-  const std::vector<GO>& probeGids() const { return probeGids_; }
-  GpDeimModel& model() { return *model_; }
-  // From z = 0 (the shifted initial state y0(mu)) over T / dt steps (T a whole number of steps).
-  // A Newton failure or a non-finite state ends the run with status `diverged`, not an exception.
+  bool extrapolated() const { return extrapolated_; }  ///< Whether the parameter lies outside the file's box.
+  const std::vector<double>& parameter() const { return mu_; }  ///< The parameter mu.
+  const std::vector<GO>& probeGids() const { return probeGids_; }  ///< Global ids of the probe entries of y.
+  GpDeimModel& model() { return *model_; }  ///< The GP-DEIM model (sample mesh and row kernel at mu).
+  /// From z = 0 (the shifted initial state y0(mu)) over T / dt steps (T a whole number of steps).
+  /// A Newton failure or a non-finite state ends the run with status `diverged`, not an exception.
   SimulationStats simulate(double T, double dt, const QueryObserver& observer = {});
-  // The lifted physical state at the probe entries.
+  /// The lifted physical state at the probe entries.
   void probeValues(const DenseVector& z, std::vector<double>& out) const;
 
  private:
@@ -71,16 +74,17 @@ class OnlineModel {
   bool extrapolated_ = false;
 };
 
+/// A reduced-model file loaded for simulation (see the file's description).
 class ReducedModel {
  public:
-  // scene: the scene the file was built for; null makes it from the file's scene section (the
-  // built-in scenes). A user's own scene is passed here; its name must match the file's.
+  /// scene: the scene the file was built for; null makes it from the file's scene section (the
+  /// built-in scenes). A user's own scene is passed here; its name must match the file's.
   explicit ReducedModel(const std::string& path, std::shared_ptr<const Scene> scene = nullptr);
-  const std::string& path() const { return path_; }
-  const ReducedModelData& data() const { return data_; }
-  const Scene& scene() const { return *scene_; }
-  // InputError naming the box unless mu is inside it or allowExtrapolation is set (then the
-  // result is marked extrapolated); InputError naming the models held if (method, k, m) is not.
+  const std::string& path() const { return path_; }  ///< Path of the file.
+  const ReducedModelData& data() const { return data_; }  ///< The file's contents.
+  const Scene& scene() const { return *scene_; }  ///< The scene the file was built for.
+  /// InputError naming the box unless mu is inside it or allowExtrapolation is set (then the
+  /// result is marked extrapolated); InputError naming the models held if (method, k, m) is not.
   OnlineModel instantiate(const std::string& method, int k, int m, const std::vector<double>& mu,
                           bool allowExtrapolation = false, SetupRoute route = SetupRoute::Interpolated) const;
 

@@ -1,9 +1,10 @@
 #pragma once
-// The training states of the hyper-reduction stages in reduced coordinates (paper eq:snaps_JG,
-// shifted as in Sec. 3.3): for every N-th stored state y_s of each training system j, z = A^T y_s
-// and the row kernel of G at y0_j + A z on this rank's own rows of G. Both offline rules that
-// choose terms read their snapshots here: the DEIM basis (rows of J_G A, eq:snaps_JG) and the
-// empirical quadrature (the same rows, read as each term's reduced gradient, and G_e - G_e(y0)).
+/// @file
+/// The training states of the hyper-reduction stages in reduced coordinates (paper eq:snaps_JG,
+/// shifted as in Sec. 3.3): for every N-th stored state y_s of each training system j, z = A^T y_s
+/// and the row kernel of G at y0_j + A z on this rank's own rows of G. Both offline rules that
+/// choose terms read their snapshots here: the DEIM basis (rows of J_G A, eq:snaps_JG) and the
+/// empirical quadrature (the same rows, read as each term's reduced gradient, and G_e - G_e(y0)).
 #include <type_traits>
 #include <vector>
 
@@ -13,9 +14,9 @@
 
 namespace gphr {
 
-// Calls fn(jac, index) -- or fn(jac, index, kernel), when fn takes the evaluated kernel too -- for
-// every used snapshot, jac = this rank's rows of J_G(y0_j + A A^T y_s) A (row-major, local rows x
-// 2k). Returns the number of snapshots used. Collective.
+/// Calls fn(jac, index) -- or fn(jac, index, kernel), when fn takes the evaluated kernel too -- for
+/// every used snapshot, jac = this rank's rows of J_G(y0_j + A A^T y_s) A (row-major, local rows x
+/// 2k). Returns the number of snapshots used. Collective.
 template <class Fn>
 long forEachJacobianSnapshot(const std::vector<RCP<const HamiltonianSystem>>& systems,
                              const std::vector<RCP<const MultiVector>>& states, const MultiVector& A, int every,

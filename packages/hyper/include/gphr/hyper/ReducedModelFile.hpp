@@ -1,11 +1,12 @@
 #pragma once
-// The reduced-model file (doc/model-file.md): what `gphr build` writes and `gphr query`, the
-// ReducedModel class and an embedding code read. It holds the ONLINE data only: per reduced size
-// k the parameter interpolant of L_r, f_r, c and the shift's reference rows, probe rows of the
-// basis, optionally the basis itself; per hyper-reduced model (method, k, m) its sample mesh
-// (rows, stencils, basis rows under them, weights). Nothing of size n or d unless the basis is
-// asked for. Replicated data are stored as 1-D / 2-D double datasets (global ids as doubles:
-// exact below 2^53), readable with h5dump or h5py.
+/// @file
+/// The reduced-model file (doc/model-file.md): what `gphr build` writes and `gphr query`, the
+/// ReducedModel class and an embedding code read. It holds the ONLINE data only: per reduced size
+/// k the parameter interpolant of L_r, f_r, c and the shift's reference rows, probe rows of the
+/// basis, optionally the basis itself; per hyper-reduced model (method, k, m) its sample mesh
+/// (rows, stencils, basis rows under them, weights). Nothing of size n or d unless the basis is
+/// asked for. Replicated data are stored as 1-D / 2-D double datasets (global ids as doubles:
+/// exact below 2^53), readable with h5dump or h5py.
 #include <map>
 #include <string>
 #include <vector>
@@ -16,74 +17,87 @@
 
 namespace gphr {
 
-constexpr int kReducedModelSchema = 2;
+constexpr int kReducedModelSchema = 2;  ///< Version of the reduced-model file's layout (doc/model-file.md).
 
-// One hyper-reduced model: its sample mesh without the parameter-dependent reference rows.
+/// One hyper-reduced model: its sample mesh without the parameter-dependent reference rows.
 struct StoredHyperModel {
-  std::string method;  // gp-deim, gp-eqp, gp-eqp-refit
-  int k = 0, m = 0;    // m: gp-deim's rows; the term budget of gp-eqp (which may use fewer)
-  RowSample sample;    // reference left empty: it comes from the basis' interpolant per query
-  double conditionNumber = 0.0;  // cond_2(P^T U) of the DEIM pair
+  std::string method;  ///< gp-deim, gp-eqp, gp-eqp-refit
+  /// Reduced size k, and m: gp-deim's rows, the term budget of gp-eqp (which may use fewer).
+  /// @{
+  int k = 0, m = 0;
+  /// @}
+  RowSample sample;    ///< reference left empty: it comes from the basis' interpolant per query
+  double conditionNumber = 0.0;  ///< cond_2(P^T U) of the DEIM pair
+  /// The model's name in the file: `method/k<k>/m<m>`.
   std::string key() const { return method + "/k" + std::to_string(k) + "/m" + std::to_string(m); }
 };
 
-// What a query at parameter mu needs of the reduced basis of one k (exactly, or interpolated).
+/// What a query at parameter mu needs of the reduced basis of one k (exactly, or interpolated).
 struct OnlineParameterData {
-  ReducedLinearPart linear;        // L_r, f_r, c = H(y0(mu))
-  std::vector<double> reference;   // y0(mu) at StoredBasisData::referenceGids
+  ReducedLinearPart linear;        ///< L_r, f_r, c = H(y0(mu))
+  std::vector<double> reference;   ///< y0(mu) at StoredBasisData::referenceGids
 };
 
+/// What the file holds for one reduced size k: the parameter interpolants, probe rows, optionally A.
 struct StoredBasisData {
-  int k = 0;
-  std::vector<GO> referenceGids;   // union of the models' stencil entries and the probes
-  // L_r, f_r and y0 depend only on the parameters that enter the linear part or the initial state
-  // (ParameterEntry): the interpolant spans those (`interpolated`, indices into mu; none: one node),
-  // per node [L_r (2k x 2k, column-major) | f_r (2k) | y0 at referenceGids]. c = H(y0) depends on
-  // every parameter (through N(y0) on the row kernel's): its own interpolant over the whole box.
+  int k = 0;  ///< Reduced size k.
+  std::vector<GO> referenceGids;   ///< union of the models' stencil entries and the probes
+  /// L_r, f_r and y0 depend only on the parameters that enter the linear part or the initial state
+  /// (ParameterEntry): the interpolant spans those (`interpolated`, indices into mu; none: one node),
+  /// per node [L_r (2k x 2k, column-major) | f_r (2k) | y0 at referenceGids]. c = H(y0) depends on
+  /// every parameter (through N(y0) on the row kernel's): its own interpolant over the whole box.
   std::vector<size_t> interpolated;
+  /// Interpolant of [L_r | f_r | y0 at referenceGids] over the `interpolated` parameters.
   ParameterInterpolant interpolant;
-  ParameterInterpolant constant;
-  std::map<std::string, double> interpolationError;  // relative error at the check points, per piece
-  std::vector<GO> probeGids;       // state entries whose lifted values a query can report
-  std::vector<double> probeRows;   // the rows of A at probeGids (probes x 2k, row-major)
-  bool hasBasis = false;           // /k<k>/basis holds A (2k rows of 2n)
-  OnlineParameterData at(const std::vector<double>& mu) const;  // the interpolants, unpacked
-  // Exact data at one point as the interpolant's values ([L_r | f_r | y0], without c).
+  ParameterInterpolant constant;  ///< Interpolant of c = H(y0) over the whole box.
+  std::map<std::string, double> interpolationError;  ///< relative error at the check points, per piece
+  std::vector<GO> probeGids;       ///< state entries whose lifted values a query can report
+  std::vector<double> probeRows;   ///< the rows of A at probeGids (probes x 2k, row-major)
+  bool hasBasis = false;           ///< `/k<k>/basis` holds A (2k rows of 2n)
+  OnlineParameterData at(const std::vector<double>& mu) const;  ///< the interpolants, unpacked
+  /// Exact data at one point as the interpolant's values ([L_r | f_r | y0], without c).
   std::vector<double> pack(const OnlineParameterData& data) const;
-  std::vector<double> restrict(const std::vector<double>& mu) const;  // mu at `interpolated`
+  std::vector<double> restrict(const std::vector<double>& mu) const;  ///< mu at `interpolated`
 };
 
+/// The contents of a reduced-model file (doc/model-file.md).
 struct ReducedModelData {
-  int schemaVersion = kReducedModelSchema;
-  std::string sceneName;
-  std::string sceneConfig;       // YAML of the scene section (sizes: the file's scene)
-  std::string integratorConfig;  // YAML of the integrator section the models were built for
-  std::string config;            // the whole validated build configuration, with defaults (YAML)
+  int schemaVersion = kReducedModelSchema;  ///< Layout version (kReducedModelSchema).
+  std::string sceneName;  ///< The scene the file was built for.
+  std::string sceneConfig;       ///< YAML of the scene section (sizes: the file's scene)
+  std::string integratorConfig;  ///< YAML of the integrator section the models were built for
+  std::string config;            ///< the whole validated build configuration, with defaults (YAML)
+  /// Provenance: gphr and Trilinos versions, creation time.
+  /// @{
   std::string gphrVersion, trilinosVersion, created;
-  int buildRanks = 1;
-  double offlineSeconds = 0.0;   // the build's wall time (training, bases, DEIM pairs, interpolants)
-  double T = 0.0, dt = 0.0;      // the build configuration's time section (query defaults)
-  int polynomialDegree = 0;      // of G (AVF's quadrature)
-  std::vector<std::string> parameterNames;
-  std::vector<std::pair<double, double>> box;
-  std::vector<unsigned> enters;  // ParameterEntry flags per parameter
-  std::vector<StoredBasisData> bases;
-  std::vector<StoredHyperModel> models;
-  const StoredBasisData& basis(int k) const;                      // InputError naming the ks held
-  const StoredHyperModel& model(const std::string& method, int k, int m) const;  // InputError naming the models held
-  std::string modelList() const;  // "gp-deim k=10 m=20, ..." for messages
+  /// @}
+  int buildRanks = 1;  ///< MPI ranks of the build.
+  double offlineSeconds = 0.0;   ///< the build's wall time (training, bases, DEIM pairs, interpolants)
+  /// the build configuration's time section (query defaults)
+  /// @{
+  double T = 0.0, dt = 0.0;
+  /// @}
+  int polynomialDegree = 0;      ///< of G (AVF's quadrature)
+  std::vector<std::string> parameterNames;  ///< Names of the parameters mu.
+  std::vector<std::pair<double, double>> box;  ///< The parameter box, [lower, upper] per parameter.
+  std::vector<unsigned> enters;  ///< ParameterEntry flags per parameter
+  std::vector<StoredBasisData> bases;  ///< Per reduced size k, its data.
+  std::vector<StoredHyperModel> models;  ///< The hyper-reduced models.
+  const StoredBasisData& basis(int k) const;                      ///< InputError naming the ks held
+  const StoredHyperModel& model(const std::string& method, int k, int m) const;  ///< InputError naming the models held
+  std::string modelList() const;  ///< "gp-deim k=10 m=20, ..." for messages
 };
 
-// Writes the file (collective over comm: rank 0 writes the replicated data; bases[i], where not
-// null, is A of bases[i].k on space's map, written distributed). Write-then-rename: the file
-// appears complete or not at all.
+/// Writes the file (collective over comm: rank 0 writes the replicated data; bases[i], where not
+/// null, is A of bases[i].k on space's map, written distributed). Write-then-rename: the file
+/// appears complete or not at all.
 void writeReducedModelFile(const std::string& path, const RCP<const Comm>& comm, const ReducedModelData& data,
                            const std::vector<RCP<const MultiVector>>& bases, const PhaseSpace* space = nullptr);
-// Reads everything but the bases, on the calling process alone (no collective). InputError, one
-// line naming the file, for a file that is missing, truncated, of another format or schema.
+/// Reads everything but the bases, on the calling process alone (no collective). InputError, one
+/// line naming the file, for a file that is missing, truncated, of another format or schema.
 ReducedModelData readReducedModelFile(const std::string& path);
-// A of reduced size k on space's map (collective over its communicator). InputError if the file
-// was built without it.
+/// A of reduced size k on space's map (collective over its communicator). InputError if the file
+/// was built without it.
 RCP<MultiVector> readReducedModelBasis(const std::string& path, int k, const PhaseSpace& space);
 
 }  // namespace gphr

@@ -1,8 +1,9 @@
 #pragma once
-// Parallel HDF5 artifacts (HDF5 1.10 with MPI-IO). States are stored as datasets of shape
-// (count, 2n) in global-id order (q then p); each rank writes and reads only its own entries
-// with one collective call. Replicated data (histories, attributes) is written by rank 0.
-// Every call is collective over the file's communicator.
+/// @file
+/// Parallel HDF5 artifacts (HDF5 1.10 with MPI-IO). States are stored as datasets of shape
+/// (count, 2n) in global-id order (q then p); each rank writes and reads only its own entries
+/// with one collective call. Replicated data (histories, attributes) is written by rank 0.
+/// Every call is collective over the file's communicator.
 #include <hdf5.h>
 
 #include <functional>
@@ -13,37 +14,48 @@
 
 namespace gphr {
 
+/// A parallel HDF5 file of GPHR's artifacts (see the file's description); every call is collective.
 class Hdf5File {
  public:
+  /// How the file is opened: created (truncating), read only, or read and written.
   enum class Mode { Create, ReadOnly, ReadWrite };
+  /// Opens (or creates) the file at `path` on the ranks of `comm`.
   Hdf5File(const std::string& path, const RCP<const Comm>& comm, Mode mode);
   ~Hdf5File();
   Hdf5File(const Hdf5File&) = delete;
   Hdf5File& operator=(const Hdf5File&) = delete;
-  void close();
+  void close();  ///< Closes the file (also done by the destructor).
 
-  const std::string& path() const { return path_; }
-  bool exists(const std::string& name) const;  // a dataset or group at this path
-  void createGroup(const std::string& name);
-  // Unlink a dataset or group (no-op if absent); the space is not reclaimed (HDF5 1.10).
+  const std::string& path() const { return path_; }  ///< The file's path.
+  bool exists(const std::string& name) const;  ///< a dataset or group at this path
+  void createGroup(const std::string& name);  ///< Creates the group `name`.
+  /// Unlink a dataset or group (no-op if absent); the space is not reclaimed (HDF5 1.10).
   void remove(const std::string& name);
+  /// Whether `object` has the attribute `key`.
   bool hasAttribute(const std::string& object, const std::string& key) const;
-  void flush();
+  void flush();  ///< Flushes HDF5's buffers to the file.
 
-  // States: columns of `states` (vectors on space.map()) as rows of dataset `name`.
+  /// States: columns of `states` (vectors on space.map()) as rows of dataset `name`.
   void writeStates(const std::string& name, const MultiVector& states, const PhaseSpace& space);
+  /// The states written by writeStates(), distributed on space.map().
   RCP<MultiVector> readStates(const std::string& name, const PhaseSpace& space) const;
-  // Columns of a MultiVector on a contiguous map (e.g. the DEIM basis on the rows of G) as rows
-  // of dataset `name` (shape (cols, global length)), each rank its own hyperslab.
+  /// Columns of a MultiVector on a contiguous map (e.g.\ the DEIM basis on the rows of G) as rows
+  /// of dataset `name` (shape (cols, global length)), each rank its own hyperslab.
   void writeColumns(const std::string& name, const MultiVector& X);
+  /// The columns written by writeColumns(), distributed on `map`.
   RCP<MultiVector> readColumns(const std::string& name, const RCP<const Map>& map) const;
-  // Replicated 1-D / 2-D double data (e.g. histories), written by rank 0, read by all.
+  /// Replicated 1-D / 2-D double data (e.g.\ histories), written by rank 0, read by all.
   void writeArray(const std::string& name, const std::vector<double>& data, size_t rows, size_t cols);
+  /// The array written by writeArray(); its shape into rows and cols if given.
   std::vector<double> readArray(const std::string& name, size_t* rows = nullptr, size_t* cols = nullptr) const;
 
+  /// Sets a string attribute of `object` (rank 0 writes).
   void setAttribute(const std::string& object, const std::string& key, const std::string& value);
+  /// Sets a double-array attribute of `object` (rank 0 writes).
   void setAttribute(const std::string& object, const std::string& key, const std::vector<double>& value);
+  /// A string attribute of `object`, read on every rank.
   std::string stringAttribute(const std::string& object, const std::string& key) const;
+  /// A double-array attribute of `object`, read on every rank.
   std::vector<double> doubleAttribute(const std::string& object, const std::string& key) const;
 
  private:
@@ -57,15 +69,16 @@ class Hdf5File {
   hid_t file_ = -1;
 };
 
-// Write-then-rename: the final name appears only when the file is complete. A RenameOnCommit
-// that goes out of scope uncommitted removes its temporary file (rank 0).
+/// Write-then-rename: the final name appears only when the file is complete. A RenameOnCommit
+/// that goes out of scope uncommitted removes its temporary file (rank 0).
 class RenameOnCommit {
  public:
+  /// A temporary name next to `finalPath`, renamed on commit().
   RenameOnCommit(std::string finalPath, RCP<const Comm> comm);
   ~RenameOnCommit();
-  const std::string& tempPath() const { return temp_; }
-  const std::string& finalPath() const { return final_; }
-  void commit();  // collective: barrier, then rank 0 renames
+  const std::string& tempPath() const { return temp_; }  ///< The temporary path to write to.
+  const std::string& finalPath() const { return final_; }  ///< The final path.
+  void commit();  ///< collective: barrier, then rank 0 renames
 
  private:
   std::string final_, temp_;

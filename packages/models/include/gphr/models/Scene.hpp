@@ -1,7 +1,8 @@
 #pragma once
-// A scene of the paper's Sec. 5: a row kernel, a linear part, an initial state and a parameter
-// box, nothing else. Everything derived (gradients, Jacobians, Hessians, the shift, time
-// integration) comes from packages/core and packages/timeint.
+/// @file
+/// A scene of the paper's Sec.\ 5: a row kernel, a linear part, an initial state and a parameter
+/// box, nothing else. Everything derived (gradients, Jacobians, Hessians, the shift, time
+/// integration) comes from packages/core and packages/timeint.
 #include <Teuchos_ParameterList.hpp>
 #include <string>
 #include <utility>
@@ -11,55 +12,58 @@
 
 namespace gphr {
 
-// Where a parameter enters a scene (flags, combined with |). A reduced-model query rebuilds only
-// what its parameters touch: the row kernel (n-independent, rebuilt exactly per query), the
-// linear part L, f (hence L_r, f_r and c) and the initial state (hence the shift's reference
-// state y0, f_r = A^T (f + L y0), c = H(y0) and the reference rows of the sample mesh).
+/// Where a parameter enters a scene (flags, combined with |). A reduced-model query rebuilds only
+/// what its parameters touch: the row kernel (n-independent, rebuilt exactly per query), the
+/// linear part L, f (hence L_r, f_r and c) and the initial state (hence the shift's reference
+/// state y0, f_r = A^T (f + L y0), c = H(y0) and the reference rows of the sample mesh).
 enum ParameterEntry : unsigned { EntersRowKernel = 1u, EntersLinearPart = 2u, EntersInitialState = 4u };
 
+/// The parameter box of a scene: names, [lower, upper] per parameter, and where each enters.
 struct ParameterBox {
-  std::vector<std::string> names;
-  std::vector<std::pair<double, double>> bounds;
-  std::vector<unsigned> enters;  // per parameter, ParameterEntry flags
-  // Throws InputError naming the parameter, its value and the box when mu lies outside.
+  std::vector<std::string> names;  ///< Parameter names (the keys of the `parameters` section).
+  std::vector<std::pair<double, double>> bounds;  ///< [lower, upper] per parameter.
+  std::vector<unsigned> enters;  ///< per parameter, ParameterEntry flags
+  /// Throws InputError naming the parameter, its value and the box when mu lies outside.
   void check(const std::vector<double>& mu) const;
 };
 
-// A scene instantiated at one parameter value.
+/// A scene instantiated at one parameter value.
 struct SceneInstance {
-  RCP<HamiltonianSystem> system;  // shifted when asked (then y0 = 0 and system->reference() holds it)
-  RCP<Vector> y0;                 // initial state of `system`
-  RCP<const Vector> physicalInitialState;  // the unshifted initial state
+  RCP<HamiltonianSystem> system;  ///< shifted when asked (then y0 = 0 and system->reference() holds it)
+  RCP<Vector> y0;                 ///< initial state of `system`
+  RCP<const Vector> physicalInitialState;  ///< the unshifted initial state
 };
 
+/// A scene of the paper's Sec.\ 5: row kernel, linear part, initial state, parameter box (the file's description).
 class Scene {
  public:
   virtual ~Scene() = default;
-  virtual std::string name() const = 0;
-  virtual const ParameterBox& parameterBox() const = 0;
-  // Unshifted Hamiltonian system and initial state at parameter mu (not checked against the box:
-  // tests use e.g. eps = 0 for the linear NLS).
+  virtual std::string name() const = 0;  ///< The scene's name in the config (nls1d, swe2d, ...).
+  virtual const ParameterBox& parameterBox() const = 0;  ///< The scene's parameter box.
+  /// Unshifted Hamiltonian system and initial state at parameter mu (not checked against the box:
+  /// tests use e.g.\ eps = 0 for the linear NLS).
   virtual std::pair<RCP<HamiltonianSystem>, RCP<Vector>> build(const RCP<const Comm>& comm,
                                                               const std::vector<double>& mu) const = 0;
-  // The row kernel alone at mu (no maps, stencils or weights: nothing of size n or d), equal to
-  // the kernel of build(comm, mu)'s nonlinear term: what an online model loaded from a
-  // reduced-model file evaluates.
+  /// The row kernel alone at mu (no maps, stencils or weights: nothing of size n or d), equal to
+  /// the kernel of build(comm, mu)'s nonlinear term: what an online model loaded from a
+  /// reduced-model file evaluates.
   virtual RCP<const RowEvaluator> rowKernel(const std::vector<double>& mu) const = 0;
-  // build() then, if shift is set, the shifted system of paper eq:shiftH with y0 = 0.
+  /// build() then, if shift is set, the shifted system of paper eq:shiftH with y0 = 0.
   SceneInstance instantiate(const RCP<const Comm>& comm, const std::vector<double>& mu, bool shift) const;
 };
 
-// The NLS scene (paper eq:schrodinger): u = q + i p on [-L, L), L = pi/0.11, n points,
-// H = 1/2 q^T(-Dxx)q + 1/2 p^T(-Dxx)p - eps/4 sum_i (q_i^2 + p_i^2)^2  (not scaled by dx; doc/scenes.md).
+/// The NLS scene (paper eq:schrodinger): u = q + i p on [-L, L), L = pi/0.11, n points,
+/// H = 1/2 q^T(-Dxx)q + 1/2 p^T(-Dxx)p - eps/4 sum_i (q_i^2 + p_i^2)^2  (not scaled by dx; doc/scenes.md).
 class Nls1d final : public Scene {
  public:
+  /// NLS with n grid points on [-halfLength, halfLength).
   explicit Nls1d(GO n, double halfLength = 3.14159265358979323846 / 0.11);
   std::string name() const override { return "nls1d"; }
   const ParameterBox& parameterBox() const override { return box_; }
   std::pair<RCP<HamiltonianSystem>, RCP<Vector>> build(const RCP<const Comm>& comm,
                                                       const std::vector<double>& mu) const override;
   RCP<const RowEvaluator> rowKernel(const std::vector<double>& mu) const override;
-  GO n() const { return n_; }
+  GO n() const { return n_; }  ///< n, the number of grid points.
 
  private:
   GO n_;
@@ -67,18 +71,18 @@ class Nls1d final : public Scene {
   ParameterBox box_;
 };
 
-// The 2D shallow-water scene (paper eq:2Dsw_eq_final, potential form): y = (chi, Phi) on
-// [-2, 2)^2 with nx points per direction, H = gamma/2 sum_i chi_i^2 + gamma/2 sum_i chi_i
-// [(D1 Phi)_i^2 + (D2 Phi)_i^2] (not scaled by the cell area; doc/scenes.md).
+/// The 2D shallow-water scene (paper eq:2Dsw_eq_final, potential form): y = (chi, Phi) on
+/// [-2, 2)^2 with nx points per direction, H = gamma/2 sum_i chi_i^2 + gamma/2 sum_i chi_i
+/// [(D1 Phi)_i^2 + (D2 Phi)_i^2] (not scaled by the cell area; doc/scenes.md).
 class Swe2d final : public Scene {
  public:
-  explicit Swe2d(GO nx, double halfLength = 2.0);
+  explicit Swe2d(GO nx, double halfLength = 2.0);  ///< SWE with nx x nx grid points on [-halfLength, halfLength)^2.
   std::string name() const override { return "swe2d"; }
   const ParameterBox& parameterBox() const override { return box_; }
   std::pair<RCP<HamiltonianSystem>, RCP<Vector>> build(const RCP<const Comm>& comm,
                                                       const std::vector<double>& mu) const override;
   RCP<const RowEvaluator> rowKernel(const std::vector<double>& mu) const override;
-  GO nx() const { return nx_; }
+  GO nx() const { return nx_; }  ///< nx, grid points per direction.
 
  private:
   GO nx_;
@@ -86,8 +90,8 @@ class Swe2d final : public Scene {
   ParameterBox box_;
 };
 
-// NLS discrete mass sum_i (q_i^2 + p_i^2) of a physical (unshifted) state: a quadratic invariant
-// that IMR conserves exactly.
+/// NLS discrete mass sum_i (q_i^2 + p_i^2) of a physical (unshifted) state: a quadratic invariant
+/// that IMR conserves exactly.
 double nlsMass(const Vector& y);
 
 }  // namespace gphr

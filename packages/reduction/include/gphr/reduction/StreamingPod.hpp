@@ -1,25 +1,26 @@
 #pragma once
-// A streaming POD (incremental thin SVD) of a tall matrix given block by block on any Tpetra
-// map: only the current rank-r factor U diag(sigma) and one block are ever held.
-//   add(X):   Y = [U diag(sigma), X];  Y = Q W S Z^T (the step's route, below);
-//             U <- Q W(:, 1:r'),  sigma <- S(1:r'),  r' = min(maxRank, numerical rank).
-// With every column in one block it is the exact thin SVD; truncating to maxRank between blocks
-// is the incremental SVD of libROM / Brand 2002 (error bounded by the discarded sigma's).
-// Steps take blockColumns columns each, on any rank count, so the truncations and the result are
-// the same on 1, 2 or 3 ranks up to round-off. Each step takes one of three routes, all exact:
-//   tsqr:       TSQR needs (carried + new columns) <= rows on every rank;
-//   replicated: [U diag(sigma), X] gathered on every rank, one LAPACK SVD there (d x columns
-//               numbers per rank, and every rank does the whole SVD: it takes any rank count but
-//               does not get faster with more ranks).
-//   stacked:    a TSQR with LAPACK kernels: each rank's rows by GEQRF (any row count), the R
-//               factors stacked on every rank and one GESDD of the stack, each rank's rows of U
-//               by ORMQR; its local work divides with the ranks, it takes any rank count, and
-//               where ranks hold fewer rows than columns it costs about what `replicated` costs.
-// PodRoute::Auto (the default) takes the stacked route for every step: at the paper's NLS size
-// (4096 rows, steps of up to 1120 columns) it is the fastest on 1, 2 and 4 ranks (doc/design.md,
-// 'Symplectic bases and the streaming POD'; Tpetra's TSQR was 3-5x slower there). Tsqr refuses a step
-// that does not fit (InputError naming its columns and the rows per rank); Stacked and Replicated
-// take that route for every step.
+/// @file
+/// A streaming POD (incremental thin SVD) of a tall matrix given block by block on any Tpetra
+/// map: only the current rank-r factor U diag(sigma) and one block are ever held.
+///   add(X):   Y = [U diag(sigma), X];  Y = Q W S Z^T (the step's route, below);
+///             U <- Q W(:, 1:r'),  sigma <- S(1:r'),  r' = min(maxRank, numerical rank).
+/// With every column in one block it is the exact thin SVD; truncating to maxRank between blocks
+/// is the incremental SVD of libROM / Brand 2002 (error bounded by the discarded sigma's).
+/// Steps take blockColumns columns each, on any rank count, so the truncations and the result are
+/// the same on 1, 2 or 3 ranks up to round-off. Each step takes one of three routes, all exact:
+///   tsqr:       TSQR needs (carried + new columns) <= rows on every rank;
+///   replicated: [U diag(sigma), X] gathered on every rank, one LAPACK SVD there (d x columns
+///               numbers per rank, and every rank does the whole SVD: it takes any rank count but
+///               does not get faster with more ranks).
+///   stacked:    a TSQR with LAPACK kernels: each rank's rows by GEQRF (any row count), the R
+///               factors stacked on every rank and one GESDD of the stack, each rank's rows of U
+///               by ORMQR; its local work divides with the ranks, it takes any rank count, and
+///               where ranks hold fewer rows than columns it costs about what `replicated` costs.
+/// PodRoute::Auto (the default) takes the stacked route for every step: at the paper's NLS size
+/// (4096 rows, steps of up to 1120 columns) it is the fastest on 1, 2 and 4 ranks (doc/design.md,
+/// 'Symplectic bases and the streaming POD'; Tpetra's TSQR was 3-5x slower there). Tsqr refuses a step
+/// that does not fit (InputError naming its columns and the rows per rank); Stacked and Replicated
+/// take that route for every step.
 #include <string>
 #include <vector>
 
@@ -27,30 +28,32 @@
 
 namespace gphr {
 
+/// Route of a streaming POD step (the file's description): auto (stacked), tsqr, stacked or replicated.
 enum class PodRoute { Auto, Tsqr, Stacked, Replicated };
-// "auto" | "tsqr" | "stacked" | "replicated" (the config's podRoute values); anything else: InputError.
+/// "auto" | "tsqr" | "stacked" | "replicated" (the config's podRoute values); anything else: InputError.
 PodRoute podRouteFromName(const std::string& name);
 
+/// A streaming POD (incremental thin SVD) of a tall distributed matrix given block by block.
 class StreamingPod {
  public:
-  // maxRank: singular triplets kept between steps; blockColumns: new columns per step;
-  // rankTolerance: sigma_j <= rankTolerance * sigma_1 are dropped (< 0: columns * machine eps,
-  // LAPACK's numerical rank; 0: keep every nonzero one); route: see above.
+  /// maxRank: singular triplets kept between steps; blockColumns: new columns per step;
+  /// rankTolerance: sigma_j <= rankTolerance * sigma_1 are dropped (< 0: columns * machine eps,
+  /// LAPACK's numerical rank; 0: keep every nonzero one); route: see above.
   StreamingPod(RCP<const Map> map, int maxRank, int blockColumns, double rankTolerance = -1.0,
                PodRoute route = PodRoute::Auto);
 
-  void add(const MultiVector& X);  // collective; X on map()
-  const RCP<const Map>& map() const { return map_; }
-  int rank() const { return static_cast<int>(sigma_.size()); }
-  // Left singular vectors (map x rank(); an empty MultiVector of one zero column while rank() == 0).
+  void add(const MultiVector& X);  ///< collective; X on map()
+  const RCP<const Map>& map() const { return map_; }  ///< The row map of the matrix.
+  int rank() const { return static_cast<int>(sigma_.size()); }  ///< Current rank r (singular triplets held).
+  /// Left singular vectors (map x rank(); an empty MultiVector of one zero column while rank() == 0).
   const MultiVector& leftVectors() const { return *U_; }
-  const std::vector<double>& singularValues() const { return sigma_; }
-  double totalEnergy() const { return energy_; }  // ||all columns added||_F^2
-  long columnsAdded() const { return columns_; }
-  int blockColumns() const { return blockColumns_; }
-  int tsqrSteps() const { return tsqrSteps_; }              // steps taken by each route so far
-  int replicatedSteps() const { return replicatedSteps_; }
-  int stackedSteps() const { return stackedSteps_; }
+  const std::vector<double>& singularValues() const { return sigma_; }  ///< The singular values sigma, descending.
+  double totalEnergy() const { return energy_; }  ///< ||all columns added||_F^2
+  long columnsAdded() const { return columns_; }  ///< Columns added so far.
+  int blockColumns() const { return blockColumns_; }  ///< Columns per step.
+  int tsqrSteps() const { return tsqrSteps_; }              ///< steps taken by each route so far
+  int replicatedSteps() const { return replicatedSteps_; }  ///< Steps taken by the replicated route.
+  int stackedSteps() const { return stackedSteps_; }  ///< Steps taken by the stacked route.
 
  private:
   void step(const MultiVector& X, size_t c0, size_t c1);

@@ -1,15 +1,16 @@
 #pragma once
-// Orthonormal symplectic reduced bases A (2n x 2k, A^T A = I, A^T J_{2n} A = J_{2k}) from
-// distributed snapshots (paper Sec. 2; constructions of Peng & Mohseni 2016):
-//   psd (complex SVD, the paper's choice): U = Phi + i Psi, the leading k left singular vectors
-//       of C = Q + i P;  A = [[Phi, -Psi], [Psi, Phi]].
-//   cotangent lift: Phi, the leading k left singular vectors of [Q, P];  A = [[Phi, 0], [0, Phi]].
-// Both are one computation in the real representation (a + i b <-> [a; b], i <-> J^T): the data
-// columns D are [q; p] (psd) or [q; 0], [p; 0] (cotangent). X = [D, J^T D], block by block,
-// goes through the generic StreamingPod (incremental TSQR + LAPACK SVD, truncated to 2 maxRank
-// real triplets, as in libROM; the same on any rank count); a complex Gram-Schmidt of its left
-// vectors in the small coordinates keeps one vector of each J-pair. Nothing n x N_snap is
-// gathered and nothing n x n is formed; with all snapshots in one block it is the exact thin SVD.
+/// @file
+/// Orthonormal symplectic reduced bases A (2n x 2k, A^T A = I, A^T J_{2n} A = J_{2k}) from
+/// distributed snapshots (paper Sec.\ 2; constructions of Peng & Mohseni 2016):
+///   psd (complex SVD, the paper's choice): U = Phi + i Psi, the leading k left singular vectors
+///       of C = Q + i P;  A = [[Phi, -Psi], [Psi, Phi]].
+///   cotangent lift: Phi, the leading k left singular vectors of [Q, P];  A = [[Phi, 0], [0, Phi]].
+/// Both are one computation in the real representation (a + i b <-> [a; b], i <-> J^T): the data
+/// columns D are [q; p] (psd) or [q; 0], [p; 0] (cotangent). X = [D, J^T D], block by block,
+/// goes through the generic StreamingPod (incremental TSQR + LAPACK SVD, truncated to 2 maxRank
+/// real triplets, as in libROM; the same on any rank count); a complex Gram-Schmidt of its left
+/// vectors in the small coordinates keeps one vector of each J-pair. Nothing n x N_snap is
+/// gathered and nothing n x n is formed; with all snapshots in one block it is the exact thin SVD.
 #include <string>
 #include <vector>
 
@@ -17,26 +18,31 @@
 
 namespace gphr {
 
+/// Options of the symplectic basis: construction, size k, POD blocks and route.
 struct BasisOptions {
-  std::string method = "psd";      // psd | cotangent
-  int k = 0;                       // basis half-size; 0: from energyTolerance
-  double energyTolerance = 1e-6;   // discarded fraction of the snapshot energy (when k = 0)
-  int blockColumns = 128;          // snapshot columns per incremental step
-  int maxRank = 0;                 // complex triplets kept between steps; 0: 2k + 32 (k given) or 512; at most n
-  std::string podRoute = "auto";   // auto | tsqr | replicated: the StreamingPod's step route
+  std::string method = "psd";      ///< psd | cotangent
+  int k = 0;                       ///< basis half-size; 0: from energyTolerance
+  double energyTolerance = 1e-6;   ///< discarded fraction of the snapshot energy (when k = 0)
+  int blockColumns = 128;          ///< snapshot columns per incremental step
+  int maxRank = 0;                 ///< complex triplets kept between steps; 0: 2k + 32 (k given) or 512; at most n
+  std::string podRoute = "auto";   ///< auto | tsqr | replicated: the StreamingPod's step route
 };
 
+/// A symplectic, orthonormal reduced basis A with its singular values and POD statistics.
 struct ReducedBasis {
-  RCP<MultiVector> A;                  // 2n x 2k on the state map
-  std::vector<double> singularValues;  // of the (complex) data matrix, all that were kept
-  double energyCaptured = 0.0;         // sum_{j<=k} sigma_j^2 / ||C||_F^2
-  int k = 0;
-  std::string method;
-  int tsqrSteps = 0, replicatedSteps = 0, stackedSteps = 0;  // streaming POD steps taken by each route
+  RCP<MultiVector> A;                  ///< 2n x 2k on the state map
+  std::vector<double> singularValues;  ///< of the (complex) data matrix, all that were kept
+  double energyCaptured = 0.0;         ///< sum_{j<=k} sigma_j^2 / ||C||_F^2
+  int k = 0;  ///< k, the basis half-size (A has 2k columns).
+  std::string method;  ///< Construction used (psd | cotangent).
+  /// streaming POD steps taken by each route
+  /// @{
+  int tsqrSteps = 0, replicatedSteps = 0, stackedSteps = 0;
+  /// @}
 };
 
-// Snapshots: columns of each MultiVector are states y on space.map() (shifted states when the
-// model is shifted). Collective.
+/// Snapshots: columns of each MultiVector are states y on space.map() (shifted states when the
+/// model is shifted). Collective.
 ReducedBasis computeSymplecticBasis(const std::vector<RCP<const MultiVector>>& snapshots,
                                     const PhaseSpace& space, const BasisOptions& options);
 

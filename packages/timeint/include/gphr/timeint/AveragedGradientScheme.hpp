@@ -1,35 +1,36 @@
 #pragma once
-// The one implicit time scheme of GPHR, written once for the full (Tpetra), reduced and
-// hyper-reduced (small dense) systems:
-//
-//   y1 = y0 + dt J  sum_q w_q grad H(y0 + s_q (y1 - y0))                            (*)
-//
-// With the 1-point Gauss rule (s = 1/2, w = 1) (*) is the implicit midpoint rule (IMR); with a
-// Gauss-Legendre rule exact for the degree of grad H along the segment, (*) is the Average
-// Vector Field method (AVF), which conserves H exactly when (*) is solved exactly:
-// H(y1) - H(y0) = (y1 - y0)^T gbar = gbar^T R for the Newton residual R, so |dH| <= |gbar| |R|.
-//
-// (*) is solved by Newton's method with the exact Jacobian
-//   K = I - dt J Hbar,  Hbar = sum_q w_q s_q Hess H(y_q),   K dx = -R.
-// K is assembled with J already applied to the rows of Hbar (a signed row permutation), which
-// keeps its unit diagonal in front: the equivalent J^T K = J^T - dt Hbar has a small diagonal and
-// made ILU preconditioners useless (157 GMRES iterations per Newton step at n = 256).
-//
-// Backend concept (see FullModelBackend and, for reduced systems, DenseBackend):
-//   using Vector;  Vector create() const;
-//   void gradient(const Vector& y, Vector& g);           // g = grad H(y)
-//   bool averagedGradient(const Vector& y0, const Vector& y1, const QuadratureRule& rule, Vector& gbar);
-//                         // gbar of (*) computed by the model at once; false: the scheme loops over nodes
-//   void applyJ(const Vector& x, Vector& out);
-//   void beginNewtonMatrix();                            // M = I
-//   void addHessian(const Vector& y, double scale);     // M += scale J Hess H(y)
-//   bool addAveragedHessian(const Vector& y0, const Vector& y1, const QuadratureRule& rule, double scale);
-//                         // M += scale J sum_q w_q s_q Hess H(y_q) at once; false: the scheme loops over nodes
-//   void endNewtonMatrix();
-//   int solveNewton(const Vector& rhs, Vector& dx);      // M dx = rhs; returns linear iterations
-//   static void update(Vector& y, double a, const Vector& x, double b);  // y = a x + b y
-//   static void update(Vector& y, double a, const Vector& x, double b, const Vector& z, double c);
-//   static double norm(const Vector& x);  static void assign(Vector& y, const Vector& x);
+/// @file
+/// The one implicit time scheme of GPHR, written once for the full (Tpetra), reduced and
+/// hyper-reduced (small dense) systems:
+///
+///   y1 = y0 + dt J  sum_q w_q grad H(y0 + s_q (y1 - y0))                            (*)
+///
+/// With the 1-point Gauss rule (s = 1/2, w = 1) (*) is the implicit midpoint rule (IMR); with a
+/// Gauss-Legendre rule exact for the degree of grad H along the segment, (*) is the Average
+/// Vector Field method (AVF), which conserves H exactly when (*) is solved exactly:
+/// H(y1) - H(y0) = (y1 - y0)^T gbar = gbar^T R for the Newton residual R, so |dH| <= |gbar| |R|.
+///
+/// (*) is solved by Newton's method with the exact Jacobian
+///   K = I - dt J Hbar,  Hbar = sum_q w_q s_q Hess H(y_q),   K dx = -R.
+/// K is assembled with J already applied to the rows of Hbar (a signed row permutation), which
+/// keeps its unit diagonal in front: the equivalent J^T K = J^T - dt Hbar has a small diagonal and
+/// made ILU preconditioners useless (157 GMRES iterations per Newton step at n = 256).
+///
+/// Backend concept (see FullModelBackend and, for reduced systems, DenseBackend):
+///   using Vector;  Vector create() const;
+///   void gradient(const Vector& y, Vector& g);           // g = grad H(y)
+///   bool averagedGradient(const Vector& y0, const Vector& y1, const QuadratureRule& rule, Vector& gbar);
+///                         // gbar of (*) computed by the model at once; false: the scheme loops over nodes
+///   void applyJ(const Vector& x, Vector& out);
+///   void beginNewtonMatrix();                            // M = I
+///   void addHessian(const Vector& y, double scale);     // M += scale J Hess H(y)
+///   bool addAveragedHessian(const Vector& y0, const Vector& y1, const QuadratureRule& rule, double scale);
+///                         // M += scale J sum_q w_q s_q Hess H(y_q) at once; false: the scheme loops over nodes
+///   void endNewtonMatrix();
+///   int solveNewton(const Vector& rhs, Vector& dx);      // M dx = rhs; returns linear iterations
+///   static void update(Vector& y, double a, const Vector& x, double b);  // y = a x + b y
+///   static void update(Vector& y, double a, const Vector& x, double b, const Vector& z, double c);
+///   static double norm(const Vector& x);  static void assign(Vector& y, const Vector& x);
 #include <Teuchos_ParameterList.hpp>
 #include <cmath>
 #include <string>
@@ -39,37 +40,39 @@
 
 namespace gphr {
 
+/// What one time step's Newton solve took: iterations, Newton matrices and the final residual.
 struct StepReport {
-  int newtonIterations = 0;
-  int linearIterations = 0;
-  int newtonMatrices = 0;     // Newton matrices assembled (and factored / preconditioned) in the step
-  double residualNorm = 0.0;  // ||R(y1)|| at acceptance
+  int newtonIterations = 0;  ///< Newton iterations of the step.
+  int linearIterations = 0;  ///< Linear (Krylov) iterations over the step's Newton iterations.
+  int newtonMatrices = 0;     ///< Newton matrices assembled (and factored / preconditioned) in the step
+  double residualNorm = 0.0;  ///< ||R(y1)|| at acceptance
 };
 
+/// Options of the Newton solve of each time step: tolerance, iteration cap, Jacobian reuse, predictor.
 struct NewtonOptions {
-  double tolerance = 1e-10;  // on ||R||_2, as the paper's Newton tolerance
-  int maxIterations = 25;
-  // Chord method: assemble (and factor / precondition) the Newton matrix only at the first
-  // iteration of each step. Converges linearly instead of quadratically, but saves the Hessian
-  // assemblies that dominate the reduced model's cost (A^T Hess N A is O(n k^2)).
+  double tolerance = 1e-10;  ///< on ||R||_2, as the paper's Newton tolerance
+  int maxIterations = 25;  ///< Newton iterations allowed per step.
+  /// Chord method: assemble (and factor / precondition) the Newton matrix only at the first
+  /// iteration of each step. Converges linearly instead of quadratically, but saves the Hessian
+  /// assemblies that dominate the reduced model's cost (A^T Hess N A is O(n k^2)).
   bool reuseJacobian = false;
-  // Lagged Newton matrix across steps (as CVODE does): keep the last factored matrix from step to
-  // step and re-assemble only when Newton slows down (||R_{i+1}|| > lagRate ||R_i|| with a stale
-  // matrix), after lagMaxSteps steps, or when dt changes. Same tolerance, far fewer Hessians and
-  // LU factorisations for the reduced and hyper-reduced models.
+  /// Lagged Newton matrix across steps (as CVODE does): keep the last factored matrix from step to
+  /// step and re-assemble only when Newton slows down (||R_{i+1}|| > lagRate ||R_i|| with a stale
+  /// matrix), after lagMaxSteps steps, or when dt changes. Same tolerance, far fewer Hessians and
+  /// LU factorisations for the reduced and hyper-reduced models.
   bool lagJacobian = false;
-  double lagRate = 0.3;
-  int lagMaxSteps = 20;
-  // Newton's initial guess for y^{j+1}: the polynomial through the last predictorOrder + 1 states
-  // extrapolated one step (integrate(), extrapolatedGuess()). 3 (cubic) by default: on the
-  // paper's NLS set-up (n = 2048, dt = 0.01, AVF) the full model takes 1.95 Newton iterations per
-  // step against 2.94 with the linear guess, the GP-ADEIM model 2.55 against 2.96.
+  double lagRate = 0.3;  ///< lagJacobian: re-assemble when ||R_{i+1}|| > lagRate ||R_i||.
+  int lagMaxSteps = 20;  ///< lagJacobian: re-assemble at the latest after this many steps.
+  /// Newton's initial guess for y^{j+1}: the polynomial through the last predictorOrder + 1 states
+  /// extrapolated one step (integrate(), extrapolatedGuess()). 3 (cubic) by default: on the
+  /// paper's NLS set-up (n = 2048, dt = 0.01, AVF) the full model takes 1.95 Newton iterations per
+  /// step against 2.94 with the linear guess, the GP-ADEIM model 2.55 against 2.96.
   int predictorOrder = 3;
 };
 
-constexpr int kMaxPredictorOrder = 3;
+constexpr int kMaxPredictorOrder = 3;  ///< Largest allowed NewtonOptions::predictorOrder.
 
-// The one failure message of both Newton drivers (GPHR's loop and NOX): where and how far.
+/// The one failure message of both Newton drivers (GPHR's loop and NOX): where and how far.
 inline std::string newtonFailureMessage(const NewtonOptions& o, long step, double time, const StepReport& rep,
                                         const std::string& driver = "Newton") {
   return detail::concat(driver, " did not converge at step ", step, " (t = ", time, "): residual norm ",
@@ -77,22 +80,24 @@ inline std::string newtonFailureMessage(const NewtonOptions& o, long step, doubl
                         o.tolerance, ", at most ", o.maxIterations, ")");
 }
 
+/// The implicit scheme (*) of the file's description (IMR or AVF by its quadrature rule) over a Backend.
 template <class Backend>
 class AveragedGradientScheme {
  public:
-  using Vector = typename Backend::Vector;
+  using Vector = typename Backend::Vector;  ///< The backend's state vector.
 
+  /// The scheme on `backend` with quadrature `rule` (1-point Gauss: IMR) and Newton options `opts`.
   AveragedGradientScheme(Backend& backend, QuadratureRule rule, NewtonOptions opts)
       : be_(backend), rule_(std::move(rule)), opts_(opts), yq_(be_.create()), gsum_(be_.create()),
         g_(be_.create()), res_(be_.create()), rhs_(be_.create()), dx_(be_.create()) {}
 
-  const QuadratureRule& rule() const { return rule_; }
-  const NewtonOptions& options() const { return opts_; }
+  const QuadratureRule& rule() const { return rule_; }  ///< The quadrature rule (nodes s_q, weights w_q).
+  const NewtonOptions& options() const { return opts_; }  ///< The Newton options.
 
-  // Solve (*) for y1, starting from the guess in y1, with GPHR's own Newton loop (the driver of
-  // the reduced models and, by default, of the full model; the full model's alternative driver is
-  // NOX, NoxNewtonSolver, which calls residual() and assembleNewtonMatrix() below). Throws
-  // SolverError if Newton fails; `step` and `time` only label that message.
+  /// Solve (*) for y1, starting from the guess in y1, with GPHR's own Newton loop (the driver of
+  /// the reduced models and, by default, of the full model; the full model's alternative driver is
+  /// NOX, NoxNewtonSolver, which calls residual() and assembleNewtonMatrix() below). Throws
+  /// SolverError if Newton fails; `step` and `time` only label that message.
   StepReport step(const Vector& y0, Vector& y1, double dt, long step = 0, double time = 0.0) {
     StepReport rep;
     if (opts_.lagJacobian && (dt != lagDt_ || ++lagAge_ > opts_.lagMaxSteps)) haveMatrix_ = false;
@@ -121,7 +126,7 @@ class AveragedGradientScheme {
     }
   }
 
-  // The backend's Newton matrix := K(y0, y1) = I - dt J sum_q w_q s_q Hess H(y0 + s_q (y1 - y0)).
+  /// The backend's Newton matrix := K(y0, y1) = I - dt J sum_q w_q s_q Hess H(y0 + s_q (y1 - y0)).
   void assembleNewtonMatrix(const Vector& y0, const Vector& y1, double dt) {
     be_.beginNewtonMatrix();
     if (!be_.addAveragedHessian(y0, y1, rule_, -dt))
@@ -132,11 +137,11 @@ class AveragedGradientScheme {
     be_.endNewtonMatrix();
   }
 
-  // Average gradient gbar = sum_q w_q grad H(y0 + s_q (y1 - y0)) of the last residual() (with
-  // either driver, the last residual evaluated in a step is that of the accepted y1).
+  /// Average gradient gbar = sum_q w_q grad H(y0 + s_q (y1 - y0)) of the last residual() (with
+  /// either driver, the last residual evaluated in a step is that of the accepted y1).
   const Vector& averageGradient() const { return gsum_; }
 
-  // R = y1 - y0 - dt J gbar into R; returns ||R||.
+  /// R = y1 - y0 - dt J gbar into R; returns ||R||.
   double residual(const Vector& y0, const Vector& y1, double dt, Vector& R) {
     if (!be_.averagedGradient(y0, y1, rule_, gsum_))
       for (int q = 0; q < rule_.size(); ++q) {
@@ -148,6 +153,7 @@ class AveragedGradientScheme {
     Backend::update(R, 1.0, y1, -1.0, y0, -dt);
     return Backend::norm(R);
   }
+  /// R = y1 - y0 - dt J gbar into the scheme's own buffer; returns ||R||.
   double residual(const Vector& y0, const Vector& y1, double dt) { return residual(y0, y1, dt, res_); }
 
  private:
@@ -155,7 +161,7 @@ class AveragedGradientScheme {
   QuadratureRule rule_;
   NewtonOptions opts_;
   Vector yq_, gsum_, g_, res_, rhs_, dx_;
-  bool haveMatrix_ = false;  // lagJacobian: a factored matrix from an earlier step is in the backend
+  bool haveMatrix_ = false;  ///< lagJacobian: a factored matrix from an earlier step is in the backend
   double lagDt_ = 0.0;
   int lagAge_ = 0;
 };

@@ -1,7 +1,8 @@
 #pragma once
-// Backend of AveragedGradientScheme for small, replicated (dense) Hamiltonian systems
-// z' = J_{2k} grad H(z): the Galerkin reduced model and the hyper-reduced models. The Newton
-// matrix K = I - dt J Hbar is formed densely (2k x 2k) and LU-factored with Teuchos::LAPACK.
+/// @file
+/// Backend of AveragedGradientScheme for small, replicated (dense) Hamiltonian systems
+/// z' = J_{2k} grad H(z): the Galerkin reduced model and the hyper-reduced models. The Newton
+/// matrix K = I - dt J Hbar is formed densely (2k x 2k) and LU-factored with Teuchos::LAPACK.
 #include <Teuchos_LAPACK.hpp>
 #include <Teuchos_SerialDenseMatrix.hpp>
 #include <Teuchos_SerialDenseVector.hpp>
@@ -11,30 +12,30 @@
 
 namespace gphr {
 
-using DenseVector = Teuchos::SerialDenseVector<int, double>;
-using DenseMatrix = Teuchos::SerialDenseMatrix<int, double>;
+using DenseVector = Teuchos::SerialDenseVector<int, double>;  ///< Small dense vector (Teuchos), a reduced state z.
+using DenseMatrix = Teuchos::SerialDenseMatrix<int, double>;  ///< Small dense matrix (Teuchos, column-major).
 
-// A small Hamiltonian system on R^{2k} with z = (z_q, z_p), replicated on every rank.
+/// A small Hamiltonian system on R^{2k} with z = (z_q, z_p), replicated on every rank.
 class DenseHamiltonian {
  public:
   virtual ~DenseHamiltonian() = default;
-  virtual int dim() const = 0;  // 2k
-  virtual double hamiltonian(const DenseVector& z) = 0;
-  virtual void gradient(const DenseVector& z, DenseVector& g) = 0;
-  // H += scale * Hess H(z).
+  virtual int dim() const = 0;  ///< 2k
+  virtual double hamiltonian(const DenseVector& z) = 0;  ///< H(z).
+  virtual void gradient(const DenseVector& z, DenseVector& g) = 0;  ///< g = grad H(z).
+  /// H += scale * Hess H(z).
   virtual void addHessian(const DenseVector& z, double scale, DenseMatrix& H) = 0;
-  // The time scheme's averaged gradient gbar = sum_q w_q grad H((1 - s_q) z0 + s_q z1) at once,
-  // for a model that can do better than node by node (ReducedHamiltonian: its quadratic part and
-  // its stencil values are linear in z). Returns false (the default) to let the scheme loop.
+  /// The time scheme's averaged gradient gbar = sum_q w_q grad H((1 - s_q) z0 + s_q z1) at once,
+  /// for a model that can do better than node by node (ReducedHamiltonian: its quadratic part and
+  /// its stencil values are linear in z). Returns false (the default) to let the scheme loop.
   virtual bool averagedGradient(const DenseVector& z0, const DenseVector& z1, const QuadratureRule& rule,
                                 DenseVector& gbar) {
     (void)z0, (void)z1, (void)rule, (void)gbar;
     return false;
   }
-  // H += scale * sum_q w_q s_q Hess H((1 - s_q) z0 + s_q z1), the scheme's Newton matrix term, at
-  // once, for a model that can do better than node by node (ReducedHamiltonian: one GEMM with the
-  // nodes' Hessian blocks summed instead of one per node). Returns false (the default) to let the
-  // scheme loop over the nodes with addHessian.
+  /// H += scale * sum_q w_q s_q Hess H((1 - s_q) z0 + s_q z1), the scheme's Newton matrix term, at
+  /// once, for a model that can do better than node by node (ReducedHamiltonian: one GEMM with the
+  /// nodes' Hessian blocks summed instead of one per node). Returns false (the default) to let the
+  /// scheme loop over the nodes with addHessian.
   virtual bool addAveragedHessian(const DenseVector& z0, const DenseVector& z1, const QuadratureRule& rule,
                                   double scale, DenseMatrix& H) {
     (void)z0, (void)z1, (void)rule, (void)scale, (void)H;
@@ -42,34 +43,39 @@ class DenseHamiltonian {
   }
 };
 
-// out = J_{2k} x: out_q = x_p, out_p = -x_q.
+/// out = J_{2k} x: out_q = x_p, out_p = -x_q.
 void applyCanonicalJ(const DenseVector& x, DenseVector& out);
 
+/// The Backend of AveragedGradientScheme for a DenseHamiltonian: dense Newton matrix and LU (LAPACK).
 class DenseBackend {
  public:
-  using Vector = DenseVector;
-  explicit DenseBackend(DenseHamiltonian& model);
+  using Vector = DenseVector;  ///< The state vector: a small dense z.
+  explicit DenseBackend(DenseHamiltonian& model);  ///< Backend of `model` (kept by reference).
 
-  Vector create() const { return Vector(model_.dim()); }
-  void gradient(const Vector& z, Vector& g) { model_.gradient(z, g); }
+  Vector create() const { return Vector(model_.dim()); }  ///< A zero state of size 2k.
+  void gradient(const Vector& z, Vector& g) { model_.gradient(z, g); }  ///< g = grad H(z).
+  /// gbar of (*) from the model at once, if it can (false: the scheme loops over nodes).
   bool averagedGradient(const Vector& z0, const Vector& z1, const QuadratureRule& rule, Vector& gbar) {
     return model_.averagedGradient(z0, z1, rule, gbar);
   }
-  void applyJ(const Vector& x, Vector& out) { applyCanonicalJ(x, out); }
-  void beginNewtonMatrix() { hbar_.putScalar(0.0); }
-  void addHessian(const Vector& z, double scale) { model_.addHessian(z, scale, hbar_); }
+  void applyJ(const Vector& x, Vector& out) { applyCanonicalJ(x, out); }  ///< out = J_{2k} x.
+  void beginNewtonMatrix() { hbar_.putScalar(0.0); }  ///< Starts a Newton matrix (hbar = 0).
+  void addHessian(const Vector& z, double scale) { model_.addHessian(z, scale, hbar_); }  ///< hbar += scale Hess H(z).
+  /// hbar += scale sum_q w_q s_q Hess H(z_q) from the model at once, if it can (false: node by node).
   bool addAveragedHessian(const Vector& z0, const Vector& z1, const QuadratureRule& rule, double scale) {
     return model_.addAveragedHessian(z0, z1, rule, scale, hbar_);
   }
-  void endNewtonMatrix();  // K = I + J hbar (hbar holds -dt Hbar), then LU
+  void endNewtonMatrix();  ///< K = I + J hbar (hbar holds -dt Hbar), then LU
+  /// Solves K dx = rhs with the LU of endNewtonMatrix(); returns 0 (linear iterations).
   int solveNewton(const Vector& rhs, Vector& dx);
-  // Newton matrices assembled and LU-factored so far (endNewtonMatrix() calls).
+  /// Newton matrices assembled and LU-factored so far (endNewtonMatrix() calls).
   long newtonMatrixAssemblies() const { return assemblies_; }
 
-  static void update(Vector& y, double a, const Vector& x, double b);
+  static void update(Vector& y, double a, const Vector& x, double b);  ///< y = a x + b y.
+  /// y = a x + b y + c z.
   static void update(Vector& y, double a, const Vector& x, double b, const Vector& z, double c);
-  static double norm(const Vector& x) { return x.normFrobenius(); }
-  static void assign(Vector& y, const Vector& x) { y.assign(x); }
+  static double norm(const Vector& x) { return x.normFrobenius(); }  ///< ||x||_2.
+  static void assign(Vector& y, const Vector& x) { y.assign(x); }  ///< y = x.
 
  private:
   DenseHamiltonian& model_;

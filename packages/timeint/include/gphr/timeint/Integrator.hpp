@@ -1,6 +1,7 @@
 #pragma once
-// Integrator configuration (IMR / AVF, Newton) and the generic time loop over
-// AveragedGradientScheme, shared by the full, reduced and hyper-reduced models.
+/// @file
+/// Integrator configuration (IMR / AVF, Newton) and the generic time loop over
+/// AveragedGradientScheme, shared by the full, reduced and hyper-reduced models.
 #include <Teuchos_ParameterList.hpp>
 #include <algorithm>
 #include <functional>
@@ -11,39 +12,41 @@
 
 namespace gphr {
 
-// Valid keys: scheme (imr|avf), quadraturePoints (0 = from G's degree), newtonTolerance,
-// maxNewtonIterations, jacobianReuse, jacobianLag (with jacobianLagRate, jacobianLagMaxSteps),
-// newtonPredictor (0 .. 3), newtonSolver (nox|gphr, full model only), and the sections
-// linearSolver (FullModelBackend::validParameters()) and nox (noxValidParameters()).
+/// Valid keys: scheme (imr|avf), quadraturePoints (0 = from G's degree), newtonTolerance,
+/// maxNewtonIterations, jacobianReuse, jacobianLag (with jacobianLagRate, jacobianLagMaxSteps),
+/// newtonPredictor (0..3), newtonSolver (nox|gphr, full model only), and the sections
+/// linearSolver (FullModelBackend::validParameters()) and nox (noxValidParameters()).
 Teuchos::ParameterList integratorValidParameters();
 
-// The `nox` section: top-level keys of NOX's parameter list; its sections (Direction, Line Search,
-// Trust Region, Printing, Solver Options) are passed through to NOX unchecked.
+/// The `nox` section: top-level keys of NOX's parameter list; its sections (Direction, Line Search,
+/// Trust Region, Printing, Solver Options) are passed through to NOX unchecked.
 Teuchos::ParameterList noxValidParameters();
 
-// IMR: the 1-point Gauss rule. AVF: Gauss-Legendre with quadraturePoints nodes, or when 0 the
-// fewest that are exact for G of polynomial degree `degree` (a non-polynomial G, degree 0, gets 3).
+/// IMR: the 1-point Gauss rule. AVF: Gauss-Legendre with quadraturePoints nodes, or when 0 the
+/// fewest that are exact for G of polynomial degree `degree` (a non-polynomial G, degree 0, gets 3).
 QuadratureRule quadratureFor(const std::string& scheme, int quadraturePoints, int degree);
+/// Newton options of the `integrator` section.
 NewtonOptions newtonOptionsFrom(const Teuchos::ParameterList& integrator);
 
+/// Statistics of a time integration: steps, Newton and linear iterations, residuals, wall time.
 struct RunStats {
-  long steps = 0;
-  long newtonIterations = 0;
-  long linearIterations = 0;
-  long newtonMatrices = 0;  // Newton matrices assembled (dense models: LU factorisations)
-  double maxResidual = 0.0;
-  double wallSeconds = 0.0;
+  long steps = 0;  ///< Time steps taken.
+  long newtonIterations = 0;  ///< Newton iterations over all steps.
+  long linearIterations = 0;  ///< Linear (Krylov) iterations over all steps.
+  long newtonMatrices = 0;  ///< Newton matrices assembled (dense models: LU factorisations)
+  double maxResidual = 0.0;  ///< Largest Newton residual accepted.
+  double wallSeconds = 0.0;  ///< Wall seconds of the time loop.
 };
 
-// Observer called at step 0 (initial state) and after every step: (step, time, state, report).
+/// Observer called at step 0 (initial state) and after every step: (step, time, state, report).
 template <class Vector>
 using StepObserver = std::function<void(long, double, const Vector&, const StepReport&)>;
 
-// The Newton guess for y^{j+1}: the polynomial through y^j and the p previous states past[0] =
-// y^{j-1}, ..., past[p-1] = y^{j-p}, extrapolated one step, sum_{i=0..p} (-1)^i binom(p+1, i+1)
-// y^{j-i} (p = 0: y^j; 1: 2 y^j - y^{j-1}; 3: 4 y^j - 6 y^{j-1} + 4 y^{j-2} - y^{j-3}). Exact
-// for states that are polynomials of degree <= p in the step index; on a smooth trajectory the
-// guess is O(dt^{p+1}) from y^{j+1}, so fewer Newton iterations reach the same tolerance.
+/// The Newton guess for y^{j+1}: the polynomial through y^j and the p previous states past[0] =
+/// y^{j-1}, ..., past[p-1] = y^{j-p}, extrapolated one step, sum_{i=0..p} (-1)^i binom(p+1, i+1)
+/// y^{j-i} (p = 0: y^j; 1: 2 y^j - y^{j-1}; 3: 4 y^j - 6 y^{j-1} + 4 y^{j-2} - y^{j-3}). Exact
+/// for states that are polynomials of degree <= p in the step index; on a smooth trajectory the
+/// guess is O(dt^{p+1}) from y^{j+1}, so fewer Newton iterations reach the same tolerance.
 template <class Backend, class PastState>
 void extrapolatedGuess(const typename Backend::Vector& y, int p, const PastState& past,
                        typename Backend::Vector& next) {
@@ -59,10 +62,10 @@ void extrapolatedGuess(const typename Backend::Vector& y, int p, const PastState
   for (int i = 2; i <= p; ++i) Backend::update(next, c[i], past(i - 1), 1.0);
 }
 
-// Advance y by `steps` steps of size dt from time t0. The Newton guess for y^{j+1} is
-// extrapolatedGuess of order min(predictorOrder, states at hand): a run (or a resumed run) starts
-// from y^0, then linear, quadratic, ... Stepper: AveragedGradientScheme (GPHR's Newton loop) or
-// NoxNewtonSolver, both with step(y0, y1, dt, stepNo, t) -> StepReport.
+/// Advance y by `steps` steps of size dt from time t0. The Newton guess for y^{j+1} is
+/// extrapolatedGuess of order min(predictorOrder, states at hand): a run (or a resumed run) starts
+/// from y^0, then linear, quadratic, ... Stepper: AveragedGradientScheme (GPHR's Newton loop) or
+/// NoxNewtonSolver, both with step(y0, y1, dt, stepNo, t) -> StepReport.
 template <class Stepper, class Backend>
 RunStats integrate(Stepper& scheme, Backend& backend, typename Backend::Vector& y, double dt, long steps,
                    const StepObserver<typename Backend::Vector>& observer, int predictorOrder, double t0 = 0.0,

@@ -1,0 +1,25 @@
+# cmake -DDOXYGEN=... -DDOXYFILE=... -DLOG=... -DSTRICT=ON|OFF -P GPHRDocCheck.cmake
+# Runs doxygen and prints its warning log; with STRICT=ON a non-empty log is an error
+# (an undocumented public declaration or a documentation error in an installed header).
+file(REMOVE ${LOG})
+execute_process(COMMAND ${DOXYGEN} ${DOXYFILE} RESULT_VARIABLE _rc)
+if(NOT _rc EQUAL 0)
+  message(FATAL_ERROR "doxygen ${DOXYFILE} exited with ${_rc}")
+endif()
+set(_log "")
+if(EXISTS ${LOG})
+  file(READ ${LOG} _log)
+endif()
+string(STRIP "${_log}" _log)
+if(_log STREQUAL "")
+  message(STATUS "doxygen: no warnings")
+  return()
+endif()
+string(REGEX MATCHALL ": warning: " _w "${_log}")
+list(LENGTH _w _n)
+if(STRICT)
+  message(FATAL_ERROR "doxygen: ${_n} warning(s) (${LOG}):\n${_log}\n"
+                      "Every public declaration in packages/*/include needs a /// brief.")
+else()
+  message(WARNING "doxygen: ${_n} warning(s) (${LOG}):\n${_log}")
+endif()
