@@ -5,7 +5,7 @@
 #        gp-deim, gp-eqp, gp-eqp-refit (GP-DEIM's terms, least-squares weights), m in M (default
 #        6 10 20 40 60); the quadrature fits every kept state, exact rows (14760).
 #   nls  the paper's NLS: n = 2048, T = 30, AVF, 11 training parameters (every 10th state kept),
-#        2k = 160, m in M (default 60 80 100 130); the quadrature fits every 2nd kept state, its
+#        2k = 160 (K=200: 400), m in M (default 60 80 100 130); the quadrature fits every 2nd kept state, its
 #        1661 x 160 = 266k rows (x 2048 terms) sketched to SKETCH rows (default 20000), the fit's
 #        residual on the exact rows reported beside.
 #   swe-paper  the paper's SWE (Sec. 5.1): 50 x 50, T = 10, IMR, 5 x 5 training (every 10th state
@@ -43,7 +43,7 @@ YAML
     sed -e "s|^  integrator:.*|  integrator: {scheme: avf, jacobianLag: true}|" bench/configs/nls_paper.yaml > "$c"
     cat >> "$c" <<YAML
   training: {points: [11], snapshotEvery: 10}
-  reduction: {k: 80}
+  reduction: {k: ${K:-80}}
   pipeline: {rom: true, methods: [rom, gp-deim, gp-eqp], m: [$(list "${M:-60 80 100 130}")], onlineRepeats: 5}
   hyper: {snapshotEvery: 2, svd: randomized, maxRank: 170, powerIterations: 0}
   eqp: {snapshotEvery: 2, sketchRows: ${SKETCH:-20000}${EQP:+, $EQP}}

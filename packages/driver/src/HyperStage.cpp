@@ -230,10 +230,11 @@ class QuadratureFits {
   std::string name(const std::string& method, int m) const {
     return "/eqp/" + method + "_k" + std::to_string(k_) + "_m" + std::to_string(m);
   }
+  // The revision: 2, the budgets' fits along one greedy path (the same fits, times along the path).
   std::string key(const std::string& method, int m) const {
     return basisKey(ctx_.config) + toYaml(ctx_.config.sublist("eqp")) +
            (method == "gp-eqp-refit" ? toYaml(ctx_.config.sublist("hyper")) : std::string()) +
-           "eqp revision 1, k = " + std::to_string(k_) + ", m = " + std::to_string(m);
+           "eqp revision 2, k = " + std::to_string(k_) + ", m = " + std::to_string(m);
   }
   // Separate opens: the DEIM basis of the refit opens the same file in between.
   bool read(const std::string& name, const std::string& key, CachedFit& out) const {

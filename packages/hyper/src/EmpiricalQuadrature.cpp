@@ -206,20 +206,29 @@ QuadratureTraining buildQuadratureTraining(const std::vector<RCP<const Hamiltoni
   t.columns.assign(nl * t.numRows, 0.0);
   std::vector<Scalar> jac(nl * r), values(nl);
   const int R = t.numRows;
-  auto put = [&](size_t l, long rho, double x) {
-    if (!t.sketched) {
-      t.columns[l * R + rho] += x;
-      return;
+  // Where each of a state's rows goes (its own row, or its sketch row and sign): one hash per row
+  // and state, shared by all the terms.
+  std::vector<long> dest(rps);
+  std::vector<double> sign(rps, 1.0);
+  auto destinations = [&](long s) {
+    for (int a = 0; a < rps; ++a) {
+      const long rho = s * rps + a;
+      if (!t.sketched) {
+        dest[a] = rho;
+        continue;
+      }
+      const RowHash h = hashRow(o.seed, rho, R);
+      dest[a] = h.bucket, sign[a] = h.sign;
     }
-    const RowHash h = hashRow(o.seed, rho, R);
-    t.columns[l * R + h.bucket] += h.sign * x;
   };
   t.snapshots = forEachJacobianSnapshot(systems, states, A, o.snapshotEvery, jac,
                                         [&](const std::vector<Scalar>& J, long s, ReducedRowKernel& kernel) {
+    destinations(s);
     if (o.energyWeight > 0.0) kernel.rowValues(values.data());
     for (size_t l = 0; l < nl; ++l) {
-      for (int a = 0; a < r; ++a) put(l, s * rps + a, J[l * r + a]);
-      if (o.energyWeight > 0.0) put(l, s * rps + r, o.energyWeight * values[l]);
+      double* c = t.columns.data() + l * R;
+      for (int a = 0; a < r; ++a) c[dest[a]] += sign[a] * J[l * r + a];
+      if (o.energyWeight > 0.0) c[dest[r]] += sign[r] * o.energyWeight * values[l];
     }
   });
   std::vector<double> b(R, 0.0);
