@@ -10,6 +10,8 @@
 #   swe-scaling SWE 64^2 .. 512^2 (GRIDS), 2k = 20, m = 40, a short training run per grid (T = 0.5):
 #               9 queries of 400 steps over the box; a query's time per step and per Newton iteration,
 #               and the query process's peak memory, against the full model's peak memory.
+#   nls-file    the model file of the paper's NLS GP-ADEIM setting without the basis (2k = 400, m = 100):
+#               its size (training shared with nls-queries and nls-box).
 #   nls-box     NLS over the box [0.9, 1.1]: 21 test points, the ROM and GP-DEIM (2k = 160,
 #               m = 130): max and mean E_L2 over the box (gphr validate).
 # nls-queries and nls-box share their training, basis and model file (bench-out/model_nls).
@@ -95,6 +97,19 @@ print(f"full model: {1 / f1:.4f} solves/s on 1 rank ({f1:.1f} s), {1 / f2:.4f} o
       f"full solves/s: {q1 * f1:.1f} on 1 rank, {q2 * f2:.1f} on 2 (target >= 10)")
 PY
     ;;
+  nls-file)
+    out=bench-out/model_nls; mkdir -p $out
+    sed -e "s|^  integrator:.*|  integrator: {scheme: avf, jacobianLag: true}|" bench/configs/nls_paper.yaml > $out/build400.yaml
+    cat >> $out/build400.yaml <<YAML
+  training: {points: [11], snapshotEvery: 10}
+  reduction: {k: 200}
+  pipeline: {methods: [gp-deim], m: [100]}
+  hyper: {snapshotEvery: 2, svd: randomized, maxRank: 110, powerIterations: 0}
+YAML
+    mpirun -np 2 "$gphr" build $out/build400.yaml --model $out/nls400.h5 --output $out/art > $out/build400.log 2>&1
+    grep -E "gphr build|interpolant" $out/build400.log
+    echo "NLS 2k=400 m=100 model file without the basis: $(stat -c %s $out/nls400.h5) bytes"
+    ;;
   nls-box)
     nls_model; out=bench-out/model_nls
     cat > $out/box.yaml <<YAML
@@ -144,5 +159,5 @@ YAML
       echo "nx $nx: query time per step $(python3 -c "print(f'{$step * 1e6:.1f}')") us, per Newton iteration $(python3 -c "print(f'{$iter * 1e6:.1f}')") us, query peak RSS $(cat $out/query.rss) kB, full model peak RSS $(cat $out/fom.rss) kB, file $(stat -c %s $out/swe.h5) bytes, set-up $(python3 -c "import csv; r=list(csv.DictReader(open('$out/q/queries.csv'))); print(f\"{min(float(x['setup_s']) for x in r) * 1e3:.2f}\")") ms"
     done
     ;;
-  *) echo "unknown case '$case'; allowed: swe, nls-queries, nls-box, swe-scaling"; exit 2 ;;
+  *) echo "unknown case '$case'; allowed: swe, nls-queries, nls-file, nls-box, swe-scaling"; exit 2 ;;
 esac
