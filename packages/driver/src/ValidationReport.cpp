@@ -46,10 +46,47 @@ void writeText(const std::string& path, const std::string& text) {
   std::rename(temp.c_str(), path.c_str());
 }
 
+// Two parameters: one map per model, each test point a square coloured by log10 E_L2 (a point that
+// did not finish drawn as a cross), the training box outlined.
+void plotErrorMaps(const std::string& dir, const ReducedModelData& d, const std::vector<ModelStatistics>& stats,
+                   const std::vector<ValidationRecord>& records) {
+  std::ofstream dat(dir + "/validation_error.dat");
+  for (const auto& s : stats) {
+    dat << "# " << s.label << "\n";
+    for (const auto& r : records)
+      if (r.label() == s.label)
+        dat << num(r.mu[0]) << " " << num(r.mu[1]) << " " << (r.status == "ok" ? num(std::log10(r.eL2)) : "NaN") << "\n";
+    dat << "\n\n";
+  }
+  dat.close();
+  double lo = 0.0, hi = -30.0;
+  for (const auto& r : records)
+    if (r.status == "ok" && r.eL2 > 0) lo = std::min(lo, std::floor(std::log10(r.eL2))), hi = std::max(hi, std::ceil(std::log10(r.eL2)));
+  if (hi < lo) hi = lo + 1;
+  const std::string script = dir + "/validation_error.gp";
+  std::ofstream gp(script);
+  const size_t cols = std::min<size_t>(stats.size(), 3), rows = (stats.size() + cols - 1) / cols;
+  gp << "set terminal pngcairo size " << 420 * cols << "," << 380 * rows << " noenhanced\nset output '" << dir
+     << "/validation_error.png'\nset multiplot layout " << rows << "," << cols
+     << " title 'log10 of the relative error E_L2 over the test points'\nunset key\nset xlabel '"
+     << d.parameterNames[0] << "'\nset ylabel '" << d.parameterNames[1] << "'\nset cblabel 'log10 E_L2'\n"
+     << "set cbrange [" << lo << ":" << hi << "]\n"  // one colour scale for every model
+     << "set object 1 rect from " << d.box[0].first << "," << d.box[1].first << " to " << d.box[0].second << ","
+     << d.box[1].second << " fs empty border lc rgb 'black' dt 2\n";
+  for (size_t i = 0; i < stats.size(); ++i)
+    gp << "set title '" << stats[i].label << "'\nplot '" << dir << "/validation_error.dat' index " << i
+       << " using 1:2:3 with points pt 5 ps 2.5 palette, '' index " << i
+       << " using 1:($3 != $3 ? $2 : 1/0) with points pt 2 ps 2 lc rgb 'red'\n";
+  gp << "unset multiplot\n";
+  gp.close();
+  (void)std::system(("gnuplot '" + script + "' > /dev/null 2>&1").c_str());
+}
+
 // One data block per model (points sorted by the parameter), then gnuplot over the blocks.
 void plotErrors(const std::string& dir, const ReducedModelData& d, const std::vector<ModelStatistics>& stats,
                 const std::vector<ValidationRecord>& records) {
-  if (d.parameterNames.size() != 1 || std::system("command -v gnuplot > /dev/null 2>&1") != 0) return;
+  if (d.parameterNames.size() > 2 || std::system("command -v gnuplot > /dev/null 2>&1") != 0) return;
+  if (d.parameterNames.size() == 2) return plotErrorMaps(dir, d, stats, records);
   std::ofstream dat(dir + "/validation_error.dat");
   for (const auto& s : stats) {
     std::vector<std::pair<double, double>> pts;
