@@ -21,8 +21,12 @@ done
 for pkg in core models timeint reduction hyper io driver; do [ -d "$root/packages/$pkg" ] || fail "no packages/$pkg"; done
 # 2. gphr run CONFIG: a config that cli_examples runs (examples/*.yaml, each with expectations).
 for cfg in $(grep -oE 'gphr run [^ ]+\.yaml' "$readme" | awk '{print $3}' | sort -u); do
-  [ "$(dirname "$cfg")" = examples ] || fail "README runs $cfg, which is not in examples/"
-  grep -q "^    $(basename "$cfg" .yaml))" "$root/test/cli/examples.sh" || fail "cli_examples does not check $cfg"
+  case "$(dirname "$cfg")" in
+    examples) grep -q "^    $(basename "$cfg" .yaml))" "$root/test/cli/examples.sh" || fail "cli_examples does not check $cfg" ;;
+    examples/paper) grep -q "^    $(basename "$cfg")) sed" "$root/test/cli/paper_examples.sh" \
+                      || fail "cli_paper_examples does not run $cfg" ;;
+    *) fail "README runs $cfg, which is not in examples/ or examples/paper/" ;;
+  esac
 done
 # 3. The build / query / validate example files are the ones cli_model_workflow runs.
 for f in nls_build.yaml nls_queries.yaml nls_validate.yaml; do

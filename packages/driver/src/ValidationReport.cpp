@@ -55,13 +55,17 @@ void plotErrorMaps(const std::string& dir, const ReducedModelData& d, const std:
     dat << "# " << s.label << "\n";
     for (const auto& r : records)
       if (r.label() == s.label)
-        dat << num(r.mu[0]) << " " << num(r.mu[1]) << " " << (r.status == "ok" ? num(std::log10(r.eL2)) : "NaN") << "\n";
+        dat << num(r.mu[0]) << " " << num(r.mu[1]) << " " << (r.status == "ok" ? num(std::log10(r.eL2)) : "NaN")
+            << "\n";
     dat << "\n\n";
   }
   dat.close();
   double lo = 0.0, hi = -30.0;
   for (const auto& r : records)
-    if (r.status == "ok" && r.eL2 > 0) lo = std::min(lo, std::floor(std::log10(r.eL2))), hi = std::max(hi, std::ceil(std::log10(r.eL2)));
+    if (r.status == "ok" && r.eL2 > 0) {
+      lo = std::min(lo, std::floor(std::log10(r.eL2)));
+      hi = std::max(hi, std::ceil(std::log10(r.eL2)));
+    }
   if (hi < lo) hi = lo + 1;
   const std::string script = dir + "/validation_error.gp";
   std::ofstream gp(script);
@@ -170,7 +174,8 @@ void writePointRecords(const std::string& path, const std::string& key, const st
     os << "key\t" << key << "\nfom_s\t" << num(fomSeconds) << "\n";
     for (const auto& r : recs)
       os << r.point << "\t" << r.method << "\t" << r.k << "\t" << r.m << "\t" << r.status << "\t" << num(r.eL2) << "\t"
-         << num(r.onlineSeconds) << "\t" << num(r.setupSeconds) << "\t" << r.extrapolated << "\t" << muText(r.mu) << "\n";
+         << num(r.onlineSeconds) << "\t" << num(r.setupSeconds) << "\t" << r.extrapolated << "\t" << muText(r.mu)
+         << "\n";
     writeText(path, os.str());
   }
   comm->barrier();
@@ -230,7 +235,8 @@ void writeValidationReport(const std::string& dir, const ReducedModel& model, co
      << " s per query on average. E_L2 is eq:errNR over the saved steps; a point whose run did not finish counts as "
         "an infinite error. The 95th percentile interpolates linearly between order statistics. Break-even: the "
         "number of queries after which the offline cost is repaid, offline / (full - model) per query.\n\n"
-     << "| model | points ok | max E_L2 | mean E_L2 | p95 E_L2 | worst point | online s | speed-up | break-even queries |\n"
+     << "| model | points ok | max E_L2 | mean E_L2 | p95 E_L2 | worst point | online s | speed-up | "
+        "break-even queries |\n"
      << "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   std::vector<JsonObject> js;
   for (const auto& s : stats) {
@@ -264,7 +270,9 @@ void writeValidationReport(const std::string& dir, const ReducedModel& model, co
   }
   writeText(dir + "/validation.md", md.str());
   JsonObject summary;
-  summary.set("model_file", model.path()).set("points", static_cast<long>(points.size())).set("fom_online_s_mean", fomMean)
+  summary.set("model_file", model.path())
+      .set("points", static_cast<long>(points.size()))
+      .set("fom_online_s_mean", fomMean)
       .set("offline_s", d.offlineSeconds).set("gphr_version", gphrVersion()).set("models", js);
   writeText(dir + "/validation_summary.json", summary.str(2) + "\n");
   plotErrors(dir, d, stats, records);
