@@ -19,9 +19,37 @@ namespace gphr {
 
 namespace {
 
+// A section of the config as YAML with its own name at the top.
+std::string sectionYaml(const Teuchos::ParameterList& cfg, const std::string& name) {
+  Teuchos::ParameterList copy(cfg.sublist(name));
+  copy.setName(name);
+  return toYaml(copy);
+}
+
 // Methods a model file stores: those whose online model is a sample mesh with term weights.
 bool storable(const std::string& method) {
-  return method == "gp-deim" || method == "gp-eqp" || method == "gp-eqp-refit";
+  return method == "gp-deim" || method == "gp-eqp" || method == "gp-eqp-refit" || method == "gp-adeim";
+}
+
+// gp-adeim is stored as its options: its queries build the full system and sample its residual
+// online (alg:SP-ADEIM), from the basis in the file and the first delta0 full-model steps.
+void addAdeimModels(const RunContext& ctx, int k, const std::vector<int>& ms, std::vector<StoredHyperModel>& out) {
+  const auto& cfg = ctx.config;
+  std::string why;
+  if (!cfg.sublist("build").get<bool>("withBasis")) why = "its queries need the basis (build.withBasis: true)";
+  else if (cfg.sublist("adeim").get<std::string>("initialBasis") != "fom")
+    why = "adeim.initialBasis 'training' needs the training DEIM basis online, which the file does not hold";
+  if (!why.empty()) {
+    if (ctx.comm->getRank() == 0) std::fprintf(stderr, "[gphr] build: gp-adeim not stored: %s\n", why.c_str());
+    return;
+  }
+  for (int m : ms) {
+    StoredHyperModel sm;
+    sm.method = "gp-adeim", sm.k = k, sm.m = m;
+    adeimOptionsFrom(cfg.sublist("adeim"), m);  // the constraints that involve m, checked now
+    sm.adeimConfig = sectionYaml(cfg, "adeim");
+    out.push_back(sm);
+  }
 }
 
 // The stored models of reduced size k: gp-deim from the DEIM basis, gp-eqp / gp-eqp-refit from
@@ -31,6 +59,10 @@ std::vector<StoredHyperModel> modelsOfK(const RunContext& ctx, RomStages& st, co
                                         const std::vector<int>& ms) {
   std::vector<StoredHyperModel> out;
   for (const auto& method : methods) {
+    if (method == "gp-adeim") {
+      addAdeimModels(ctx, k, ms, out);
+      continue;
+    }
     if (method == "gp-deim") {
       const auto U = deimBasisFor(ctx, st, A, k, *inst.system).basis.U;
       auto deim = gpDeimModels(inst, A, k, *U, ms, ctx.config.sublist("hyper").get<std::string>("indices"));
@@ -48,13 +80,6 @@ std::vector<StoredHyperModel> modelsOfK(const RunContext& ctx, RomStages& st, co
     }
   }
   return out;
-}
-
-// A section of the config as YAML with its own name at the top.
-std::string sectionYaml(const Teuchos::ParameterList& cfg, const std::string& name) {
-  Teuchos::ParameterList copy(cfg.sublist(name));
-  copy.setName(name);
-  return toYaml(copy);
 }
 
 ModelFileOptions fileOptions(const Teuchos::ParameterList& cfg) {
@@ -101,8 +126,7 @@ int runBuild(const std::string& configPath, const std::string& modelPath, const 
   if (root && !skipped.empty())
     for (const auto& m : skipped)
       std::fprintf(stderr, "[gphr] build: %s is not stored (%s)\n", m.c_str(),
-                   m == "gp-adeim" ? "it samples the full residual online: run it with gphr run"
-                                   : "its online model needs all d rows or is a baseline: run it with gphr run");
+                   "its online model needs all d rows or is a baseline: run it with gphr run");
   Teuchos::Time clock("build");
   clock.start();
   RomStages st;

@@ -414,13 +414,7 @@ void runGpAdeim(const RunContext& ctx, const FomResult& fom, RomStages& st, cons
     // The lagged Newton matrix of the previous local model is kept across an update: it is a
     // Jacobian approximation like any lagged one, and the lag rule refactors when Newton slows
     // (resetting it at every update cost 600 LU factorisations instead of 143 on the NLS benchmark).
-    const AfterStepHook hook = [&](long j, const DenseVector& z) {
-      try {
-        model.afterStep(j, z);
-      } catch (const InputError& e) {  // a degenerate update mid-run is a result, not a crash
-        throw SolverError(detail::concat("GP-ADEIM update after step ", j, ": ", e.what()));
-      }
-    };
+    const AfterStepHook hook = adeimUpdateHook(model);
     ModelRun run = evaluateReducedModel(ctx, fom, *inst.system, *A, model, true, "gp-adeim", k, m, false, hook);
     run.adeimUpdates = model.updates();
     setAdeimSummary(run, o, tInitial, tPair);

@@ -132,6 +132,16 @@ long firstUnboundedStep(const FomResult& fom, const ModelRun& run, std::string& 
 }
 }  // namespace
 
+AfterStepHook adeimUpdateHook(GpAdeimModel& model) {
+  return [&model](long j, const DenseVector& z) {
+    try {
+      model.afterStep(j, z);
+    } catch (const InputError& e) {  // a degenerate update mid-run is a result, not a crash
+      throw SolverError(detail::concat("GP-ADEIM update after step ", j, ": ", e.what()));
+    }
+  };
+}
+
 ModelRun evaluateReducedModel(const RunContext& ctx, const FomResult& fom, const HamiltonianSystem& sys,
                               const MultiVector& A, DenseHamiltonian& model, bool hasHamiltonian,
                               const std::string& method, int k, int m, bool keepStates,

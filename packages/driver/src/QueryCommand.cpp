@@ -76,31 +76,37 @@ void writeStates(Hdf5File& f, const ReducedModel& model, const Query& q, const s
   f.writeStates("/states", Y, inst.system->space());
 }
 
-QueryOutcome runOne(const ReducedModel& model, const Query& q, const std::string& path) {
-  OnlineModel online = model.instantiate(q.method, q.k, q.m, q.mu, q.extrapolate, q.setup);
+// The observer that records a query's outputs: H_hr at every step, z and the probes at the saved ones.
+QueryObserver recording(const Query& q, Recorder& rec) {
   const long steps = std::lround(q.T / q.dt);
-  Recorder rec;
-  rec.probeCount = q.probes ? online.probeGids().size() : 0;
-  const auto stats = online.simulate(q.T, q.dt, [&](const QueryStep& s) {
+  return [&rec, &q, steps](const QueryStep& s) {
     rec.H.push_back(s.hamiltonian);
     if (s.step % q.saveEvery != 0 && s.step != steps) return;
     rec.times.push_back(s.time);
     rec.z.insert(rec.z.end(), s.z.values(), s.z.values() + s.z.length());
     if (rec.probeCount) rec.probes.insert(rec.probes.end(), s.probes.begin(), s.probes.end());
-  });
+  };
+}
+
+QueryOutcome outcomeOf(const Query& q, const SimulationStats& stats, const Recorder& rec, double setup, bool outside) {
   QueryOutcome out;
   out.status = stats.status, out.reason = stats.reason;
-  out.setupSeconds = online.setupSeconds(), out.onlineSeconds = stats.onlineSeconds;
-  out.extrapolated = online.extrapolated();
-  out.newtonIterations = stats.status == "ok" ? double(stats.run.newtonIterations) / steps : NAN;
+  out.setupSeconds = setup, out.onlineSeconds = stats.onlineSeconds;
+  out.extrapolated = outside;
+  out.newtonIterations = stats.status == "ok" ? double(stats.run.newtonIterations) / std::lround(q.T / q.dt) : NAN;
   out.drift = 0.0;
   for (double h : rec.H) out.drift = std::max(out.drift, std::abs(h - rec.H.front()));
   if (stats.status != "ok") out.drift = NAN;
+  return out;
+}
+
+void writeQuery(const std::string& path, const ReducedModel& model, const Query& q, const Recorder& rec,
+                const QueryOutcome& out) {
   RenameOnCommit commit(path, selfComm());
   {
     Hdf5File f(commit.tempPath(), selfComm(), Hdf5File::Mode::Create);
     f.writeArray("/hamiltonian", rec.H.empty() ? std::vector<double>{NAN} : rec.H, std::max<size_t>(1, rec.H.size()), 1);
-    const size_t saved = rec.times.size(), r = static_cast<size_t>(online.reducedDim());
+    const size_t saved = rec.times.size(), r = 2 * static_cast<size_t>(q.k);
     if (saved > 0) {
       f.writeArray("/saved_times", rec.times, saved, 1);
       f.writeArray("/z", rec.z, saved, r);
@@ -116,6 +122,36 @@ QueryOutcome runOne(const ReducedModel& model, const Query& q, const std::string
     f.setAttribute("/", "key", q.key());  // last: marks the file complete
   }
   commit.commit();
+}
+
+bool outsideBox(const ReducedModelData& d, const std::vector<double>& mu) {
+  for (size_t p = 0; p < mu.size(); ++p)
+    if (mu[p] < d.box[p].first || mu[p] > d.box[p].second) return true;
+  return false;
+}
+
+// A query of a sample-mesh model, on this rank alone.
+QueryOutcome runOne(const ReducedModel& model, const Query& q, const std::string& path) {
+  OnlineModel online = model.instantiate(q.method, q.k, q.m, q.mu, q.extrapolate, q.setup);
+  Recorder rec;
+  rec.probeCount = q.probes ? online.probeGids().size() : 0;
+  const auto stats = online.simulate(q.T, q.dt, recording(q, rec));
+  const QueryOutcome out = outcomeOf(q, stats, rec, online.setupSeconds(), online.extrapolated());
+  writeQuery(path, model, q, rec, out);
+  return out;
+}
+
+// A gp-adeim query, on every rank together (the full system is distributed); rank 0 writes it and
+// alone returns its outcome (shareOutcomes sums over the ranks).
+QueryOutcome runAdaptive(const ReducedModel& model, const Query& q, const std::string& path,
+                         const RCP<const Comm>& comm) {
+  Recorder rec;
+  rec.probeCount = q.probes ? model.data().basis(q.k).probeGids.size() : 0;
+  double setup = NAN;
+  const auto stats = model.simulateAdaptive(q.k, q.m, q.mu, q.T, q.dt, comm, recording(q, rec), &setup, q.extrapolate);
+  if (comm->getRank() != 0) return QueryOutcome();
+  const QueryOutcome out = outcomeOf(q, stats, rec, setup, outsideBox(model.data(), q.mu));
+  writeQuery(path, model, q, rec, out);
   return out;
 }
 
@@ -156,7 +192,10 @@ void writeTable(const std::string& dir, const ReducedModelData& d, const std::ve
       csv << q.name;
       for (double x : q.mu) csv << "," << number(x);
       csv << "," << q.method << "," << q.k << "," << q.m << "," << number(q.T) << "," << number(q.dt) << ","
-          << (q.setup == SetupRoute::Exact ? "exact" : "interpolated") << "," << o.status << ","
+          << (d.model(q.method, q.k, q.m).onlineNeedsFullSystem() ? "full system"
+              : q.setup == SetupRoute::Exact                        ? "exact"
+                                                                    : "interpolated")
+          << "," << o.status << ","
           << (o.extrapolated ? "yes" : "no") << "," << number(o.setupSeconds) << "," << number(o.onlineSeconds)
           << "," << number(o.drift) << "," << number(o.newtonIterations) << "," << (o.reused ? "yes" : "no") << "\n";
     }
@@ -201,10 +240,22 @@ int runQuery(const std::string& modelPath, const std::string& queriesPath, const
   Teuchos::Time wall("queries");
   wall.start();
   std::vector<QueryOutcome> outs(queries.size());
-  long mine = 0, done = 0;
-  for (size_t i = rank; i < queries.size(); i += size) ++mine;
+  std::vector<size_t> local, adaptive;  // this rank's share of the sample-mesh queries; the gp-adeim ones
+  for (size_t i = 0, n = 0; i < queries.size(); ++i) {
+    if (model.data().model(queries[i].method, queries[i].k, queries[i].m).onlineNeedsFullSystem()) adaptive.push_back(i);
+    else if (n++ % size == static_cast<size_t>(rank)) local.push_back(i);
+  }
+  const long mine = static_cast<long>(local.size() + adaptive.size());
+  long done = 0;
   double lastPrint = -1e9;
-  for (size_t i = rank; i < queries.size(); i += size) {
+  for (size_t i : adaptive) {  // all ranks together, one after another
+    const std::string path = queryFile(outputDir, queries[i]);
+    int reuse = rank == 0 && finished(path, queries[i].key(), outs[i]);
+    Teuchos::broadcast(*comm, 0, Teuchos::outArg(reuse));
+    if (!reuse) outs[i] = runAdaptive(model, queries[i], path, comm);
+    ++done;
+  }
+  for (size_t i : local) {
     const std::string path = queryFile(outputDir, queries[i]);
     if (!finished(path, queries[i].key(), outs[i])) outs[i] = runOne(model, queries[i], path);
     ++done;

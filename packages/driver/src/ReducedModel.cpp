@@ -9,6 +9,8 @@
 
 #include "gphr/core/Error.hpp"
 #include "gphr/core/ReplicatedGather.hpp"
+#include "gphr/driver/ModelEvaluation.hpp"
+#include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/models/SceneFactory.hpp"
 
 namespace gphr {
@@ -68,20 +70,29 @@ OnlineParameterData ReducedModel::exactParameterData(const StoredBasisData& b, c
   return out;
 }
 
-OnlineModel ReducedModel::instantiate(const std::string& method, int k, int m, const std::vector<double>& mu,
-                                      bool allowExtrapolation, SetupRoute route) const {
+bool ReducedModel::checkParameter(const std::vector<double>& mu, bool allowExtrapolation) const {
   GPHR_REQUIRE(mu.size() == data_.box.size(), InputError, "a query of scene ", data_.sceneName, " takes ",
                data_.box.size(), " parameter(s) (", boxText(data_), "), got ", mu.size());
-  OnlineModel out;
+  bool outside = false;
   for (size_t p = 0; p < mu.size(); ++p) {
     GPHR_REQUIRE(std::isfinite(mu[p]), InputError, "parameter ", data_.parameterNames[p], " = ", mu[p],
                  " is not a finite number");
     const bool inside = mu[p] >= data_.box[p].first && mu[p] <= data_.box[p].second;
     GPHR_REQUIRE(inside || allowExtrapolation, InputError, "parameter ", data_.parameterNames[p], " = ", mu[p],
                  " is outside the training box (", boxText(data_), "); allowed: inside it, or extrapolate: true");
-    out.extrapolated_ = out.extrapolated_ || !inside;
+    outside = outside || !inside;
   }
+  return outside;
+}
+
+OnlineModel ReducedModel::instantiate(const std::string& method, int k, int m, const std::vector<double>& mu,
+                                      bool allowExtrapolation, SetupRoute route) const {
+  OnlineModel out;
+  out.extrapolated_ = checkParameter(mu, allowExtrapolation);
   const StoredHyperModel& stored = data_.model(method, k, m);
+  GPHR_REQUIRE(!stored.onlineNeedsFullSystem(), InputError, method, " k=", k, " m=", m,
+               " samples the full residual online: use ReducedModel::simulateAdaptive (gphr query runs it on every "
+               "rank)");
   const StoredBasisData& basis = data_.basis(k);
   Teuchos::Time clock("setup");
   clock.start();
@@ -101,14 +112,14 @@ OnlineModel ReducedModel::instantiate(const std::string& method, int k, int m, c
   return out;
 }
 
-void OnlineModel::probeValues(const DenseVector& z, std::vector<double>& out) const {
-  const size_t r = static_cast<size_t>(z.length());
-  out.assign(probeReference_.begin(), probeReference_.end());
-  for (size_t i = 0; i < out.size(); ++i)
-    for (size_t j = 0; j < r; ++j) out[i] += probeRows_[i * r + j] * z(static_cast<int>(j));
-}
+namespace {
+using StepHook = std::function<void(long, double, const DenseVector&)>;
 
-SimulationStats OnlineModel::simulate(double T, double dt, const QueryObserver& observer) {
+// The time loop shared by both online paths: z from 0 over T / dt steps; after every step `observe`
+// (its time left out of the online time) and `adapt` (the adaptive model's update: online time); a
+// Newton failure or a non-finite state ends the run as `diverged`.
+SimulationStats runLoop(DenseHamiltonian& model, const Teuchos::ParameterList& integrator, int degree, double T,
+                        double dt, const StepHook& observe, const StepHook& adapt = {}) {
   GPHR_REQUIRE(std::isfinite(dt) && dt > 0 && std::isfinite(T) && T >= dt, InputError, "T = ", T, ", dt = ", dt,
                "; allowed: dt > 0 and T >= dt");
   const double ratio = T / dt;
@@ -116,9 +127,8 @@ SimulationStats OnlineModel::simulate(double T, double dt, const QueryObserver& 
   GPHR_REQUIRE(std::abs(ratio - steps) <= 1e-9 * ratio, InputError, "T = ", T, " is not a whole number of steps dt = ",
                dt, " (T / dt = ", ratio, ")");
   SimulationStats stats;
-  DenseModelIntegrator integ(*model_, integrator_, degree_);
-  DenseVector z(model_->dim());
-  std::vector<double> probes;
+  DenseModelIntegrator integ(model, integrator, degree);
+  DenseVector z(model.dim());
   Teuchos::Time wall("online"), obs("observe");
   wall.start();
   try {
@@ -127,12 +137,9 @@ SimulationStats OnlineModel::simulate(double T, double dt, const QueryObserver& 
       stats.lastStep = j;
       for (int i = 0; i < zj.length(); ++i)
         GPHR_REQUIRE(std::isfinite(zj(i)), SolverError, "non-finite reduced state at step ", j);
-      if (observer) {
-        const double H = model_->hamiltonian(zj);
-        if (!probeGids_.empty()) probeValues(zj, probes);
-        observer(QueryStep{j, t, zj, H, probes});
-      }
+      observe(j, t, zj);
       stats.observeSeconds += obs.stop();
+      if (adapt) adapt(j, t, zj);
     });
   } catch (const SolverError& e) {
     stats.status = "diverged";
@@ -141,6 +148,62 @@ SimulationStats OnlineModel::simulate(double T, double dt, const QueryObserver& 
   }
   stats.onlineSeconds = wall.stop() - stats.observeSeconds;
   return stats;
+}
+}  // namespace
+
+void OnlineModel::probeValues(const DenseVector& z, std::vector<double>& out) const {
+  const size_t r = static_cast<size_t>(z.length());
+  out.assign(probeReference_.begin(), probeReference_.end());
+  for (size_t i = 0; i < out.size(); ++i)
+    for (size_t j = 0; j < r; ++j) out[i] += probeRows_[i * r + j] * z(static_cast<int>(j));
+}
+
+SimulationStats OnlineModel::simulate(double T, double dt, const QueryObserver& observer) {
+  std::vector<double> probes;
+  return runLoop(*model_, integrator_, degree_, T, dt, [&](long j, double t, const DenseVector& z) {
+    if (!observer) return;
+    const double H = model_->hamiltonian(z);
+    if (!probeGids_.empty()) probeValues(z, probes);
+    observer(QueryStep{j, t, z, H, probes});
+  });
+}
+
+RCP<GpAdeimModel> ReducedModel::adaptiveModel(int k, int m, const SceneInstance& inst, const RCP<const MultiVector>& A,
+                                              double dt) const {
+  const StoredHyperModel& stored = data_.model("gp-adeim", k, m);
+  const auto integrator = *Teuchos::getParametersFromYamlString(data_.integratorConfig);
+  const AdeimOptions o = adeimOptionsFrom(*Teuchos::getParametersFromYamlString(stored.adeimConfig), m);
+  const auto U0 = initialAdeimBasis(inst.system, *inst.y0, *A, integrator, dt, o.initialWindow, m);
+  return rcp(new GpAdeimModel(inst.system, A, *U0, m, reduceLinearPart(*inst.system, *A), o));
+}
+
+SimulationStats ReducedModel::simulateAdaptive(int k, int m, const std::vector<double>& mu, double T, double dt,
+                                               const RCP<const Comm>& comm, const QueryObserver& observer,
+                                               double* setupSeconds, bool allowExtrapolation) const {
+  checkParameter(mu, allowExtrapolation);
+  const StoredBasisData& basis = data_.basis(k);
+  GPHR_REQUIRE(basis.hasBasis, InputError, "gp-adeim k=", k, " needs the basis in the file (build.withBasis: true)");
+  Teuchos::Time clock("adaptive setup");
+  clock.start();
+  const auto inst = scene_->instantiate(comm, mu, true);
+  const RCP<const MultiVector> A = readReducedModelBasis(path_, k, inst.system->space());
+  const auto integrator = *Teuchos::getParametersFromYamlString(data_.integratorConfig);
+  const RCP<GpAdeimModel> hr = adaptiveModel(k, m, inst, A, dt);
+  GpAdeimModel& model = *hr;
+  const auto y0 = gatherRows(*inst.system->reference(), basis.probeGids);
+  if (setupSeconds) *setupSeconds = clock.stop();
+  std::vector<double> probes;
+  const size_t r = 2 * static_cast<size_t>(k);
+  const StepHook observe = [&](long j, double t, const DenseVector& z) {
+    if (!observer) return;
+    probes = y0;
+    for (size_t i = 0; i < probes.size(); ++i)
+      for (size_t c = 0; c < r; ++c) probes[i] += basis.probeRows[i * r + c] * z(static_cast<int>(c));
+    observer(QueryStep{j, t, z, model.hamiltonian(z), probes});  // H_hr^j of the model of this step
+  };
+  const AfterStepHook update = adeimUpdateHook(model);
+  const StepHook adapt = [&](long j, double, const DenseVector& z) { update(j, z); };
+  return runLoop(model, integrator, data_.polynomialDegree, T, dt, observe, adapt);
 }
 
 }  // namespace gphr

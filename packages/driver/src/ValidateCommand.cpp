@@ -110,6 +110,16 @@ std::vector<ValidationRecord> evaluatePoint(RunContext& ctx, const ReducedModel&
     out.push_back(recordOf(evaluateReducedModel(ctx, fom, *inst.system, *A, rom, true, "rom", b.k, 0), q, 0.0, outside));
     for (const auto& sm : d.models) {
       if (sm.k != b.k) continue;
+      if (sm.onlineNeedsFullSystem()) {  // gp-adeim: on the full system, adapting as it runs
+        Teuchos::Time clock("adaptive setup");
+        clock.start();
+        const auto hr = rm.adaptiveModel(sm.k, sm.m, inst, A, q.dt);
+        const double setup = clock.stop();
+        const ModelRun run = evaluateReducedModel(ctx, fom, *inst.system, *A, *hr, true, sm.method, sm.k, sm.m,
+                                                  false, adeimUpdateHook(*hr));
+        out.push_back(recordOf(run, q, setup, outside));
+        continue;
+      }
       OnlineModel online = rm.instantiate(sm.method, sm.k, sm.m, q.mu, true, q.setup);
       const ModelRun run = evaluateReducedModel(ctx, fom, *inst.system, *A, online.model(), true, sm.method, sm.k, sm.m);
       out.push_back(recordOf(run, q, online.setupSeconds(), outside));

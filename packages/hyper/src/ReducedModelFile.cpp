@@ -117,6 +117,11 @@ void writeModel(Hdf5File& f, const StoredHyperModel& m) {
   const std::string g = basisGroup(m.k) + "/" + m.method, gm = g + "/m" + std::to_string(m.m);
   if (!f.exists(g)) f.createGroup(g);
   f.createGroup(gm);
+  if (m.onlineNeedsFullSystem()) {
+    f.setAttribute(gm, "adeim_config", m.adeimConfig);
+    f.setAttribute(gm, "online", std::string("the full system at the query's parameter, on every rank (needs /k<k>/basis)"));
+    return;
+  }
   const RowSample& s = m.sample;
   f.writeArray(gm + "/rows", toDoubles(s.rows), s.rows.size(), 1);
   f.writeArray(gm + "/weights", s.weights, s.weights.size(), 1);
@@ -154,6 +159,10 @@ StoredHyperModel readModel(const Hdf5File& f, const std::string& method, int k, 
   StoredHyperModel out;
   out.method = method, out.k = k, out.m = m;
   const std::string gm = basisGroup(k) + "/" + method + "/m" + std::to_string(m);
+  if (out.onlineNeedsFullSystem()) {
+    out.adeimConfig = f.stringAttribute(gm, "adeim_config");
+    return out;
+  }
   RowSample& s = out.sample;
   s.rows = fromDoubles<GO>(f.readArray(gm + "/rows"));
   s.weights = f.readArray(gm + "/weights");

@@ -20,6 +20,7 @@
 
 #include "gphr/driver/FomStage.hpp"
 #include "gphr/driver/Pipeline.hpp"
+#include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/timeint/DenseBackend.hpp"
 
 namespace gphr {
@@ -40,6 +41,10 @@ RCP<MultiVector> leadingBasis(const ReducedBasis& basis, int k);
 /// update). Online time. A lagged Newton matrix is kept across it: the lag rule refactors when
 /// Newton slows.
 using AfterStepHook = std::function<void(long, const DenseVector&)>;
+
+/// GP-ADEIM's update after every step (GpAdeimModel::afterStep), a degenerate update mid-run
+/// reported as a SolverError (the run's result `diverged`, not a crash of gphr).
+AfterStepHook adeimUpdateHook(GpAdeimModel& model);
 
 /// hasHamiltonian: the model has one (rom, gp-deim, gp-adeim); the classic DEIM baselines do not.
 ModelRun evaluateReducedModel(const RunContext& ctx, const FomResult& fom, const HamiltonianSystem& system,

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/hyper/GpDeimModel.hpp"
 #include "gphr/hyper/ReducedModelFile.hpp"
 #include "gphr/models/Scene.hpp"
@@ -87,9 +88,22 @@ class ReducedModel {
   /// result is marked extrapolated); InputError naming the models held if (method, k, m) is not.
   OnlineModel instantiate(const std::string& method, int k, int m, const std::vector<double>& mu,
                           bool allowExtrapolation = false, SetupRoute route = SetupRoute::Interpolated) const;
+  /// The GP-ADEIM model of (k, m) on a shifted instance of the scene and the file's basis A of k:
+  /// its options from the file, (U_0, P_0) from the first delta0 full-model steps with step dt.
+  /// Collective over the instance's communicator.
+  RCP<GpAdeimModel> adaptiveModel(int k, int m, const SceneInstance& instance, const RCP<const MultiVector>& A,
+                                  double dt) const;
+  /// GP-ADEIM at mu (alg:SP-ADEIM): it samples the full residual online, so this builds the full
+  /// system on `comm` from the scene and the file's basis, takes (U_0, P_0) from the first delta0
+  /// full-model steps and adapts as it runs. Collective; the observer sees the same on every rank.
+  /// setupSeconds receives the set-up time (system, basis, initial DEIM pair).
+  SimulationStats simulateAdaptive(int k, int m, const std::vector<double>& mu, double T, double dt,
+                                   const RCP<const Comm>& comm, const QueryObserver& observer, double* setupSeconds,
+                                   bool allowExtrapolation = false) const;
 
  private:
   OnlineParameterData exactParameterData(const StoredBasisData& basis, const std::vector<double>& mu) const;
+  bool checkParameter(const std::vector<double>& mu, bool allowExtrapolation) const;  ///< true if outside the box
   std::string path_;
   ReducedModelData data_;
   std::shared_ptr<const Scene> scene_;

@@ -28,6 +28,11 @@ struct StoredHyperModel {
   /// @}
   RowSample sample;    ///< reference left empty: it comes from the basis' interpolant per query
   double conditionNumber = 0.0;  ///< cond_2(P^T U) of the DEIM pair
+  /// gp-adeim: its config section (YAML). It samples the full residual online, so it stores no
+  /// sample mesh and its queries build the full system (`onlineNeedsFullSystem()`).
+  std::string adeimConfig;
+  /// True for models whose online phase needs the full system (gp-adeim).
+  bool onlineNeedsFullSystem() const { return method == "gp-adeim"; }
   /// The model's name in the file: `method/k<k>/m<m>`.
   std::string key() const { return method + "/k" + std::to_string(k) + "/m" + std::to_string(m); }
 };
