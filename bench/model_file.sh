@@ -157,6 +157,14 @@ YAML
       # harder nonlinear problem at a fixed dt: doc/benchmarks.md, hyper_scaling.sh).
       step=$(python3 -c "import csv; r=list(csv.DictReader(open('$out/q/queries.csv'))); print(min(float(x['online_s']) for x in r) / 400)")
       iter=$(python3 -c "import csv; r=list(csv.DictReader(open('$out/q/queries.csv'))); print(min(float(x['online_s']) / (400 * float(x['newton_iters_avg'])) for x in r))")
+      # The same queries at a fixed CFL number (dt = 0.005 x 64 / nx, 400 steps): every grid's step
+      # is then the same nonlinear problem, and the time per step compares the model's cost alone.
+      dtc=$(python3 -c "print(0.005 * 64 / $nx)"); Tc=$(python3 -c "print(400 * 0.005 * 64 / $nx)")
+      sed -e "s|T: 2.0, dt: 0.005|T: $Tc, dt: $dtc|" $out/q.yaml > $out/qcfl.yaml
+      rm -rf $out/qcfl
+      "$gphr" query $out/swe.h5 $out/qcfl.yaml --output $out/qcfl > /dev/null 2>&1
+      cfl=$(python3 -c "import csv; r=list(csv.DictReader(open('$out/qcfl/queries.csv'))); print(min(float(x['online_s']) for x in r) / 400)")
+      echo "nx $nx: fixed CFL (dt $dtc): query time per step $(python3 -c "print(f'{$cfl * 1e6:.1f}')") us"
       echo "nx $nx: query time per step $(python3 -c "print(f'{$step * 1e6:.1f}')") us, per Newton iteration $(python3 -c "print(f'{$iter * 1e6:.1f}')") us, query peak RSS $(cat $out/query.rss) kB, full model peak RSS $(cat $out/fom.rss) kB, file $(stat -c %s $out/swe.h5) bytes, set-up $(python3 -c "import csv; r=list(csv.DictReader(open('$out/q/queries.csv'))); print(f\"{min(float(x['setup_s']) for x in r) * 1e3:.2f}\")") ms"
     done
     ;;
