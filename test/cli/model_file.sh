@@ -138,6 +138,34 @@ for m in summary["models"]:
 print("validation statistics agree with the hand computation for", len(summary["models"]), "models")
 PY
 grep -q "beyond" v/validation.md || fail "validation.md does not mark the extrapolated point"
+# A validation killed with SIGKILL after its first point resumes: the finished points and their
+# full-model runs are reused, and the statistics equal an uninterrupted run's.
+cat > vlong.yaml <<'YAML'
+validate:
+  defaults: {T: 4.0, dt: 0.01, saveEvery: 10}
+  grid:
+    eps: [0.9, 1.1, 6]
+YAML
+"$gphr" validate m/nls_basis.h5 vlong.yaml --output vclean > /dev/null 2> vclean.err || { cat vclean.err; fail "clean validate"; }
+"$gphr" validate m/nls_basis.h5 vlong.yaml --output vkilled > /dev/null 2> vkilled.err &
+pid=$!
+for _ in $(seq 1 1500); do
+  grep -q "point 1/6" vkilled.err 2>/dev/null && break
+  sleep 0.02
+done
+kill -9 $pid; wait $pid 2>/dev/null; pid=0
+grep -q "point 1/6" vkilled.err || fail "validate: no point had finished before the kill"
+grep -q "point 6/6" vkilled.err && fail "validate: killed too late, every point had finished"
+[ -e vkilled/validation.md ] && fail "a killed validation left validation.md"
+"$gphr" validate m/nls_basis.h5 vlong.yaml --output vkilled > /dev/null 2> vresumed.err || { cat vresumed.err; fail "resume"; }
+grep -q "point 1/6 (grid-0000) reused" vresumed.err || fail "validate's resume redid the finished point: $(cat vresumed.err)"
+python3 - <<'PY' || fail "the resumed validation differs from the clean one"
+import json
+a, b = (json.load(open(d + "/validation_summary.json"))["models"] for d in ("vclean", "vkilled"))
+for x, y in zip(a, b):
+    for key in ("E_L2_max", "E_L2_mean", "E_L2_p95"):
+        assert x[key] == y[key], (x["model"], key, x[key], y[key])
+PY
 
 # 4. Bad input: exit 2, one line on stderr with the expected words, no output written.
 bad() {  # name, expected words, query YAML body (or a model file via MODEL=...)
@@ -209,4 +237,4 @@ md5sum -c --quiet before.md5 || fail "a finished query's file changed on resume"
 for f in clean/queries/*.h5; do
   h5diff "$f" "killed/queries/$(basename "$f")" /z /z > /dev/null || fail "$(basename "$f") differs from the clean run"
 done
-echo "ok: build, query on 1/2/3 ranks bit-identical, validate statistics, 10 bad inputs, kill -9 resume ($kept kept)"
+echo "ok: build, query on 1/2/3 ranks bit-identical, validate statistics and resume, 10 bad inputs, kill -9 resume ($kept kept)"
