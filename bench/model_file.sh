@@ -26,16 +26,20 @@ json() { python3 -c "import json,sys; d=json.load(open('$1')); print(eval(sys.ar
 csvcol() { python3 -c "import csv,sys; r=list(csv.DictReader(open('$1'))); print(' '.join(x['$2'] for x in r))"; }
 min() { python3 -c "import sys; print(min(float(x) for x in sys.argv[1:]))" "$@"; }
 
+nls_config() {  # FILE K M MAXRANK [EXTRA]: the paper's NLS with 11 training parameters (shared training)
+  sed -e "s|^  integrator:.*|  integrator: {scheme: avf, jacobianLag: true}|" bench/configs/nls_paper.yaml > "$1"
+  cat >> "$1" <<YAML
+  training: {points: [11], snapshotEvery: 10}
+  reduction: {k: $2}
+  pipeline: {methods: [gp-deim], m: [$3]}
+  hyper: {snapshotEvery: 2, svd: randomized, maxRank: $4, powerIterations: 0}
+YAML
+  [ -z "${5:-}" ] || echo "  $5" >> "$1"
+}
+
 nls_model() {  # the shared NLS model file (2k = 160, m = 130, with the basis for validate)
   local out=bench-out/model_nls; mkdir -p $out
-  sed -e "s|^  integrator:.*|  integrator: {scheme: avf, jacobianLag: true}|" bench/configs/nls_paper.yaml > $out/build.yaml
-  cat >> $out/build.yaml <<YAML
-  training: {points: [11], snapshotEvery: 10}
-  reduction: {k: 80}
-  pipeline: {methods: [gp-deim], m: [130]}
-  hyper: {snapshotEvery: 2, svd: randomized, maxRank: 140, powerIterations: 0}
-  build: {withBasis: true}
-YAML
+  nls_config $out/build.yaml 80 130 140 "build: {withBasis: true}"
   # Built every time: the training, bases and DEIM basis come from the artifacts cache.
   mpirun -np 2 "$gphr" build $out/build.yaml --model $out/nls.h5 --output $out/art > $out/build.log 2>&1
   cat $out/build.log | grep -E "gphr build|interpolant"
@@ -100,13 +104,7 @@ PY
     ;;
   nls-file)
     out=bench-out/model_nls; mkdir -p $out
-    sed -e "s|^  integrator:.*|  integrator: {scheme: avf, jacobianLag: true}|" bench/configs/nls_paper.yaml > $out/build400.yaml
-    cat >> $out/build400.yaml <<YAML
-  training: {points: [11], snapshotEvery: 10}
-  reduction: {k: 200}
-  pipeline: {methods: [gp-deim], m: [100]}
-  hyper: {snapshotEvery: 2, svd: randomized, maxRank: 110, powerIterations: 0}
-YAML
+    nls_config $out/build400.yaml 200 100 110
     mpirun -np 2 "$gphr" build $out/build400.yaml --model $out/nls400.h5 --output $out/art > $out/build400.log 2>&1
     grep -E "gphr build|interpolant" $out/build400.log
     echo "NLS 2k=400 m=100 model file without the basis: $(stat -c %s $out/nls400.h5) bytes"

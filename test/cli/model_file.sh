@@ -15,6 +15,15 @@ work=$(mktemp -d); pid=0
 trap '[ $pid -gt 0 ] && kill -9 $pid 2>/dev/null; rm -rf "$work"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
 run() { "$mpi" -np "$1" "${@:2}"; }
+# kill_when CONDITION CMD...: run CMD in the background and SIGKILL it as soon as CONDITION (a
+# shell command) holds, polling every 20 ms for at most 30 s.
+kill_when() {
+  local cond=$1; shift
+  "$@" > /dev/null 2> killed_run.err &
+  pid=$!
+  for _ in $(seq 1 1500); do eval "$cond" && break; sleep 0.02; done
+  kill -9 $pid; wait $pid 2>/dev/null; pid=0
+}
 cd "$work"
 cat > build.yaml <<'YAML'
 gphr:
@@ -147,13 +156,8 @@ validate:
     eps: [0.9, 1.1, 6]
 YAML
 "$gphr" validate m/nls_basis.h5 vlong.yaml --output vclean > /dev/null 2> vclean.err || { cat vclean.err; fail "clean validate"; }
-"$gphr" validate m/nls_basis.h5 vlong.yaml --output vkilled > /dev/null 2> vkilled.err &
-pid=$!
-for _ in $(seq 1 1500); do
-  grep -q "point 1/6" vkilled.err 2>/dev/null && break
-  sleep 0.02
-done
-kill -9 $pid; wait $pid 2>/dev/null; pid=0
+kill_when 'grep -q "point 1/6" killed_run.err 2>/dev/null' "$gphr" validate m/nls_basis.h5 vlong.yaml --output vkilled
+cp killed_run.err vkilled.err
 grep -q "point 1/6" vkilled.err || fail "validate: no point had finished before the kill"
 grep -q "point 6/6" vkilled.err && fail "validate: killed too late, every point had finished"
 [ -e vkilled/validation.md ] && fail "a killed validation left validation.md"
@@ -219,13 +223,7 @@ queries:
     eps: [0.9, 1.1, 24]
 YAML
 "$gphr" query m/nls.h5 long.yaml --output clean > /dev/null 2> clean.err || { cat clean.err; fail "clean long run"; }
-"$gphr" query m/nls.h5 long.yaml --output killed > /dev/null 2> killed.err &
-pid=$!
-for _ in $(seq 1 600); do
-  [ $(ls killed/queries/*.h5 2>/dev/null | wc -l) -ge 3 ] && break
-  sleep 0.02
-done
-kill -9 $pid; wait $pid 2>/dev/null; pid=0
+kill_when '[ $(ls killed/queries/*.h5 2>/dev/null | wc -l) -ge 3 ]' "$gphr" query m/nls.h5 long.yaml --output killed
 kept=$(ls killed/queries/*.h5 2>/dev/null | wc -l)
 [ "$kept" -ge 3 ] || fail "no query had finished before the kill"
 [ "$kept" -lt 24 ] || fail "killed too late: every query had finished"
