@@ -46,13 +46,13 @@ void checkInterpolant(const Scene& scene, const RCP<const Comm>& comm, const Mul
   const size_t r = 2 * static_cast<size_t>(b.k), nL = r * r, nf = nL + r;
   for (const char* piece : {"L", "f", "c", "reference"}) b.interpolationError[piece] = 0.0;
   for (const auto& mu : b.constant.checkPoints(8)) {
-    const auto data = exactAt(scene, comm, A, b.referenceGids, mu);
-    const auto exact = b.pack(data), approx = b.pack(b.at(mu));
+    const auto data = exactAt(scene, comm, A, b.referenceGids, mu), interpolated = b.at(mu);
+    const auto exact = b.pack(data), approx = b.pack(interpolated);
     auto worst = [&](const char* piece, size_t i0, size_t i1) {
       b.interpolationError[piece] = std::max(b.interpolationError[piece], relativeError(approx, exact, i0, i1));
     };
     worst("L", 0, nL), worst("f", nL, nf), worst("reference", nf, exact.size());
-    const double c = std::abs(b.at(mu).linear.c - data.linear.c) / std::max(std::abs(data.linear.c), 1e-300);
+    const double c = std::abs(interpolated.linear.c - data.linear.c) / std::max(std::abs(data.linear.c), 1e-300);
     b.interpolationError["c"] = std::max(b.interpolationError["c"], c);
   }
 }

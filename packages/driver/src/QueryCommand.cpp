@@ -78,7 +78,12 @@ void writeStates(Hdf5File& f, const ReducedModel& model, const Query& q, const s
 
 // The observer that records a query's outputs: H_hr at every step, z and the probes at the saved ones.
 QueryObserver recording(const Query& q, Recorder& rec) {
-  const long steps = std::lround(q.T / q.dt);
+  const long steps = wholeSteps(q.T, q.dt);
+  const size_t saved = static_cast<size_t>(steps / q.saveEvery) + 2;  // no reallocation in the time loop
+  rec.H.reserve(steps + 1);
+  rec.times.reserve(saved);
+  rec.z.reserve(saved * 2 * static_cast<size_t>(q.k));
+  rec.probes.reserve(saved * rec.probeCount);
   return [&rec, &q, steps](const QueryStep& s) {
     rec.H.push_back(s.hamiltonian);
     if (s.step % q.saveEvery != 0 && s.step != steps) return;
@@ -93,7 +98,7 @@ QueryOutcome outcomeOf(const Query& q, const SimulationStats& stats, const Recor
   out.status = stats.status, out.reason = stats.reason;
   out.setupSeconds = setup, out.onlineSeconds = stats.onlineSeconds;
   out.extrapolated = outside;
-  out.newtonIterations = stats.status == "ok" ? double(stats.run.newtonIterations) / std::lround(q.T / q.dt) : NAN;
+  out.newtonIterations = stats.status == "ok" ? double(stats.run.newtonIterations) / wholeSteps(q.T, q.dt) : NAN;
   out.drift = 0.0;
   for (double h : rec.H) out.drift = std::max(out.drift, std::abs(h - rec.H.front()));
   if (stats.status != "ok") out.drift = NAN;
@@ -124,12 +129,6 @@ void writeQuery(const std::string& path, const ReducedModel& model, const Query&
   commit.commit();
 }
 
-bool outsideBox(const ReducedModelData& d, const std::vector<double>& mu) {
-  for (size_t p = 0; p < mu.size(); ++p)
-    if (mu[p] < d.box[p].first || mu[p] > d.box[p].second) return true;
-  return false;
-}
-
 // A query of a sample-mesh model, on this rank alone.
 QueryOutcome runOne(const ReducedModel& model, const Query& q, const std::string& path) {
   OnlineModel online = model.instantiate(q.method, q.k, q.m, q.mu, q.extrapolate, q.setup);
@@ -150,7 +149,7 @@ QueryOutcome runAdaptive(const ReducedModel& model, const Query& q, const std::s
   double setup = NAN;
   const auto stats = model.simulateAdaptive(q.k, q.m, q.mu, q.T, q.dt, comm, recording(q, rec), &setup, q.extrapolate);
   if (comm->getRank() != 0) return QueryOutcome();
-  const QueryOutcome out = outcomeOf(q, stats, rec, setup, outsideBox(model.data(), q.mu));
+  const QueryOutcome out = outcomeOf(q, stats, rec, setup, model.data().outsideBox(q.mu));
   writeQuery(path, model, q, rec, out);
   return out;
 }

@@ -112,11 +112,11 @@ void check(const Query& q, const ReducedModel& model, QueryFileKind kind, const 
                  ": states: true lifts whole states and needs the basis in the model file (build with "
                  "build.withBasis: true)");
   }
-  GPHR_REQUIRE(std::isfinite(q.dt) && q.dt > 0 && std::isfinite(q.T) && q.T >= q.dt, InputError, where, ": T = ", q.T,
-               ", dt = ", q.dt, "; allowed: dt > 0 and T >= dt");
-  const double ratio = q.T / q.dt;
-  GPHR_REQUIRE(std::abs(ratio - std::round(ratio)) <= 1e-9 * ratio, InputError, where, ": T = ", q.T,
-               " is not a whole number of steps dt = ", q.dt);
+  try {
+    wholeSteps(q.T, q.dt);
+  } catch (const InputError& e) {
+    throw InputError(detail::concat(where, ": ", e.what()));
+  }
 }
 
 std::vector<double> gridValues(const Teuchos::ParameterList& grid, const std::string& key) {

@@ -120,12 +120,7 @@ using StepHook = std::function<void(long, double, const DenseVector&)>;
 // Newton failure or a non-finite state ends the run as `diverged`.
 SimulationStats runLoop(DenseHamiltonian& model, const Teuchos::ParameterList& integrator, int degree, double T,
                         double dt, const StepHook& observe, const StepHook& adapt = {}) {
-  GPHR_REQUIRE(std::isfinite(dt) && dt > 0 && std::isfinite(T) && T >= dt, InputError, "T = ", T, ", dt = ", dt,
-               "; allowed: dt > 0 and T >= dt");
-  const double ratio = T / dt;
-  const long steps = std::lround(ratio);
-  GPHR_REQUIRE(std::abs(ratio - steps) <= 1e-9 * ratio, InputError, "T = ", T, " is not a whole number of steps dt = ",
-               dt, " (T / dt = ", ratio, ")");
+  const long steps = wholeSteps(T, dt);
   SimulationStats stats;
   DenseModelIntegrator integ(model, integrator, degree);
   DenseVector z(model.dim());
@@ -151,11 +146,26 @@ SimulationStats runLoop(DenseHamiltonian& model, const Teuchos::ParameterList& i
 }
 }  // namespace
 
-void OnlineModel::probeValues(const DenseVector& z, std::vector<double>& out) const {
+long wholeSteps(double T, double dt) {
+  GPHR_REQUIRE(std::isfinite(dt) && dt > 0 && std::isfinite(T) && T >= dt, InputError, "T = ", T, ", dt = ", dt,
+               "; allowed: dt > 0 and T >= dt");
+  const double ratio = T / dt;
+  const long steps = std::lround(ratio);
+  GPHR_REQUIRE(std::abs(ratio - steps) <= 1e-9 * ratio, InputError, "T = ", T, " is not a whole number of steps dt = ",
+               dt, " (T / dt = ", ratio, ")");
+  return steps;
+}
+
+void liftProbes(const std::vector<double>& reference, const std::vector<double>& rows, const DenseVector& z,
+                std::vector<double>& out) {
   const size_t r = static_cast<size_t>(z.length());
-  out.assign(probeReference_.begin(), probeReference_.end());
+  out.assign(reference.begin(), reference.end());
   for (size_t i = 0; i < out.size(); ++i)
-    for (size_t j = 0; j < r; ++j) out[i] += probeRows_[i * r + j] * z(static_cast<int>(j));
+    for (size_t j = 0; j < r; ++j) out[i] += rows[i * r + j] * z(static_cast<int>(j));
+}
+
+void OnlineModel::probeValues(const DenseVector& z, std::vector<double>& out) const {
+  liftProbes(probeReference_, probeRows_, z, out);
 }
 
 SimulationStats OnlineModel::simulate(double T, double dt, const QueryObserver& observer) {
@@ -193,12 +203,9 @@ SimulationStats ReducedModel::simulateAdaptive(int k, int m, const std::vector<d
   const auto y0 = gatherRows(*inst.system->reference(), basis.probeGids);
   if (setupSeconds) *setupSeconds = clock.stop();
   std::vector<double> probes;
-  const size_t r = 2 * static_cast<size_t>(k);
   const StepHook observe = [&](long j, double t, const DenseVector& z) {
     if (!observer) return;
-    probes = y0;
-    for (size_t i = 0; i < probes.size(); ++i)
-      for (size_t c = 0; c < r; ++c) probes[i] += basis.probeRows[i * r + c] * z(static_cast<int>(c));
+    liftProbes(y0, basis.probeRows, z, probes);
     observer(QueryStep{j, t, z, model.hamiltonian(z), probes});  // H_hr^j of the model of this step
   };
   const AfterStepHook update = adeimUpdateHook(model);

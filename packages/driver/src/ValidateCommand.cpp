@@ -101,8 +101,7 @@ std::vector<ValidationRecord> evaluatePoint(RunContext& ctx, const ReducedModel&
   const auto inst = rm.scene().instantiate(ctx.comm, q.mu, true);
   const FomResult fom = fullModel(ctx, rm.scene(), d, q, inst.system->space(), cached);
   tFom = fom.tOnline;
-  bool outside = false;
-  for (size_t p = 0; p < q.mu.size(); ++p) outside = outside || q.mu[p] < d.box[p].first || q.mu[p] > d.box[p].second;
+  const bool outside = d.outsideBox(q.mu);
   std::vector<ValidationRecord> out;
   for (const auto& b : d.bases) {
     const RCP<const MultiVector> A = readReducedModelBasis(rm.path(), b.k, inst.system->space());

@@ -253,11 +253,7 @@ void writeValidationReport(const std::string& dir, const ReducedModel& model, co
   }
   std::string outside;
   for (const auto& q : points)
-    for (size_t p = 0; p < q.mu.size(); ++p)
-      if (q.mu[p] < d.box[p].first || q.mu[p] > d.box[p].second) {
-        outside += (outside.empty() ? "" : ", ") + q.name;
-        break;
-      }
+    if (d.outsideBox(q.mu)) outside += (outside.empty() ? "" : ", ") + q.name;
   if (!outside.empty()) md << "\nPoints outside the training box (extrapolated, included above): " << outside << "\n";
   md << "\n## The cheapest model whose largest error over the box is below each level\n\n| level | model | max E_L2 | "
         "online s |\n| --- | --- | --- | --- |\n";

@@ -236,6 +236,12 @@ const StoredHyperModel& ReducedModelData::model(const std::string& method, int k
                                   modelList()));
 }
 
+bool ReducedModelData::outsideBox(const std::vector<double>& mu) const {
+  for (size_t p = 0; p < mu.size() && p < box.size(); ++p)
+    if (mu[p] < box[p].first || mu[p] > box[p].second) return true;
+  return false;
+}
+
 std::string ReducedModelData::modelList() const {
   std::string s;
   for (const auto& x : models)

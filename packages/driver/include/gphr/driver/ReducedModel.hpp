@@ -23,6 +23,14 @@
 
 namespace gphr {
 
+/// The number of steps T / dt; InputError naming T and dt unless dt > 0, T >= dt and T is a whole
+/// number of steps (to 1e-9 relative).
+long wholeSteps(double T, double dt);
+
+/// The lifted physical state at probe entries: out = reference + rows z (rows: probes x 2k, row-major).
+void liftProbes(const std::vector<double>& reference, const std::vector<double>& rows, const DenseVector& z,
+                std::vector<double>& out);
+
 /// How a query obtains what its parameter changes in L_r, f_r, c and the reference rows.
 enum class SetupRoute { Interpolated, Exact };
 

@@ -91,6 +91,8 @@ struct ReducedModelData {
   const StoredBasisData& basis(int k) const;                      ///< InputError naming the ks held
   const StoredHyperModel& model(const std::string& method, int k, int m) const;  ///< InputError naming the models held
   std::string modelList() const;  ///< "gp-deim k=10 m=20, ..." for messages
+  /// True if some parameter of mu lies outside the training box (an extrapolated query or point).
+  bool outsideBox(const std::vector<double>& mu) const;
 };
 
 /// Writes the file (collective over comm: rank 0 writes the replicated data; bases[i], where not
