@@ -52,8 +52,8 @@ void addAdeimModels(const RunContext& ctx, int k, const std::vector<int>& ms, st
   }
 }
 
-// The stored models of reduced size k: gp-deim from the DEIM basis, gp-eqp / gp-eqp-refit from
-// their fits (a budget the training cannot support is left out, with a note).
+// The stored models of reduced size k: gp-deim from the DEIM basis, gp-adeim as its options, gp-eqp /
+// gp-eqp-refit from their fits (a budget the training cannot support is left out, with a note).
 std::vector<StoredHyperModel> modelsOfK(const RunContext& ctx, RomStages& st, const SceneInstance& inst,
                                         const MultiVector& A, int k, const std::vector<std::string>& methods,
                                         const std::vector<int>& ms) {
@@ -69,15 +69,12 @@ std::vector<StoredHyperModel> modelsOfK(const RunContext& ctx, RomStages& st, co
       std::move(deim.begin(), deim.end(), std::back_inserter(out));
       continue;
     }
-    for (int m : ms) {
-      try {
-        const auto fit = termWeightFit(ctx, st, A, k, *inst.system, method, m);
-        out.push_back(termModel(inst, A, method, k, m, fit.terms, fit.weights));
-      } catch (const InputError& e) {
-        if (ctx.comm->getRank() == 0)
-          std::fprintf(stderr, "[gphr] build: %s k = %d, m = %d not stored: %s\n", method.c_str(), k, m, e.what());
-      }
-    }
+    std::map<int, std::string> skipped;
+    for (const auto& [m, fit] : termWeightFits(ctx, st, A, k, *inst.system, method, ms, skipped))
+      out.push_back(termModel(inst, A, method, k, m, fit.terms, fit.weights));
+    if (ctx.comm->getRank() == 0)
+      for (const auto& [m, why] : skipped)
+        std::fprintf(stderr, "[gphr] build: %s k = %d, m = %d not stored: %s\n", method.c_str(), k, m, why.c_str());
   }
   return out;
 }

@@ -467,10 +467,19 @@ void runGradientDeim(const RunContext& ctx, const FomResult& fom, RomStages& st,
 
 }  // namespace
 
-QuadratureFit termWeightFit(const RunContext& ctx, RomStages& st, const MultiVector& A, int k,
-                            const HamiltonianSystem& test, const std::string& method, int m) {
-  QuadratureFits fits(ctx, st, A, k, test);
-  return fits.get(method, m).fit;
+std::map<int, QuadratureFit> termWeightFits(const RunContext& ctx, RomStages& st, const MultiVector& A, int k,
+                                            const HamiltonianSystem& test, const std::string& method,
+                                            const std::vector<int>& ms, std::map<int, std::string>& skipped) {
+  QuadratureFits fits(ctx, st, A, k, test);  // one training system for every budget
+  std::map<int, QuadratureFit> out;
+  for (int m : ms) {
+    try {
+      out[m] = fits.get(method, m).fit;
+    } catch (const InputError& e) {
+      skipped[m] = e.what();
+    }
+  }
+  return out;
 }
 
 void runHyperReduction(const RunContext& ctx, const FomResult& fom, RomStages& st) {

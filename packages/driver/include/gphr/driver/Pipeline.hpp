@@ -5,6 +5,7 @@
 ///            DIR/artifacts.h5 `/training/p<j>` as soon as it finishes (resumable, see Training);
 ///   reduce - symplectic basis from all snapshots, cached in /basis with its provenance;
 ///   rom    - the Galerkin ROM at the test parameter, errors eq:errNR against the full model.
+#include <map>
 #include <string>
 #include <vector>
 
@@ -95,10 +96,12 @@ struct CachedDeimBasis {
 CachedDeimBasis deimBasisFor(const RunContext& ctx, const RomStages& st, const MultiVector& A, int k,
                              const HamiltonianSystem& test);
 /// The terms and weights of gp-eqp (non-negative, NNLS) or gp-eqp-refit (GP-DEIM's terms, least
-/// squares) for reduced size k and budget m, from the artifacts.h5 cache when its key matches, else
-/// fitted (section eqp) and cached. InputError when the training cannot support the budget.
-QuadratureFit termWeightFit(const RunContext& ctx, RomStages& st, const MultiVector& A, int k,
-                            const HamiltonianSystem& test, const std::string& method, int m);
+/// squares) for reduced size k and each budget of ms, from the artifacts.h5 cache when its key
+/// matches, else fitted (section eqp, one training system for all budgets) and cached. A budget the
+/// training cannot support is left out, its reason in `skipped`.
+std::map<int, QuadratureFit> termWeightFits(const RunContext& ctx, RomStages& st, const MultiVector& A, int k,
+                                            const HamiltonianSystem& test, const std::string& method,
+                                            const std::vector<int>& ms, std::map<int, std::string>& skipped);
 /// The hyper-reduced models of pipeline.methods (gp-deim, deim, sdeim) for every k and m.
 void runHyperReduction(const RunContext& ctx, const FomResult& fom, RomStages& stages);
 /// The training and basis keys of a rom / gp-deim entry: t_training_s, t_basis_s, t_basis_cpu_s,
