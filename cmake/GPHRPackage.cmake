@@ -17,6 +17,14 @@ endfunction()
 # gphr_add_test(NAME <name> SOURCES <files...> DEPENDS <targets...> [RANKS n...] [LABELS ...])
 # Each test binary has GPHR's gtest main (Tpetra::ScopeGuard + an MPI reduction of the result).
 # RANKS lists the MPI rank counts it runs with (default 1); rank counts > 1 run under mpirun.
+# The BLAS threads of the unit tests (ctest sets OPENBLAS_NUM_THREADS for them; the end-to-end
+# tests take the caller's): 1, so that MPI tests do not oversubscribe the cores. scripts/portability.sh
+# configures 2 as well, to show that no test depends on a threaded BLAS's order of summation.
+set(GPHR_TEST_BLAS_THREADS 1 CACHE STRING "OPENBLAS_NUM_THREADS of the unit tests")
+if(NOT GPHR_TEST_BLAS_THREADS MATCHES "^[1-9][0-9]*$")
+  message(FATAL_ERROR "GPHR_TEST_BLAS_THREADS = '${GPHR_TEST_BLAS_THREADS}': allowed, a whole number >= 1")
+endif()
+
 function(gphr_add_test)
   cmake_parse_arguments(T "" "NAME;TIMEOUT" "SOURCES;DEPENDS;RANKS;LABELS" ${ARGN})
   if(NOT GPHR_ENABLE_TESTS)
@@ -41,7 +49,7 @@ function(gphr_add_test)
                $<TARGET_FILE:${T_NAME}>)
     endif()
     set_tests_properties(${_tn} PROPERTIES TIMEOUT ${T_TIMEOUT} PROCESSORS ${_np}
-      LABELS "${T_LABELS};np${_np}" ENVIRONMENT "OPENBLAS_NUM_THREADS=1;OMP_NUM_THREADS=1")
+      LABELS "${T_LABELS};np${_np}" ENVIRONMENT "OPENBLAS_NUM_THREADS=${GPHR_TEST_BLAS_THREADS};OMP_NUM_THREADS=1")
   endforeach()
 endfunction()
 

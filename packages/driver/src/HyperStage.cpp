@@ -443,6 +443,7 @@ void runGradientDeim(const RunContext& ctx, const FomResult& fom, RomStages& st,
         .set("t_deim_basis_s", tBasis)
         .set("t_deim_pair_s", tPair)
         .set("deim_snapshots", method == "deim" ? snapshots : std::string("-"))
+        .set("cond_PtU", pair.conditionNumber)
         .set("t_offline_s", st.training.seconds + st.basisSeconds + tBasis + tPair);
     st.runs.push_back(std::move(run));
   };

@@ -112,23 +112,12 @@ class DeferredLift {
   double num_ = 0.0, den_ = 0.0, final_ = 0.0;
   RCP<MultiVector> Z_, Y_;
 };
-// The first step where a finished run's lift left the full model's range (kUnboundedHamiltonian,
-// kUnboundedNorm), with the figures that say so; -1 and "" when it stayed within it.
-long firstUnboundedStep(const FomResult& fom, const ModelRun& run, std::string& why) {
+// The first step where a finished run's lift left the full model's range (RunStatus.hpp).
+UnboundedStep unboundedStepOf(const FomResult& fom, const ModelRun& run) {
   std::vector<double> fomNorms(fom.trajectory->getNumVectors());
   fom.trajectory->norm2(fomNorms);
-  const double normCap = kUnboundedNorm * *std::max_element(fomNorms.begin(), fomNorms.end());
-  const double H0 = fom.hamiltonian.front(), hCap = kUnboundedHamiltonian * std::abs(H0);
-  for (size_t j = 0; j < run.hamiltonian.size() && j < run.stateNorms.size(); ++j) {
-    const double dH = std::abs(run.hamiltonian[j] - H0);
-    if (H0 != 0.0 && dH > hCap)
-      why = detail::concat("|H(y0 + A z^j) - H(y^0)| / |H(y^0)| = ", dH / std::abs(H0), " > ", kUnboundedHamiltonian);
-    else if (run.stateNorms[j] > normCap)
-      why = detail::concat("||y0 + A z^j|| = ", run.stateNorms[j], " > ", kUnboundedNorm,
-                           " x the full model's largest ||y|| = ", normCap / kUnboundedNorm);
-    if (!why.empty()) return static_cast<long>(j);
-  }
-  return -1;
+  return firstUnboundedStep(fom.hamiltonian.front(), *std::max_element(fomNorms.begin(), fomNorms.end()),
+                            run.hamiltonian, run.stateNorms);
 }
 }  // namespace
 
@@ -215,7 +204,10 @@ ModelRun evaluateReducedModel(const RunContext& ctx, const FomResult& fom, const
       .set("newton_iters_avg", run.ok ? double(stats.newtonIterations) / steps : nan)
       .set("newton_matrices", run.ok ? stats.newtonMatrices : -1L)
       .set("errors_at", "saved steps (every output.saveEvery-th and the last)");
-  if (run.ok) run.unboundedAt = firstUnboundedStep(fom, run, run.unboundedReason);
+  if (run.ok) {
+    const UnboundedStep u = unboundedStepOf(fom, run);
+    run.unboundedAt = u.step, run.unboundedReason = u.reason;
+  }
   if (run.unboundedAt >= 0) {
     run.run.set("unbounded_at_step", run.unboundedAt).set("unbounded_reason", run.unboundedReason);
     if (ctx.comm->getRank() == 0)

@@ -5,31 +5,17 @@
 /// the configured IMR/AVF, lift y = y0 + A z, and measure the paper's errors eq:errNR at the
 /// saved steps, the Hamiltonian of the lift and the model's own Hamiltonian at every step.
 /// A Newton failure or a non-finite state ends the run with status "diverged" and its step:
-/// a result of the report, not a failure of `gphr`. A run that reaches the end but whose lift
-/// leaves the full model's range by orders of magnitude has status "unbounded" from the first
-/// step j where
-///   |H(y0 + A z^j) - H(y^0)| > kUnboundedHamiltonian |H(y^0)|   or
-///   ||y0 + A z^j||           > kUnboundedNorm max_i ||y^i||  (the full model's saved states).
-/// The full model conserves H (to ~1e-8 relative with AVF on the paper's NLS) and, on NLS, the
-/// mass ||y||^2; a bounded but inaccurate hyper-reduced run stays within a few times of them
-/// (GP-DEIM at the paper's NLS, 2k = 400, m = 100: E_L2 1.4, relative H error 5.6), while a run
-/// that blows up passes them by orders of magnitude (the classic DEIM of projected snapshots on NLS
-/// n = 256, T = 50, AVF, 2k = 20, m = 20: relative H error 1.5e11, E_L2 287). Either way E_L2 and
-/// the times are reported.
+/// a result of the report, not a failure of `gphr`; a run that reaches the end but leaves the full
+/// model's range is "unbounded" (RunStatus.hpp). Either way E_L2 and the times are reported.
 #include <functional>
 
 #include "gphr/driver/FomStage.hpp"
 #include "gphr/driver/Pipeline.hpp"
+#include "gphr/driver/RunStatus.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/timeint/DenseBackend.hpp"
 
 namespace gphr {
-
-/// Bounds of the status "unbounded": relative Hamiltonian and state-norm factors (see the file's
-/// description).
-/// @{
-constexpr double kUnboundedHamiltonian = 1e3, kUnboundedNorm = 1e2;
-/// @}
 
 /// The k values of the reduced stages: pipeline.k (or reduction.k; 0 means the basis' own k).
 std::vector<int> stageK(const Teuchos::ParameterList& cfg, const ReducedBasis& basis);

@@ -11,6 +11,7 @@
 
 #include "gphr/driver/FomStage.hpp"
 #include "gphr/driver/RunContext.hpp"
+#include "gphr/driver/RunStatus.hpp"
 #include "gphr/hyper/DeimBasis.hpp"
 #include "gphr/hyper/EmpiricalQuadrature.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
@@ -49,10 +50,8 @@ struct ModelRun {
   std::string unboundedReason;  ///< which bound it passed, with the figures
   JsonObject run;  ///< The "runs" entry of summary.json.
   std::string label() const;  ///< Method with k and m, as the report names the run.
-  /// ok | unbounded (finished, left the full model's range: ModelEvaluation.hpp) | diverged | unavailable
-  const char* status() const {
-    return !ok ? (available ? "diverged" : "unavailable") : unboundedAt >= 0 ? "unbounded" : "ok";
-  }
+  /// ok | unbounded | diverged | unavailable (RunStatus.hpp)
+  const char* status() const { return runStatus(ok, available, unboundedAt); }
   bool bounded() const { return ok && unboundedAt < 0; }  ///< status ok
   /// report.md: a run that failed or blew up in bold
   std::string statusText() const {
