@@ -13,7 +13,7 @@
 #include "gphr/driver/Pipeline.hpp"
 #include "gphr/driver/RunStatus.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
-#include "gphr/timeint/DenseBackend.hpp"
+#include "gphr/core/DenseHamiltonian.hpp"
 
 namespace gphr {
 
