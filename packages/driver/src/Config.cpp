@@ -11,6 +11,7 @@
 #include "gphr/core/ParameterValidation.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/models/SceneFactory.hpp"
+#include "gphr/online/Method.hpp"
 #include "gphr/timeint/Integrator.hpp"
 
 namespace gphr {
@@ -228,17 +229,11 @@ std::vector<std::vector<double>> trainingParameters(const Teuchos::ParameterList
   return out;
 }
 
-namespace {
-const std::vector<std::string> kMethods = {"fom", "rom", "gp-deim", "gp-adeim", "deim", "sdeim", "gp-eqp", "gp-eqp-refit"};
-}  // namespace
-
 std::vector<std::string> pipelineMethods(const Teuchos::ParameterList& cfg) {
   const auto& pipe = cfg.sublist("pipeline");
   std::vector<std::string> out;
   for (const auto& m : pipe.get<Teuchos::Array<std::string>>("methods")) {
-    GPHR_REQUIRE(std::find(kMethods.begin(), kMethods.end(), m) != kMethods.end(), InputError,
-                 "key 'pipeline.methods' has entry '", m,
-                 "'; allowed: fom, rom, gp-deim, gp-adeim, deim, sdeim, gp-eqp, gp-eqp-refit");
+    GPHR_REQUIRE(isMethod(m), InputError, "key 'pipeline.methods' has entry '", m, "'; allowed: ", methodNames());
     if (m != "fom" && std::find(out.begin(), out.end(), m) == out.end()) out.push_back(m);
   }
   if (pipe.get<bool>("rom") && std::find(out.begin(), out.end(), "rom") == out.end()) out.insert(out.begin(), "rom");
@@ -247,10 +242,11 @@ std::vector<std::string> pipelineMethods(const Teuchos::ParameterList& cfg) {
   const auto& ms = pipe.get<Teuchos::Array<int>>("m");
   for (int m : ms) GPHR_REQUIRE(m >= 1, InputError, "key 'pipeline.m' has entry ", m, "; allowed: integers >= 1");
   const bool adaptive = std::find(out.begin(), out.end(), "gp-adeim") != out.end();
-  const bool wantsM = std::any_of(out.begin(), out.end(), [](const std::string& m) { return m != "rom" && m != "sdeim"; });
-  GPHR_REQUIRE(!wantsM || !ms.empty(), InputError,
-               "key 'pipeline.m' is empty but pipeline.methods asks for gp-deim, gp-adeim, deim, gp-eqp or "
-               "gp-eqp-refit; allowed: a list of DEIM sizes / term budgets");
+  const bool wantsM =
+      std::any_of(out.begin(), out.end(), [](const std::string& m) { return methodInfo(m).hyperReduced; });
+  GPHR_REQUIRE(!wantsM || !ms.empty(), InputError, "key 'pipeline.m' is empty but pipeline.methods asks for ",
+               methodNames([](const MethodInfo& m) { return m.hyperReduced; }),
+               "; allowed: a list of DEIM sizes / term budgets");
   if (adaptive)
     for (int m : ms) adeimOptionsFrom(cfg.sublist("adeim"), m);  // the adeim constraints that involve m
   return out;

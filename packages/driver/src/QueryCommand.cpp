@@ -17,7 +17,8 @@
 #include "gphr/driver/Commands.hpp"
 #include "gphr/driver/Json.hpp"
 #include "gphr/driver/QueryList.hpp"
-#include "gphr/driver/ReducedModel.hpp"
+#include "gphr/online/ReducedModel.hpp"
+#include "gphr/online/Method.hpp"
 #include "gphr/io/Hdf5File.hpp"
 
 namespace gphr {
@@ -63,16 +64,9 @@ struct Recorder {
 void writeStates(Hdf5File& f, const ReducedModel& model, const Query& q, const std::vector<double>& z, size_t saved) {
   const auto inst = model.scene().instantiate(selfComm(), q.mu, true);
   const auto A = readReducedModelBasis(model.path(), q.k, inst.system->space());
-  const int r = static_cast<int>(A->getNumVectors());
-  auto local = rcp(new Map(r, 0, selfComm(), Tpetra::LocallyReplicated));
-  MultiVector Z(local, saved), Y(inst.system->map(), saved);
-  {
-    auto v = Z.getLocalViewHost(Tpetra::Access::OverwriteAll);
-    for (size_t c = 0; c < saved; ++c)
-      for (int i = 0; i < r; ++i) v(i, c) = z[c * r + i];
-  }
-  Y.multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, *A, Z, 0.0);
-  for (size_t c = 0; c < saved; ++c) Y.getVectorNonConst(c)->update(1.0, *inst.system->reference(), 1.0);
+  const auto Z = liftWorkspace(*A, static_cast<int>(saved));
+  MultiVector Y(inst.system->map(), saved);
+  liftStates(*A, inst.system->reference().get(), z.data(), static_cast<int>(saved), *Z, Y);
   f.writeStates("/states", Y, inst.system->space());
 }
 
@@ -191,7 +185,7 @@ void writeTable(const std::string& dir, const ReducedModelData& d, const std::ve
       csv << q.name;
       for (double x : q.mu) csv << "," << number(x);
       csv << "," << q.method << "," << q.k << "," << q.m << "," << number(q.T) << "," << number(q.dt) << ","
-          << (d.model(q.method, q.k, q.m).onlineNeedsFullSystem() ? "full system"
+          << (methodInfo(q.method).needsFullResidual ? "full system"
               : q.setup == SetupRoute::Exact                        ? "exact"
                                                                     : "interpolated")
           << "," << o.status << ","
@@ -241,7 +235,7 @@ int runQuery(const std::string& modelPath, const std::string& queriesPath, const
   std::vector<QueryOutcome> outs(queries.size());
   std::vector<size_t> local, adaptive;  // this rank's share of the sample-mesh queries; the gp-adeim ones
   for (size_t i = 0, n = 0; i < queries.size(); ++i) {
-    if (model.data().model(queries[i].method, queries[i].k, queries[i].m).onlineNeedsFullSystem()) adaptive.push_back(i);
+    if (methodInfo(queries[i].method).needsFullResidual) adaptive.push_back(i);
     else if (n++ % size == static_cast<size_t>(rank)) local.push_back(i);
   }
   const long mine = static_cast<long>(local.size() + adaptive.size());

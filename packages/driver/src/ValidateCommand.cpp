@@ -22,6 +22,7 @@
 #include "gphr/driver/ValidationReport.hpp"
 #include "gphr/io/Hdf5File.hpp"
 #include "gphr/reduction/GalerkinRom.hpp"
+#include "gphr/online/Method.hpp"
 
 namespace gphr {
 
@@ -109,7 +110,7 @@ std::vector<ValidationRecord> evaluatePoint(RunContext& ctx, const ReducedModel&
     out.push_back(recordOf(evaluateReducedModel(ctx, fom, *inst.system, *A, rom, true, "rom", b.k, 0), q, 0.0, outside));
     for (const auto& sm : d.models) {
       if (sm.k != b.k) continue;
-      if (sm.onlineNeedsFullSystem()) {  // gp-adeim: on the full system, adapting as it runs
+      if (methodInfo(sm.method).needsFullResidual) {  // gp-adeim: on the full system, adapting as it runs
         Teuchos::Time clock("adaptive setup");
         clock.start();
         const auto hr = rm.adaptiveModel(sm.k, sm.m, inst, A, q.dt);

@@ -13,7 +13,7 @@
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/Commands.hpp"
 #include "gphr/driver/Json.hpp"
-#include "gphr/driver/ReducedModel.hpp"
+#include "gphr/online/ReducedModel.hpp"
 
 namespace gphr {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "gphr/driver/ReducedModel.hpp"
+#include "gphr/online/ReducedModel.hpp"
 
 namespace gphr {
 
