@@ -1,6 +1,5 @@
 #include "gphr/online/TimeLoop.hpp"
 
-#include <Teuchos_Time.hpp>
 #include <cmath>
 
 #include "gphr/core/Error.hpp"
@@ -19,30 +18,19 @@ long wholeSteps(double T, double dt) {
   return steps;
 }
 
+bool allFinite(const DenseVector& z) {
+  for (int i = 0; i < z.length(); ++i)
+    if (!std::isfinite(z(i))) return false;
+  return true;
+}
+
+bool allFinite(const Vector& y) { return std::isfinite(y.norm2()); }
+
 SimulationStats simulate(DenseHamiltonian& model, const SimulationSettings& settings, DenseVector& z,
                          const StepHook& observe, const StepHook& adapt) {
-  SimulationStats stats;
   DenseModelIntegrator integ(model, settings.integrator, settings.polynomialDegree);
   z.shape(model.dim(), 1);  // zero: the shifted initial state
-  Teuchos::Time wall("online"), obs("observe");
-  wall.start();
-  try {
-    stats.run = integ.run(z, settings.dt, settings.steps, [&](long j, double t, const DenseVector& zj, const StepReport&) {
-      obs.start(true);
-      stats.lastStep = j;
-      for (int i = 0; i < zj.length(); ++i)
-        GPHR_REQUIRE(std::isfinite(zj(i)), SolverError, "non-finite reduced state at step ", j);
-      if (observe) observe(j, t, zj);
-      stats.observeSeconds += obs.stop();
-      if (adapt) adapt(j, t, zj);
-    });
-  } catch (const SolverError& e) {
-    stats.status = "diverged";
-    stats.reason = e.what();
-    if (obs.isRunning()) stats.observeSeconds += obs.stop();
-  }
-  stats.onlineSeconds = wall.stop() - stats.observeSeconds;
-  return stats;
+  return observedTimeLoop(integ, z, settings.dt, settings.steps, observe, adapt);
 }
 
 StepHook adeimUpdateHook(GpAdeimModel& model) {
