@@ -29,15 +29,6 @@ link=$(grep -E -- "-o query_model( |$)" "$work/build.log" | tail -1)
 echo "examples/query link line: $link"
 [[ "$link" == *libgphr_online.a* ]] || { echo "FAIL: examples/query does not link the online library"; exit 1; }
 [[ "$link" != *libgphr_driver.a* ]] || { echo "FAIL: examples/query links the application's library gphr_driver"; exit 1; }
-cat > "$work/build.yaml" <<'YAML'
-gphr:
-  scene: {name: nls1d, n: 128}
-  time: {T: 1.0, dt: 0.01}
-  training: {points: [3]}
-  pipeline: {methods: [gp-deim], k: [6], m: [12]}
-  hyper: {snapshotEvery: 5}
-  build: {probes: [64]}
-  output: {progressSeconds: 0.0}
-YAML
+cp "$src/test/support/small_nls_model.yaml" "$work/build.yaml"
 (cd "$work" && OPENBLAS_NUM_THREADS=1 "$work/prefix/bin/gphr" build build.yaml --model model.h5 --output art > /dev/null)
 "$work/query/query_model" "$work/model.h5" 0.92 1.0 1.08

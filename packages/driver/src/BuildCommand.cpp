@@ -12,6 +12,7 @@
 #include "gphr/driver/Config.hpp"
 #include "gphr/driver/ModelEvaluation.hpp"
 #include "gphr/driver/ModelFileBuilder.hpp"
+#include "gphr/driver/OutputLock.hpp"
 #include "gphr/driver/Pipeline.hpp"
 #include "gphr/models/SceneFactory.hpp"
 #include "gphr/online/Method.hpp"
@@ -115,6 +116,7 @@ int runBuild(const std::string& configPath, const std::string& modelPath, const 
   GPHR_REQUIRE(ctx.config.sublist("scene").get<bool>("shift"), InputError, "config file '", configPath,
                "': gphr build needs scene.shift: true (the stored models are of the shifted system)");
   prepareOutputDir(ctx, false);
+  const OutputLock lock(artifactsDir, "build", comm);
   const auto parent = std::filesystem::path(modelPath).parent_path();
   if (!parent.empty()) makeDirectory(parent.string(), comm);
   if (root && !skipped.empty())

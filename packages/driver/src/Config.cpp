@@ -9,6 +9,7 @@
 
 #include "gphr/core/Error.hpp"
 #include "gphr/core/ParameterValidation.hpp"
+#include "gphr/driver/InputFile.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/models/SceneFactory.hpp"
 #include "gphr/online/Method.hpp"
@@ -116,13 +117,6 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
 }
 
 namespace {
-std::string firstLine(const std::string& s) {
-  std::string line = s.substr(0, s.find('\n'));
-  // Teuchos prefixes "file:line:\n\n Throw number..."; prefer the line that names the problem.
-  const auto pos = s.find("Parser failure");
-  if (pos != std::string::npos) line = s.substr(pos, s.find('\n', pos) - pos);
-  return line;
-}
 
 bool endsWith(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
@@ -141,21 +135,10 @@ Teuchos::ParameterList validateConfig(Teuchos::ParameterList cfg) {
 }
 
 Teuchos::ParameterList loadConfig(const std::string& path) {
-  GPHR_REQUIRE(std::ifstream(path).good(), InputError, "cannot read config file '", path, "'");
-  Teuchos::RCP<Teuchos::ParameterList> pl;
   const bool xml = endsWith(path, ".xml");
   GPHR_REQUIRE(xml || endsWith(path, ".yaml") || endsWith(path, ".yml"), InputError, "config file '", path,
                "': the name must end in .yaml, .yml or .xml");
-  try {
-    pl = xml ? Teuchos::getParametersFromXmlFile(path) : Teuchos::getParametersFromYamlFile(path);
-  } catch (const std::exception& e) {
-    // Teuchos' YAML reader takes a flow mapping {a: 1, b: 2} on one line only: say so, since
-    // its own message gives just a position.
-    throw InputError(detail::concat("config file '", path, "' is malformed ", xml ? "XML" : "YAML", ": ",
-                                    firstLine(e.what()),
-                                    xml ? "" : " (a {key: value, ...} mapping must fit on one line; "
-                                               "write longer sections in block style, one key per line)"));
-  }
+  const auto pl = readParameterFile(path, "config", xml);
   GPHR_REQUIRE(pl->name() == "gphr", InputError, "config file '", path,
                "': the top level must be the single key 'gphr' (found '", pl->name(), "')");
   try {

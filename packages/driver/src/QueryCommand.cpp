@@ -12,10 +12,12 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <sstream>
 
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/Commands.hpp"
 #include "gphr/driver/Json.hpp"
+#include "gphr/driver/OutputLock.hpp"
 #include "gphr/driver/QueryList.hpp"
 #include "gphr/online/ReducedModel.hpp"
 #include "gphr/online/Method.hpp"
@@ -36,13 +38,20 @@ struct QueryOutcome {
   bool extrapolated = false, reused = false;
 };
 
-// The outcome stored in a finished query's file if its key matches (else the query is redone).
-bool finished(const std::string& path, const std::string& key, QueryOutcome& out) {
+// The outcome stored in a finished query's file if its key matches (resultKey: the query, the
+// model file's checksum, the gphr version); else the query is redone, and a file of another key
+// is said to be (rank 0).
+bool finished(const std::string& path, const std::string& key, QueryOutcome& out, bool say) {
   std::ifstream probe(path);
   if (!probe.good()) return false;
   try {
     Hdf5File f(path, selfComm(), Hdf5File::Mode::ReadOnly);
-    if (!f.hasAttribute("/", "key") || f.stringAttribute("/", "key") != key) return false;
+    if (!f.hasAttribute("/", "key") || f.stringAttribute("/", "key") != key) {
+      if (say)
+        std::fprintf(stderr, "[gphr] query: %s holds a result of another model file, query or gphr version: redone\n",
+                     path.c_str());
+      return false;
+    }
     out.status = f.stringAttribute("/", "status");
     out.reason = f.stringAttribute("/", "reason");
     const auto v = f.doubleAttribute("/", "numbers");  // setup_s, online_s, drift, newton, extrapolated
@@ -51,6 +60,7 @@ bool finished(const std::string& path, const std::string& key, QueryOutcome& out
     out.reused = true;
     return true;
   } catch (const std::exception&) {
+    if (say) std::fprintf(stderr, "[gphr] query: %s is unreadable: redone\n", path.c_str());
     return false;  // unreadable (a damaged file): redo it
   }
 }
@@ -118,7 +128,7 @@ void writeQuery(const std::string& path, const ReducedModel& model, const Query&
     f.setAttribute("/", "numbers", std::vector<double>{out.setupSeconds, out.onlineSeconds, out.drift,
                                                        out.newtonIterations, out.extrapolated ? 1.0 : 0.0});
     f.flush();
-    f.setAttribute("/", "key", q.key());  // last: marks the file complete
+    f.setAttribute("/", "key", resultKey(q, model.data()));  // last: marks the file complete
   }
   commit.commit();
 }
@@ -173,9 +183,8 @@ std::string number(double x) { return std::isfinite(x) ? detail::concat(x) : std
 
 void writeTable(const std::string& dir, const ReducedModelData& d, const std::vector<Query>& qs,
                 const std::vector<QueryOutcome>& outs) {
-  const std::string path = dir + "/queries.csv", temp = path + ".tmp";
+  std::ostringstream csv;
   {
-    std::ofstream csv(temp);
     csv << "name";
     for (const auto& p : d.parameterNames) csv << "," << p;
     csv << ",method,k,m,T,dt,setup,status,extrapolated,setup_s,online_s,H_hr_drift_max,newton_iters_avg,reused\n";
@@ -193,7 +202,7 @@ void writeTable(const std::string& dir, const ReducedModelData& d, const std::ve
           << "," << number(o.drift) << "," << number(o.newtonIterations) << "," << (o.reused ? "yes" : "no") << "\n";
     }
   }
-  std::rename(temp.c_str(), path.c_str());
+  writeTextFile(dir + "/queries.csv", csv.str());
 }
 
 // DIR/results.h5: every query's datasets under /queries/<name>, with its parameter and status.
@@ -230,6 +239,7 @@ int runQuery(const std::string& modelPath, const std::string& queriesPath, const
   const ReducedModel model(modelPath);
   const auto queries = readQueries(queriesPath, model);
   makeDirectory(outputDir + "/queries", comm);
+  const OutputLock lock(outputDir, "query", comm);
   Teuchos::Time wall("queries");
   wall.start();
   std::vector<QueryOutcome> outs(queries.size());
@@ -243,14 +253,14 @@ int runQuery(const std::string& modelPath, const std::string& queriesPath, const
   double lastPrint = -1e9;
   for (size_t i : adaptive) {  // all ranks together, one after another
     const std::string path = queryFile(outputDir, queries[i]);
-    int reuse = rank == 0 && finished(path, queries[i].key(), outs[i]);
+    int reuse = rank == 0 && finished(path, resultKey(queries[i], model.data()), outs[i], true);
     Teuchos::broadcast(*comm, 0, Teuchos::outArg(reuse));
     if (!reuse) outs[i] = runAdaptive(model, queries[i], path, comm);
     ++done;
   }
   for (size_t i : local) {
     const std::string path = queryFile(outputDir, queries[i]);
-    if (!finished(path, queries[i].key(), outs[i])) outs[i] = runOne(model, queries[i], path);
+    if (!finished(path, resultKey(queries[i], model.data()), outs[i], true)) outs[i] = runOne(model, queries[i], path);
     ++done;
     const double t = wall.totalElapsedTime(true);
     if (rank == 0 && (t - lastPrint > 2.0 || done == mine)) {
@@ -262,22 +272,27 @@ int runQuery(const std::string& modelPath, const std::string& queriesPath, const
   double seconds = wall.stop(), slowest = 0.0;
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, seconds, Teuchos::outArg(slowest));
   shareOutcomes(comm, outs);
+  std::string error;  // rank 0 writes the tables; its failure (a full disk, say) ends every rank
   if (rank == 0) {
-    long ran = 0, ok = 0;
-    for (const auto& o : outs) ran += !o.reused, ok += o.status == "ok";
-    writeResults(outputDir, queries);
-    writeTable(outputDir, model.data(), queries, outs);
-    JsonObject s;
-    s.set("model_file", modelPath).set("queries", static_cast<long>(queries.size())).set("queries_run", ran)
-        .set("queries_reused", static_cast<long>(queries.size()) - ran).set("queries_ok", ok).set("ranks", size)
-        .set("wall_s", slowest).set("queries_per_s", ran > 0 ? ran / slowest : NAN).set("gphr_version", gphrVersion());
-    std::ofstream(outputDir + "/query_summary.json") << s.str(2) << "\n";
-    std::printf("gphr query: %zu queries (%ld run, %ld reused, %ld ok) on %d rank(s) in %.2f s: %.1f queries/s; "
-                "results in %s/results.h5, table %s/queries.csv\n", queries.size(), ran,
-                static_cast<long>(queries.size()) - ran, ok, size, slowest, ran > 0 ? ran / slowest : 0.0,
-                outputDir.c_str(), outputDir.c_str());
+    try {
+      long ran = 0, ok = 0;
+      for (const auto& o : outs) ran += !o.reused, ok += o.status == "ok";
+      writeResults(outputDir, queries);
+      writeTable(outputDir, model.data(), queries, outs);
+      JsonObject s;
+      s.set("model_file", modelPath).set("queries", static_cast<long>(queries.size())).set("queries_run", ran)
+          .set("queries_reused", static_cast<long>(queries.size()) - ran).set("queries_ok", ok).set("ranks", size)
+          .set("wall_s", slowest).set("queries_per_s", ran > 0 ? ran / slowest : NAN).set("gphr_version", gphrVersion());
+      writeTextFile(outputDir + "/query_summary.json", s.str(2) + "\n");
+      std::printf("gphr query: %zu queries (%ld run, %ld reused, %ld ok) on %d rank(s) in %.2f s: %.1f queries/s; "
+                  "results in %s/results.h5, table %s/queries.csv\n", queries.size(), ran,
+                  static_cast<long>(queries.size()) - ran, ok, size, slowest, ran > 0 ? ran / slowest : 0.0,
+                  outputDir.c_str(), outputDir.c_str());
+    } catch (const InputError& e) {
+      error = detail::concat("gphr query: the results: ", e.what());
+    }
   }
-  comm->barrier();
+  agreeOnError(comm, error);
   return 0;
 }
 
