@@ -8,7 +8,7 @@ if(NOT DOXYGEN_FOUND)
 endif()
 
 set(GPHR_DOC_INPUT "")
-foreach(_p core models timeint reduction hyper io driver)
+foreach(_p IN LISTS GPHR_PACKAGE_NAMES)
   string(APPEND GPHR_DOC_INPUT " ${PROJECT_SOURCE_DIR}/packages/${_p}/include")
 endforeach()
 file(GLOB_RECURSE _gphr_doc_headers CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/packages/*/include/gphr/*.hpp)

@@ -17,7 +17,7 @@ for arg in "$@"; do
   esac
 done
 
-packages=(build-essential cmake ninja-build ccache gnuplot-nox hdf5-tools python3
+packages=(build-essential cmake ninja-build ccache gnuplot-nox hdf5-tools python3 python3-h5py
   libopenmpi-dev openmpi-bin libhdf5-openmpi-dev libgtest-dev libopenblas-dev
   libtrilinos-teuchos-dev libtrilinos-kokkos-dev libtrilinos-kokkos-kernels-dev
   libtrilinos-tpetra-dev libtrilinos-belos-dev libtrilinos-anasazi-dev libtrilinos-nox-dev

@@ -11,7 +11,7 @@
 #include <cstdio>
 #include <string>
 
-#include "gphr/driver/ReducedModel.hpp"
+#include "gphr/online/ReducedModel.hpp"
 
 int main(int argc, char** argv) {
   Tpetra::ScopeGuard scope(&argc, &argv);

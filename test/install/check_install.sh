@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Installs GPHR from the build tree into a temporary prefix, builds examples/embedding and
-# examples/query against the *installed* package (find_package(GPHR) + GPHR::gphr only, from
-# projects that enable LANGUAGES CXX only, as a C++-only consumer would), runs the embedding on 1
-# and 2 ranks, and runs the query program on a model file written by the installed `gphr build`.
+# Installs GPHR from the build tree into a temporary prefix, builds examples/embedding (GPHR::gphr)
+# and examples/query (GPHR::online: its link line is printed and must name the online library and
+# none of the application's, gphr_driver) against the *installed* package, from projects that
+# enable LANGUAGES CXX only, as a C++-only consumer would; runs the embedding on 1 and 2 ranks, and
+# the query program on a model file written by the installed `gphr build`.
 # usage: check_install.sh BUILD_DIR SOURCE_DIR MPIEXEC
 set -euo pipefail
 build=$1; src=$2; mpiexec=$3
@@ -23,16 +24,11 @@ cmake --build "$work/embed" > "$work/build.log" 2>&1 || { cat "$work/build.log";
 # examples/query on a model built by the installed gphr.
 cmake -S "$src/examples/query" -B "$work/query" -G Ninja -DCMAKE_PREFIX_PATH="$work/prefix" > "$work/cfg.log" \
   || { cat "$work/cfg.log"; exit 1; }
-cmake --build "$work/query" > "$work/build.log" 2>&1 || { cat "$work/build.log"; exit 1; }
-cat > "$work/build.yaml" <<'YAML'
-gphr:
-  scene: {name: nls1d, n: 128}
-  time: {T: 1.0, dt: 0.01}
-  training: {points: [3]}
-  pipeline: {methods: [gp-deim], k: [6], m: [12]}
-  hyper: {snapshotEvery: 5}
-  build: {probes: [64]}
-  output: {progressSeconds: 0.0}
-YAML
+cmake --build "$work/query" -v > "$work/build.log" 2>&1 || { cat "$work/build.log"; exit 1; }
+link=$(grep -E -- "-o query_model( |$)" "$work/build.log" | tail -1)
+echo "examples/query link line: $link"
+[[ "$link" == *libgphr_online.a* ]] || { echo "FAIL: examples/query does not link the online library"; exit 1; }
+[[ "$link" != *libgphr_driver.a* ]] || { echo "FAIL: examples/query links the application's library gphr_driver"; exit 1; }
+cp "$src/test/support/small_nls_model.yaml" "$work/build.yaml"
 (cd "$work" && OPENBLAS_NUM_THREADS=1 "$work/prefix/bin/gphr" build build.yaml --model model.h5 --output art > /dev/null)
 "$work/query/query_model" "$work/model.h5" 0.92 1.0 1.08

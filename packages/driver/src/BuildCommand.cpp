@@ -12,8 +12,10 @@
 #include "gphr/driver/Config.hpp"
 #include "gphr/driver/ModelEvaluation.hpp"
 #include "gphr/driver/ModelFileBuilder.hpp"
+#include "gphr/driver/OutputLock.hpp"
 #include "gphr/driver/Pipeline.hpp"
 #include "gphr/models/SceneFactory.hpp"
+#include "gphr/online/Method.hpp"
 
 namespace gphr {
 
@@ -24,11 +26,6 @@ std::string sectionYaml(const Teuchos::ParameterList& cfg, const std::string& na
   Teuchos::ParameterList copy(cfg.sublist(name));
   copy.setName(name);
   return toYaml(copy);
-}
-
-// Methods a model file stores: those whose online model is a sample mesh with term weights.
-bool storable(const std::string& method) {
-  return method == "gp-deim" || method == "gp-eqp" || method == "gp-eqp-refit" || method == "gp-adeim";
 }
 
 // gp-adeim is stored as its options: its queries build the full system and sample its residual
@@ -112,12 +109,14 @@ int runBuild(const std::string& configPath, const std::string& modelPath, const 
   ctx.comm = comm;
   ctx.outputDir = artifactsDir;
   std::vector<std::string> stored, skipped;
-  for (const auto& m : pipelineMethods(ctx.config)) (storable(m) ? stored : skipped).push_back(m);
+  for (const auto& m : pipelineMethods(ctx.config)) (methodInfo(m).storable ? stored : skipped).push_back(m);
   GPHR_REQUIRE(!stored.empty(), InputError, "config file '", configPath,
-               "': gphr build stores gp-deim, gp-eqp and gp-eqp-refit models; pipeline.methods must list one of them");
+               "': gphr build stores ", methodNames([](const MethodInfo& m) { return m.storable; }),
+               " models; pipeline.methods must list one of them");
   GPHR_REQUIRE(ctx.config.sublist("scene").get<bool>("shift"), InputError, "config file '", configPath,
                "': gphr build needs scene.shift: true (the stored models are of the shifted system)");
   prepareOutputDir(ctx, false);
+  const OutputLock lock(artifactsDir, "build", comm);
   const auto parent = std::filesystem::path(modelPath).parent_path();
   if (!parent.empty()) makeDirectory(parent.string(), comm);
   if (root && !skipped.empty())

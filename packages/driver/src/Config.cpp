@@ -9,8 +9,10 @@
 
 #include "gphr/core/Error.hpp"
 #include "gphr/core/ParameterValidation.hpp"
+#include "gphr/driver/InputFile.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/models/SceneFactory.hpp"
+#include "gphr/online/Method.hpp"
 #include "gphr/timeint/Integrator.hpp"
 
 namespace gphr {
@@ -115,13 +117,6 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
 }
 
 namespace {
-std::string firstLine(const std::string& s) {
-  std::string line = s.substr(0, s.find('\n'));
-  // Teuchos prefixes "file:line:\n\n Throw number..."; prefer the line that names the problem.
-  const auto pos = s.find("Parser failure");
-  if (pos != std::string::npos) line = s.substr(pos, s.find('\n', pos) - pos);
-  return line;
-}
 
 bool endsWith(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
@@ -140,21 +135,10 @@ Teuchos::ParameterList validateConfig(Teuchos::ParameterList cfg) {
 }
 
 Teuchos::ParameterList loadConfig(const std::string& path) {
-  GPHR_REQUIRE(std::ifstream(path).good(), InputError, "cannot read config file '", path, "'");
-  Teuchos::RCP<Teuchos::ParameterList> pl;
   const bool xml = endsWith(path, ".xml");
   GPHR_REQUIRE(xml || endsWith(path, ".yaml") || endsWith(path, ".yml"), InputError, "config file '", path,
                "': the name must end in .yaml, .yml or .xml");
-  try {
-    pl = xml ? Teuchos::getParametersFromXmlFile(path) : Teuchos::getParametersFromYamlFile(path);
-  } catch (const std::exception& e) {
-    // Teuchos' YAML reader takes a flow mapping {a: 1, b: 2} on one line only: say so, since
-    // its own message gives just a position.
-    throw InputError(detail::concat("config file '", path, "' is malformed ", xml ? "XML" : "YAML", ": ",
-                                    firstLine(e.what()),
-                                    xml ? "" : " (a {key: value, ...} mapping must fit on one line; "
-                                               "write longer sections in block style, one key per line)"));
-  }
+  const auto pl = readParameterFile(path, "config", xml);
   GPHR_REQUIRE(pl->name() == "gphr", InputError, "config file '", path,
                "': the top level must be the single key 'gphr' (found '", pl->name(), "')");
   try {
@@ -228,17 +212,11 @@ std::vector<std::vector<double>> trainingParameters(const Teuchos::ParameterList
   return out;
 }
 
-namespace {
-const std::vector<std::string> kMethods = {"fom", "rom", "gp-deim", "gp-adeim", "deim", "sdeim", "gp-eqp", "gp-eqp-refit"};
-}  // namespace
-
 std::vector<std::string> pipelineMethods(const Teuchos::ParameterList& cfg) {
   const auto& pipe = cfg.sublist("pipeline");
   std::vector<std::string> out;
   for (const auto& m : pipe.get<Teuchos::Array<std::string>>("methods")) {
-    GPHR_REQUIRE(std::find(kMethods.begin(), kMethods.end(), m) != kMethods.end(), InputError,
-                 "key 'pipeline.methods' has entry '", m,
-                 "'; allowed: fom, rom, gp-deim, gp-adeim, deim, sdeim, gp-eqp, gp-eqp-refit");
+    GPHR_REQUIRE(isMethod(m), InputError, "key 'pipeline.methods' has entry '", m, "'; allowed: ", methodNames());
     if (m != "fom" && std::find(out.begin(), out.end(), m) == out.end()) out.push_back(m);
   }
   if (pipe.get<bool>("rom") && std::find(out.begin(), out.end(), "rom") == out.end()) out.insert(out.begin(), "rom");
@@ -247,10 +225,11 @@ std::vector<std::string> pipelineMethods(const Teuchos::ParameterList& cfg) {
   const auto& ms = pipe.get<Teuchos::Array<int>>("m");
   for (int m : ms) GPHR_REQUIRE(m >= 1, InputError, "key 'pipeline.m' has entry ", m, "; allowed: integers >= 1");
   const bool adaptive = std::find(out.begin(), out.end(), "gp-adeim") != out.end();
-  const bool wantsM = std::any_of(out.begin(), out.end(), [](const std::string& m) { return m != "rom" && m != "sdeim"; });
-  GPHR_REQUIRE(!wantsM || !ms.empty(), InputError,
-               "key 'pipeline.m' is empty but pipeline.methods asks for gp-deim, gp-adeim, deim, gp-eqp or "
-               "gp-eqp-refit; allowed: a list of DEIM sizes / term budgets");
+  const bool wantsM =
+      std::any_of(out.begin(), out.end(), [](const std::string& m) { return methodInfo(m).hyperReduced; });
+  GPHR_REQUIRE(!wantsM || !ms.empty(), InputError, "key 'pipeline.m' is empty but pipeline.methods asks for ",
+               methodNames([](const MethodInfo& m) { return m.hyperReduced; }),
+               "; allowed: a list of DEIM sizes / term budgets");
   if (adaptive)
     for (int m : ms) adeimOptionsFrom(cfg.sublist("adeim"), m);  // the adeim constraints that involve m
   return out;

@@ -6,6 +6,8 @@
 #include <iostream>
 
 #include "gphr/driver/Config.hpp"
+#include "gphr/core/Error.hpp"
+#include "gphr/online/TimeLoop.hpp"
 #include "gphr/timeint/FullModelIntegrator.hpp"
 
 namespace gphr {
@@ -57,11 +59,7 @@ FomResult runFullModel(const Teuchos::ParameterList& cfg, const Scene& scene, co
   const auto ref = inst.system->reference();
   Progress progress("fom", steps, out.get<double>("progressSeconds"), comm->getRank() == 0);
   long saved = 0;
-  double observerSeconds = 0.0;
-  Teuchos::Time wall("fom"), obs("observer");
-  wall.start();
-  const RunStats stats = integ.run(y, dt, steps, [&](long j, double t, const Vector& yj, const StepReport&) {
-    obs.start(true);
+  const std::function<void(long, double, const Vector&)> observe = [&](long j, double t, const Vector& yj) {
     res.hamiltonian.push_back(inst.system->hamiltonian(yj));
     if (isSavedStep(j, steps, saveEvery)) {
       auto col = res.trajectory->getVectorNonConst(saved++);
@@ -70,12 +68,14 @@ FomResult runFullModel(const Teuchos::ParameterList& cfg, const Scene& scene, co
       res.savedTimes.push_back(t);
     }
     progress.update(j, t);
-    observerSeconds += obs.stop();
-  });
-  const double total = wall.stop();
+  };
+  const SimulationStats sim = observedTimeLoop(integ, y, dt, steps, observe);
+  // The full model is the reference: its failure is the run's error (exit 3), not a status.
+  if (!sim.ok()) throw SolverError(sim.reason);
+  const RunStats& stats = sim.run;
 
   const double H0 = res.hamiltonian.front(), herr = maxDeviation(res.hamiltonian, H0);
-  res.tOnline = total - observerSeconds;
+  res.tOnline = sim.onlineSeconds;
   res.run.set("method", "fom")
       .set("n", static_cast<long>(inst.system->space().n()))
       .set("fullDim", static_cast<long>(inst.system->space().fullDim()))
@@ -83,7 +83,7 @@ FomResult runFullModel(const Teuchos::ParameterList& cfg, const Scene& scene, co
       .set("steps", steps)
       .set("dt", dt)
       .set("ranks", comm->getSize())
-      .set("t_online_s", total - observerSeconds)
+      .set("t_online_s", sim.onlineSeconds)
       .set("newton_iters_avg", double(stats.newtonIterations) / steps)
       .set("linear_iters_avg", double(stats.linearIterations) / steps)
       .set("linear_iters_per_newton", stats.newtonIterations ? double(stats.linearIterations) / stats.newtonIterations : 0.0)

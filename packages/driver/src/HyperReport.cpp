@@ -8,7 +8,6 @@
 
 #include "gphr/driver/Config.hpp"
 #include "gphr/driver/ModelEvaluation.hpp"
-#include "gphr/driver/Report.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
 
 namespace gphr {

@@ -414,7 +414,7 @@ void runGpAdeim(const RunContext& ctx, const FomResult& fom, RomStages& st, cons
     // The lagged Newton matrix of the previous local model is kept across an update: it is a
     // Jacobian approximation like any lagged one, and the lag rule refactors when Newton slows
     // (resetting it at every update cost 600 LU factorisations instead of 143 on the NLS benchmark).
-    const AfterStepHook hook = adeimUpdateHook(model);
+    const StepHook hook = adeimUpdateHook(model);
     ModelRun run = evaluateReducedModel(ctx, fom, *inst.system, *A, model, true, "gp-adeim", k, m, false, hook);
     run.adeimUpdates = model.updates();
     setAdeimSummary(run, o, tInitial, tPair);

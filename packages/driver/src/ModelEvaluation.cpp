@@ -8,7 +8,7 @@
 
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/Config.hpp"
-#include "gphr/timeint/DenseModelIntegrator.hpp"
+#include "gphr/online/Lift.hpp"
 
 namespace gphr {
 
@@ -53,8 +53,7 @@ class DeferredLift {
     const size_t d = std::max<size_t>(1, A.getGlobalLength()), budget = size_t(8) << 20;  // doubles
     batch_ = static_cast<int>(std::clamp<size_t>(budget / d, 1, 256));
     maxStored_ = std::max<size_t>(batch_, budget / std::max(1, r_));
-    const auto local = rcp(new Map(r_, 0, A.getMap()->getComm(), Tpetra::LocallyReplicated));
-    Z_ = rcp(new MultiVector(local, batch_));
+    Z_ = liftWorkspace(A, batch_);
     Y_ = rcp(new MultiVector(A.getMap(), batch_));
   }
   void add(long step, const DenseVector& z) {
@@ -73,17 +72,10 @@ class DeferredLift {
  private:
   void liftBatch(size_t c0, size_t c1) {
     const int count = static_cast<int>(c1 - c0);
-    {
-      auto v = Z_->getLocalViewHost(Tpetra::Access::OverwriteAll);
-      for (int c = 0; c < count; ++c)
-        for (int i = 0; i < r_; ++i) v(i, c) = stored_[(c0 + c) * r_ + i];
-    }
-    const auto Zc = Z_->subView(Teuchos::Range1D(0, count - 1));
-    auto Yc = Y_->subViewNonConst(Teuchos::Range1D(0, count - 1));
-    Yc->multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, A_, *Zc, 0.0);
+    liftStates(A_, nullptr, &stored_[c0 * r_], count, *Z_, *Y_);  // A z: H_s(A z) before the shift is added
     const auto ref = sys_.reference();
     for (int c = 0; c < count; ++c) {
-      const RCP<Vector> y = Yc->getVectorNonConst(c);
+      const RCP<Vector> y = Y_->getVectorNonConst(c);
       run_.hamiltonian.push_back(sys_.hamiltonian(*y));  // H_s(A z) = H(y0 + A z)
       if (!ref.is_null()) y->update(1.0, *ref, 1.0);  // physical state y0 + A z
       run_.stateNorms.push_back(y->norm2());
@@ -121,68 +113,40 @@ UnboundedStep unboundedStepOf(const FomResult& fom, const ModelRun& run) {
 }
 }  // namespace
 
-AfterStepHook adeimUpdateHook(GpAdeimModel& model) {
-  return [&model](long j, const DenseVector& z) {
-    try {
-      model.afterStep(j, z);
-    } catch (const InputError& e) {  // a degenerate update mid-run is a result, not a crash
-      throw SolverError(detail::concat("GP-ADEIM update after step ", j, ": ", e.what()));
-    }
-  };
-}
-
 ModelRun evaluateReducedModel(const RunContext& ctx, const FomResult& fom, const HamiltonianSystem& sys,
                               const MultiVector& A, DenseHamiltonian& model, bool hasHamiltonian,
                               const std::string& method, int k, int m, bool keepStates,
-                              const AfterStepHook& afterStep) {
+                              const StepHook& adapt) {
   const long steps = numSteps(ctx.config), saveEvery = ctx.config.sublist("output").get<int>("saveEvery");
   const double dt = ctx.config.sublist("time").get<double>("dt");
   ModelRun run;
   run.method = method, run.k = k, run.m = m;
-  DenseModelIntegrator integ(model, ctx.config.sublist("integrator"), sys.nonlinearTerm().polynomialDegree());
-  DenseVector z(model.dim());
+  SimulationSettings settings;
+  settings.dt = dt, settings.steps = steps, settings.integrator = ctx.config.sublist("integrator");
+  settings.polynomialDegree = sys.nonlinearTerm().polynomialDegree();
+  DenseVector z;
   DeferredLift lift(A, sys, fom, steps, saveEvery, keepStates, run);
-  double obsSeconds = 0.0;
-  long lastStep = 0;
-  Teuchos::Time wall("model"), obs("obs");
-  std::string why;
-  RunStats stats;
-  wall.start();
-  try {
-    stats = integ.run(z, dt, steps, [&](long j, double, const DenseVector& zj, const StepReport&) {
-      obs.start(true);
-      lastStep = j;
-      for (int i = 0; i < zj.length(); ++i)
-        GPHR_REQUIRE(std::isfinite(zj(i)), SolverError, "non-finite reduced state at step ", j);
-      if (hasHamiltonian) run.modelHamiltonian.push_back(model.hamiltonian(zj));  // the model at this step
-      lift.add(j, zj);
-      obsSeconds += obs.stop();
-      if (afterStep) afterStep(j, zj);
-    });
-  } catch (const SolverError& e) {
-    why = e.what();
-    run.ok = false;
-    if (obs.isRunning()) obsSeconds += obs.stop();
-  }
-  const double total = wall.stop();
+  const SimulationStats sim = simulate(model, settings, z, [&](long j, double, const DenseVector& zj) {
+    if (hasHamiltonian) run.modelHamiltonian.push_back(model.hamiltonian(zj));  // the model at this step
+    lift.add(j, zj);
+  }, adapt);
+  const RunStats& stats = sim.run;
+  run.ok = sim.ok();
+  const std::string& why = sim.reason;
+  const long lastStep = sim.lastStep;
   lift.flush();
-  run.tOnline = total - obsSeconds;
+  run.tOnline = sim.onlineSeconds;
   // pipeline.onlineRepeats: the same online run again, timed only (a model that changes as it
   // runs, with an after-step hook, is not repeatable); t_online_s is the fastest.
   // pipeline.onlineRepeatSeconds caps the repeats' total time: on a shared machine a few-ms run's
   // time swings 2x over spells of tens of ms, so short runs need many repeats, long ones none.
   const auto& pipe = ctx.config.sublist("pipeline");
-  const int repeats = afterStep ? 1 : pipe.get<int>("onlineRepeats");
+  const int repeats = adapt ? 1 : pipe.get<int>("onlineRepeats");
   const double budget = pipe.get<double>("onlineRepeatSeconds");
   std::vector<double> times{run.tOnline};
   double spent = 0.0;
   for (int r = 1; r < repeats && run.ok && spent < budget; ++r) {
-    DenseModelIntegrator again(model, ctx.config.sublist("integrator"), sys.nonlinearTerm().polynomialDegree());
-    DenseVector z0(model.dim());  // the first run's start: z = 0, the (shifted) initial state
-    Teuchos::Time t("repeat");
-    t.start();
-    again.run(z0, dt, steps, nullptr);
-    times.push_back(t.stop());
+    times.push_back(simulate(model, settings, z).onlineSeconds);  // from z = 0 again, unobserved
     // The ranks decide together: a ROM repeat has collectives, so all ranks must run it or none.
     const double mine = spent + times.back();
     Teuchos::reduceAll(*ctx.comm, Teuchos::REDUCE_MAX, mine, Teuchos::outArg(spent));

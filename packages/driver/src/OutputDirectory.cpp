@@ -3,7 +3,11 @@
 // collective).
 #include <Teuchos_CommHelpers.hpp>
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/Commands.hpp"
@@ -27,6 +31,31 @@ void agree(const RCP<const Comm>& comm, const std::string& error, const char* fa
   GPHR_REQUIRE(!failed, InputError, error.empty() ? fallback : error);
 }
 }  // namespace
+
+void writeTextFile(const std::string& path, const std::string& text) {
+  const std::string temp = path + ".tmp";
+  {
+    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+    GPHR_REQUIRE(out.good(), InputError, "cannot write '", temp, "': ", std::strerror(errno));
+    out << text;
+    out.close();
+    GPHR_REQUIRE(!out.fail(), InputError, "cannot write '", temp, "' (", text.size(), " bytes): ",
+                 std::strerror(errno));
+  }
+  if (std::rename(temp.c_str(), path.c_str()) != 0) {
+    const std::string why = std::strerror(errno);
+    std::remove(temp.c_str());
+    throw InputError(detail::concat("cannot rename '", temp, "' to '", path, "': ", why));
+  }
+}
+
+void agreeOnError(const RCP<const Comm>& comm, std::string error) {
+  int length = comm->getRank() == 0 ? static_cast<int>(error.size()) : 0;
+  Teuchos::broadcast(*comm, 0, Teuchos::outArg(length));
+  error.resize(static_cast<size_t>(length));
+  if (length > 0) Teuchos::broadcast(*comm, 0, length, error.data());
+  GPHR_REQUIRE(length == 0, InputError, error);
+}
 
 void makeDirectory(const std::string& dir, const RCP<const Comm>& comm) {
   std::string error;

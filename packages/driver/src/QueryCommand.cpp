@@ -12,12 +12,15 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <sstream>
 
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/Commands.hpp"
 #include "gphr/driver/Json.hpp"
+#include "gphr/driver/OutputLock.hpp"
 #include "gphr/driver/QueryList.hpp"
-#include "gphr/driver/ReducedModel.hpp"
+#include "gphr/online/ReducedModel.hpp"
+#include "gphr/online/Method.hpp"
 #include "gphr/io/Hdf5File.hpp"
 
 namespace gphr {
@@ -35,13 +38,20 @@ struct QueryOutcome {
   bool extrapolated = false, reused = false;
 };
 
-// The outcome stored in a finished query's file if its key matches (else the query is redone).
-bool finished(const std::string& path, const std::string& key, QueryOutcome& out) {
+// The outcome stored in a finished query's file if its key matches (resultKey: the query, the
+// model file's checksum, the gphr version); else the query is redone, and a file of another key
+// is said to be (rank 0).
+bool finished(const std::string& path, const std::string& key, QueryOutcome& out, bool say) {
   std::ifstream probe(path);
   if (!probe.good()) return false;
   try {
     Hdf5File f(path, selfComm(), Hdf5File::Mode::ReadOnly);
-    if (!f.hasAttribute("/", "key") || f.stringAttribute("/", "key") != key) return false;
+    if (!f.hasAttribute("/", "key") || f.stringAttribute("/", "key") != key) {
+      if (say)
+        std::fprintf(stderr, "[gphr] query: %s holds a result of another model file, query or gphr version: redone\n",
+                     path.c_str());
+      return false;
+    }
     out.status = f.stringAttribute("/", "status");
     out.reason = f.stringAttribute("/", "reason");
     const auto v = f.doubleAttribute("/", "numbers");  // setup_s, online_s, drift, newton, extrapolated
@@ -50,6 +60,7 @@ bool finished(const std::string& path, const std::string& key, QueryOutcome& out
     out.reused = true;
     return true;
   } catch (const std::exception&) {
+    if (say) std::fprintf(stderr, "[gphr] query: %s is unreadable: redone\n", path.c_str());
     return false;  // unreadable (a damaged file): redo it
   }
 }
@@ -63,16 +74,9 @@ struct Recorder {
 void writeStates(Hdf5File& f, const ReducedModel& model, const Query& q, const std::vector<double>& z, size_t saved) {
   const auto inst = model.scene().instantiate(selfComm(), q.mu, true);
   const auto A = readReducedModelBasis(model.path(), q.k, inst.system->space());
-  const int r = static_cast<int>(A->getNumVectors());
-  auto local = rcp(new Map(r, 0, selfComm(), Tpetra::LocallyReplicated));
-  MultiVector Z(local, saved), Y(inst.system->map(), saved);
-  {
-    auto v = Z.getLocalViewHost(Tpetra::Access::OverwriteAll);
-    for (size_t c = 0; c < saved; ++c)
-      for (int i = 0; i < r; ++i) v(i, c) = z[c * r + i];
-  }
-  Y.multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, *A, Z, 0.0);
-  for (size_t c = 0; c < saved; ++c) Y.getVectorNonConst(c)->update(1.0, *inst.system->reference(), 1.0);
+  const auto Z = liftWorkspace(*A, static_cast<int>(saved));
+  MultiVector Y(inst.system->map(), saved);
+  liftStates(*A, inst.system->reference().get(), z.data(), static_cast<int>(saved), *Z, Y);
   f.writeStates("/states", Y, inst.system->space());
 }
 
@@ -124,7 +128,7 @@ void writeQuery(const std::string& path, const ReducedModel& model, const Query&
     f.setAttribute("/", "numbers", std::vector<double>{out.setupSeconds, out.onlineSeconds, out.drift,
                                                        out.newtonIterations, out.extrapolated ? 1.0 : 0.0});
     f.flush();
-    f.setAttribute("/", "key", q.key());  // last: marks the file complete
+    f.setAttribute("/", "key", resultKey(q, model.data()));  // last: marks the file complete
   }
   commit.commit();
 }
@@ -179,9 +183,8 @@ std::string number(double x) { return std::isfinite(x) ? detail::concat(x) : std
 
 void writeTable(const std::string& dir, const ReducedModelData& d, const std::vector<Query>& qs,
                 const std::vector<QueryOutcome>& outs) {
-  const std::string path = dir + "/queries.csv", temp = path + ".tmp";
+  std::ostringstream csv;
   {
-    std::ofstream csv(temp);
     csv << "name";
     for (const auto& p : d.parameterNames) csv << "," << p;
     csv << ",method,k,m,T,dt,setup,status,extrapolated,setup_s,online_s,H_hr_drift_max,newton_iters_avg,reused\n";
@@ -191,7 +194,7 @@ void writeTable(const std::string& dir, const ReducedModelData& d, const std::ve
       csv << q.name;
       for (double x : q.mu) csv << "," << number(x);
       csv << "," << q.method << "," << q.k << "," << q.m << "," << number(q.T) << "," << number(q.dt) << ","
-          << (d.model(q.method, q.k, q.m).onlineNeedsFullSystem() ? "full system"
+          << (methodInfo(q.method).needsFullResidual ? "full system"
               : q.setup == SetupRoute::Exact                        ? "exact"
                                                                     : "interpolated")
           << "," << o.status << ","
@@ -199,7 +202,7 @@ void writeTable(const std::string& dir, const ReducedModelData& d, const std::ve
           << "," << number(o.drift) << "," << number(o.newtonIterations) << "," << (o.reused ? "yes" : "no") << "\n";
     }
   }
-  std::rename(temp.c_str(), path.c_str());
+  writeTextFile(dir + "/queries.csv", csv.str());
 }
 
 // DIR/results.h5: every query's datasets under /queries/<name>, with its parameter and status.
@@ -236,12 +239,13 @@ int runQuery(const std::string& modelPath, const std::string& queriesPath, const
   const ReducedModel model(modelPath);
   const auto queries = readQueries(queriesPath, model);
   makeDirectory(outputDir + "/queries", comm);
+  const OutputLock lock(outputDir, "query", comm);
   Teuchos::Time wall("queries");
   wall.start();
   std::vector<QueryOutcome> outs(queries.size());
   std::vector<size_t> local, adaptive;  // this rank's share of the sample-mesh queries; the gp-adeim ones
   for (size_t i = 0, n = 0; i < queries.size(); ++i) {
-    if (model.data().model(queries[i].method, queries[i].k, queries[i].m).onlineNeedsFullSystem()) adaptive.push_back(i);
+    if (methodInfo(queries[i].method).needsFullResidual) adaptive.push_back(i);
     else if (n++ % size == static_cast<size_t>(rank)) local.push_back(i);
   }
   const long mine = static_cast<long>(local.size() + adaptive.size());
@@ -249,14 +253,14 @@ int runQuery(const std::string& modelPath, const std::string& queriesPath, const
   double lastPrint = -1e9;
   for (size_t i : adaptive) {  // all ranks together, one after another
     const std::string path = queryFile(outputDir, queries[i]);
-    int reuse = rank == 0 && finished(path, queries[i].key(), outs[i]);
+    int reuse = rank == 0 && finished(path, resultKey(queries[i], model.data()), outs[i], true);
     Teuchos::broadcast(*comm, 0, Teuchos::outArg(reuse));
     if (!reuse) outs[i] = runAdaptive(model, queries[i], path, comm);
     ++done;
   }
   for (size_t i : local) {
     const std::string path = queryFile(outputDir, queries[i]);
-    if (!finished(path, queries[i].key(), outs[i])) outs[i] = runOne(model, queries[i], path);
+    if (!finished(path, resultKey(queries[i], model.data()), outs[i], true)) outs[i] = runOne(model, queries[i], path);
     ++done;
     const double t = wall.totalElapsedTime(true);
     if (rank == 0 && (t - lastPrint > 2.0 || done == mine)) {
@@ -268,22 +272,27 @@ int runQuery(const std::string& modelPath, const std::string& queriesPath, const
   double seconds = wall.stop(), slowest = 0.0;
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, seconds, Teuchos::outArg(slowest));
   shareOutcomes(comm, outs);
+  std::string error;  // rank 0 writes the tables; its failure (a full disk, say) ends every rank
   if (rank == 0) {
-    long ran = 0, ok = 0;
-    for (const auto& o : outs) ran += !o.reused, ok += o.status == "ok";
-    writeResults(outputDir, queries);
-    writeTable(outputDir, model.data(), queries, outs);
-    JsonObject s;
-    s.set("model_file", modelPath).set("queries", static_cast<long>(queries.size())).set("queries_run", ran)
-        .set("queries_reused", static_cast<long>(queries.size()) - ran).set("queries_ok", ok).set("ranks", size)
-        .set("wall_s", slowest).set("queries_per_s", ran > 0 ? ran / slowest : NAN).set("gphr_version", gphrVersion());
-    std::ofstream(outputDir + "/query_summary.json") << s.str(2) << "\n";
-    std::printf("gphr query: %zu queries (%ld run, %ld reused, %ld ok) on %d rank(s) in %.2f s: %.1f queries/s; "
-                "results in %s/results.h5, table %s/queries.csv\n", queries.size(), ran,
-                static_cast<long>(queries.size()) - ran, ok, size, slowest, ran > 0 ? ran / slowest : 0.0,
-                outputDir.c_str(), outputDir.c_str());
+    try {
+      long ran = 0, ok = 0;
+      for (const auto& o : outs) ran += !o.reused, ok += o.status == "ok";
+      writeResults(outputDir, queries);
+      writeTable(outputDir, model.data(), queries, outs);
+      JsonObject s;
+      s.set("model_file", modelPath).set("queries", static_cast<long>(queries.size())).set("queries_run", ran)
+          .set("queries_reused", static_cast<long>(queries.size()) - ran).set("queries_ok", ok).set("ranks", size)
+          .set("wall_s", slowest).set("queries_per_s", ran > 0 ? ran / slowest : NAN).set("gphr_version", gphrVersion());
+      writeTextFile(outputDir + "/query_summary.json", s.str(2) + "\n");
+      std::printf("gphr query: %zu queries (%ld run, %ld reused, %ld ok) on %d rank(s) in %.2f s: %.1f queries/s; "
+                  "results in %s/results.h5, table %s/queries.csv\n", queries.size(), ran,
+                  static_cast<long>(queries.size()) - ran, ok, size, slowest, ran > 0 ? ran / slowest : 0.0,
+                  outputDir.c_str(), outputDir.c_str());
+    } catch (const InputError& e) {
+      error = detail::concat("gphr query: the results: ", e.what());
+    }
   }
-  comm->barrier();
+  agreeOnError(comm, error);
   return 0;
 }
 

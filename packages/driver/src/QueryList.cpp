@@ -7,6 +7,8 @@
 #include <set>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/driver/Commands.hpp"
+#include "gphr/driver/InputFile.hpp"
 
 namespace gphr {
 
@@ -88,6 +90,18 @@ Query fileDefaults(const ReducedModelData& d) {
   return q;
 }
 
+// A query's name names its result files (queries/NAME.h5, points/NAME.txt) and an HDF5 group.
+void checkQueryName(const std::string& name) {
+  const std::string shown = name.size() > 40 ? name.substr(0, 40) + "..." : name;
+  GPHR_REQUIRE(!name.empty() && name.size() <= kMaxQueryName, InputError, "query name '", shown, "' has ",
+               name.size(), " characters; allowed: 1 to ", kMaxQueryName);
+  GPHR_REQUIRE(name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._-") ==
+                       std::string::npos &&
+                   name[0] != '.' && name.rfind("grid-", 0) != 0,
+               InputError, "query name '", shown,
+               "': allowed: letters, digits, '.', '_' and '-', not starting with '.' or 'grid-'");
+}
+
 // Everything that can fail later, checked now on every rank.
 void check(const Query& q, const ReducedModel& model, QueryFileKind kind, const std::string& where) {
   const auto& d = model.data();
@@ -113,7 +127,9 @@ void check(const Query& q, const ReducedModel& model, QueryFileKind kind, const 
                  "build.withBasis: true)");
   }
   try {
-    wholeSteps(q.T, q.dt);
+    const long steps = wholeSteps(q.T, q.dt);
+    // checked before anything of the run's length is allocated (H_hr is kept at every step)
+    GPHR_REQUIRE(steps <= kMaxQuerySteps, InputError, "T / dt = ", steps, " steps; allowed: at most ", kMaxQuerySteps);
   } catch (const InputError& e) {
     throw InputError(detail::concat(where, ": ", e.what()));
   }
@@ -125,8 +141,13 @@ std::vector<double> gridValues(const Teuchos::ParameterList& grid, const std::st
     for (double x : grid.get<Teuchos::Array<double>>(key)) spec.push_back(x);
   else if (grid.isType<Teuchos::Array<int>>(key))
     for (int x : grid.get<Teuchos::Array<int>>(key)) spec.push_back(x);
-  GPHR_REQUIRE(spec.size() == 3 && spec[2] >= 1 && spec[2] == std::floor(spec[2]) && spec[2] <= 100000, InputError,
-               "queries.grid: key '", key, "' must be [from, to, count] with a whole count from 1 to 100000");
+  GPHR_REQUIRE(spec.size() == 3 && std::isfinite(spec[0]) && std::isfinite(spec[1]) && spec[2] >= 1 &&
+                   spec[2] == std::floor(spec[2]) && spec[2] <= kMaxQueries,
+               InputError, "queries.grid: key '", key, "' must be [from, to, count] with a whole count from 1 to ",
+               kMaxQueries);
+  // one point is [x, x, 1]: [from, to, 1] with from != to would silently drop `to`
+  GPHR_REQUIRE(spec[2] != 1 || spec[0] == spec[1], InputError, "queries.grid: key '", key, "' is [", spec[0], ", ",
+               spec[1], ", 1], one point of two ends; allowed: a count >= 2, or [x, x, 1] for the one point x");
   const long n = static_cast<long>(spec[2]);
   std::vector<double> v;
   for (long i = 0; i < n; ++i) v.push_back(n == 1 ? spec[0] : spec[0] + (spec[1] - spec[0]) * i / (n - 1));
@@ -145,6 +166,8 @@ void addGrid(const Teuchos::ParameterList& grid, const ReducedModelData& d, cons
   for (size_t p = 0; p < axes.size(); ++p) {
     if (axes[p].empty()) axes[p] = {base.mu[p]};  // not gridded: the default (checked later)
     total *= axes[p].size();
+    GPHR_REQUIRE(total <= kMaxQueries, InputError, "queries.grid has ", total, " or more points; allowed: at most ",
+                 kMaxQueries, " queries in one file");
   }
   for (size_t j = 0; j < total; ++j) {
     Query q = base;
@@ -168,16 +191,13 @@ std::string Query::key() const {
   return s + buf;
 }
 
+std::string resultKey(const Query& q, const ReducedModelData& data) {
+  return q.key() + ";model=" + data.checksum + ";gphr=" + gphrVersion();
+}
+
 std::vector<Query> readQueries(const std::string& path, const ReducedModel& model, QueryFileKind kind) {
   const std::string root = kind == QueryFileKind::Queries ? "queries" : "validate";
-  GPHR_REQUIRE(std::ifstream(path).good(), InputError, "cannot read ", root, " file '", path, "'");
-  Teuchos::RCP<Teuchos::ParameterList> pl;
-  try {
-    pl = Teuchos::getParametersFromYamlFile(path);
-  } catch (const std::exception& e) {
-    throw InputError(detail::concat(root, " file '", path, "' is malformed YAML (a {key: value} mapping must fit on "
-                                    "one line)"));
-  }
+  const auto pl = readParameterFile(path, root);
   const auto& d = model.data();
   std::vector<Query> out;
   try {
@@ -193,8 +213,7 @@ std::vector<Query> readQueries(const std::string& path, const ReducedModel& mode
       for (auto it = points.begin(); it != points.end(); ++it) {
         const std::string name = points.name(it), where = "query '" + name + "'";
         GPHR_REQUIRE(points.isSublist(name), InputError, where, ": must be a mapping of parameters and keys");
-        GPHR_REQUIRE(name.find_first_of("/\\ ") == std::string::npos && name.rfind("grid-", 0) != 0, InputError, where,
-                     ": a name may not contain '/', '\\' or spaces, nor start with 'grid-'");
+        checkQueryName(name);
         Query q = base;
         q.name = name;
         apply(points.sublist(name), d, kind, where, q);
@@ -203,6 +222,7 @@ std::vector<Query> readQueries(const std::string& path, const ReducedModel& mode
     }
     if (pl->isSublist("grid")) addGrid(pl->sublist("grid"), d, base, out);
     GPHR_REQUIRE(!out.empty(), InputError, "no query: give queries.points or queries.grid");
+    GPHR_REQUIRE(out.size() <= kMaxQueries, InputError, out.size(), " queries; allowed: at most ", kMaxQueries);
     for (const auto& q : out) check(q, model, kind, "query '" + q.name + "'");
   } catch (const InputError& e) {
     throw InputError(detail::concat(root, " file '", path, "': ", e.what()));

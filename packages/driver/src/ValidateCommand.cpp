@@ -18,10 +18,12 @@
 #include "gphr/driver/Commands.hpp"
 #include "gphr/driver/Config.hpp"
 #include "gphr/driver/ModelEvaluation.hpp"
+#include "gphr/driver/OutputLock.hpp"
 #include "gphr/driver/QueryList.hpp"
 #include "gphr/driver/ValidationReport.hpp"
 #include "gphr/io/Hdf5File.hpp"
 #include "gphr/reduction/GalerkinRom.hpp"
+#include "gphr/online/Method.hpp"
 
 namespace gphr {
 
@@ -44,7 +46,7 @@ std::string fomKey(const Query& q, const ReducedModelData& d) {
   std::string s = d.sceneConfig + d.integratorConfig;
   for (double x : q.mu) std::snprintf(buf, sizeof buf, "mu=%.17g;", x), s += buf;
   std::snprintf(buf, sizeof buf, "T=%.17g;dt=%.17g;save=%ld", q.T, q.dt, q.saveEvery);
-  return s + buf;
+  return s + buf + ";gphr=" + gphrVersion();
 }
 
 // The full model at the point, from DIR/fom/<point>.h5 when its key matches, else run and cached.
@@ -109,7 +111,7 @@ std::vector<ValidationRecord> evaluatePoint(RunContext& ctx, const ReducedModel&
     out.push_back(recordOf(evaluateReducedModel(ctx, fom, *inst.system, *A, rom, true, "rom", b.k, 0), q, 0.0, outside));
     for (const auto& sm : d.models) {
       if (sm.k != b.k) continue;
-      if (sm.onlineNeedsFullSystem()) {  // gp-adeim: on the full system, adapting as it runs
+      if (methodInfo(sm.method).needsFullResidual) {  // gp-adeim: on the full system, adapting as it runs
         Teuchos::Time clock("adaptive setup");
         clock.start();
         const auto hr = rm.adaptiveModel(sm.k, sm.m, inst, A, q.dt);
@@ -142,6 +144,7 @@ int runValidate(const std::string& modelPath, const std::string& testsPath, cons
   ctx.comm = comm;
   ctx.outputDir = outputDir;
   makeDirectory(outputDir + "/fom", comm);
+  const OutputLock lock(outputDir, "validate", comm);
   makeDirectory(outputDir + "/points", comm);
   std::vector<ValidationRecord> all;
   std::vector<double> fomSeconds;
@@ -149,7 +152,7 @@ int runValidate(const std::string& modelPath, const std::string& testsPath, cons
   wall.start();
   for (size_t i = 0; i < points.size(); ++i) {
     const auto& q = points[i];
-    const std::string key = q.key() + ";file=" + d.created;
+    const std::string key = resultKey(q, d);
     std::vector<ValidationRecord> recs;
     double tFom = NAN;
     bool cachedFom = false, reused = readPointRecords(outputDir + "/points/" + q.name + ".txt", key, comm, recs, tFom);
@@ -166,8 +169,15 @@ int runValidate(const std::string& modelPath, const std::string& testsPath, cons
                    recs.size(), t, t / (i + 1) * (points.size() - i - 1));
     }
   }
-  if (comm->getRank() == 0) writeValidationReport(outputDir, rm, points, all, fomSeconds);
-  comm->barrier();
+  std::string error;  // rank 0 writes the report; its failure (a full disk, say) ends every rank
+  if (comm->getRank() == 0) {
+    try {
+      writeValidationReport(outputDir, rm, points, all, fomSeconds);
+    } catch (const InputError& e) {
+      error = detail::concat("gphr validate: the report: ", e.what());
+    }
+  }
+  agreeOnError(comm, error);
   return 0;
 }
 

@@ -13,7 +13,7 @@
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/Commands.hpp"
 #include "gphr/driver/Json.hpp"
-#include "gphr/driver/ReducedModel.hpp"
+#include "gphr/online/ReducedModel.hpp"
 
 namespace gphr {
 
@@ -39,12 +39,8 @@ std::string muText(const std::vector<double>& mu) {
   return s;
 }
 
-// Write-then-rename of a text file (rank 0 only).
-void writeText(const std::string& path, const std::string& text) {
-  const std::string temp = path + ".tmp";
-  std::ofstream(temp) << text;
-  std::rename(temp.c_str(), path.c_str());
-}
+// Write-then-rename of a text file (rank 0 only), InputError naming it if it cannot be written.
+void writeText(const std::string& path, const std::string& text) { writeTextFile(path, text); }
 
 // Two parameters: one map per model, each test point a square coloured by log10 E_L2 (a point that
 // did not finish drawn as a cross), the training box outlined.

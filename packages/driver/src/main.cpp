@@ -18,6 +18,7 @@
 #include "gphr/driver/Commands.hpp"
 #include "gphr/driver/Console.hpp"
 #include "gphr/driver/Config.hpp"
+#include "gphr/driver/OutputLock.hpp"
 #include "gphr/driver/Report.hpp"
 #include "gphr/models/SceneFactory.hpp"
 
@@ -95,6 +96,8 @@ int runMain(const Args& args, const gphr::RCP<const gphr::Comm>& comm) {
   ctx.mu = sceneParameters(*ctx.scene, ctx.config.sublist("parameters"));
   ctx.comm = comm;
   ctx.outputDir = args.output;
+  makeDirectory(ctx.outputDir, comm);
+  const OutputLock lock(ctx.outputDir, "run", comm);  // before an earlier run's files are touched
   prepareOutputDir(ctx, true);
   if (root)
     std::fprintf(stderr, "[gphr] scene %s, %d rank(s), output in %s\n", ctx.scene->name().c_str(),

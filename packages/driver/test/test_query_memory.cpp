@@ -14,7 +14,7 @@
 
 #include "TestUtils.hpp"
 #include "gphr/driver/ModelFileBuilder.hpp"
-#include "gphr/driver/ReducedModel.hpp"
+#include "gphr/online/ReducedModel.hpp"
 
 namespace {
 std::atomic<bool> tracking{false};

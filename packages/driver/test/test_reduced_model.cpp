@@ -12,7 +12,7 @@
 #include "HyperTestUtils.hpp"
 #include "gphr/driver/Config.hpp"
 #include "gphr/driver/ModelFileBuilder.hpp"
-#include "gphr/driver/ReducedModel.hpp"
+#include "gphr/online/ReducedModel.hpp"
 
 using namespace gphr;
 using namespace gphr::test;

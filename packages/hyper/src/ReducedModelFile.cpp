@@ -3,6 +3,8 @@
 #include <Teuchos_DefaultSerialComm.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "gphr/core/Error.hpp"
@@ -16,14 +18,46 @@ const char* kFormat = "gphr reduced model";
 
 std::vector<double> toDoubles(const std::vector<GO>& v) { return std::vector<double>(v.begin(), v.end()); }
 std::vector<double> toDoubles(const std::vector<size_t>& v) { return std::vector<double>(v.begin(), v.end()); }
+std::string basisGroup(int k) { return "/k" + std::to_string(k); }
+
+// Every value finite; InputError naming the dataset, the entry and the value otherwise.
+const std::vector<double>& finite(const std::vector<double>& v, const std::string& what) {
+  for (size_t i = 0; i < v.size(); ++i)
+    GPHR_REQUIRE(std::isfinite(v[i]), InputError, what, " has entry ", i, " = ", v[i], "; allowed: finite numbers");
+  return v;
+}
+
+// Whole numbers in [lo, hi], converted: indices and counts are checked before any is used.
 template <class T>
-std::vector<T> fromDoubles(const std::vector<double>& v) {
+std::vector<T> wholeNumbers(const std::vector<double>& v, const std::string& what, double lo, double hi) {
   std::vector<T> out;
-  for (double x : v) out.push_back(static_cast<T>(x));
+  out.reserve(v.size());
+  for (size_t i = 0; i < v.size(); ++i) {
+    GPHR_REQUIRE(std::isfinite(v[i]) && v[i] == std::floor(v[i]) && v[i] >= lo && v[i] <= hi, InputError, what,
+                 " has entry ", i, " = ", v[i], "; allowed: whole numbers from ", lo, " to ", hi);
+    out.push_back(static_cast<T>(v[i]));
+  }
   return out;
 }
 
-std::string basisGroup(int k) { return "/k" + std::to_string(k); }
+// One whole number of an attribute.
+long wholeAttribute(const Hdf5File& f, const std::string& object, const std::string& key, double lo, double hi) {
+  const auto v = f.doubleAttribute(object, key);
+  GPHR_REQUIRE(v.size() == 1, InputError, "attribute '", key, "' of '", object, "' has ", v.size(),
+               " values; allowed: one");
+  return wholeNumbers<long>(v, "attribute '" + key + "' of '" + object + "'", lo, hi).front();
+}
+
+// Largest state and term index a file may name (GO range), and the largest sizes it may declare.
+constexpr double kMaxIndex = 9.0e15, kMaxReducedSize = 100000, kMaxNodes = 4096;
+
+// Ascending and unique (DEIM rows, reference and stencil entries are sets).
+template <class T>
+void requireAscending(const std::vector<T>& v, const std::string& what) {
+  for (size_t i = 1; i < v.size(); ++i)
+    GPHR_REQUIRE(v[i - 1] < v[i], InputError, what, " is not ascending and unique at entry ", i, " (", v[i - 1],
+                 ", ", v[i], ")");
+}
 
 std::string joined(const std::vector<std::string>& v) {
   std::string s;
@@ -58,11 +92,12 @@ void setList(Hdf5File& f, const std::string& object, const std::string& key, con
   f.setAttribute(object, key, out);
 }
 template <class T>
-std::vector<T> getList(const Hdf5File& f, const std::string& object, const std::string& key) {
+std::vector<T> getList(const Hdf5File& f, const std::string& object, const std::string& key, double lo, double hi) {
   const auto v = f.doubleAttribute(object, key);
   GPHR_REQUIRE(!v.empty() && v[0] == double(v.size() - 1), InputError, "attribute '", key, "' of '", object,
-               "' is damaged");
-  return fromDoubles<T>(std::vector<double>(v.begin() + 1, v.end()));
+               "' is damaged (its first value is not its length)");
+  return wholeNumbers<T>(std::vector<double>(v.begin() + 1, v.end()), "attribute '" + key + "' of '" + object + "'",
+                         lo, hi);
 }
 
 void writeProvenance(Hdf5File& f, const ReducedModelData& d) {
@@ -132,57 +167,219 @@ void writeModel(Hdf5File& f, const StoredHyperModel& m) {
   f.setAttribute(gm, "shifted", std::vector<double>{s.shifted ? 1.0 : 0.0});
 }
 
+// The root attributes, each of its type and range.
+void readProvenance(const Hdf5File& f, ReducedModelData& d) {
+  d.sceneName = f.stringAttribute("/", "scene");
+  d.sceneConfig = f.stringAttribute("/", "scene_config");
+  d.integratorConfig = f.stringAttribute("/", "integrator_config");
+  d.config = f.stringAttribute("/", "config");
+  d.gphrVersion = f.stringAttribute("/", "gphr_version");
+  d.trilinosVersion = f.stringAttribute("/", "trilinos_version");
+  d.created = f.stringAttribute("/", "created");
+  GPHR_REQUIRE(!d.sceneName.empty() && !d.integratorConfig.empty(), InputError,
+               "attribute 'scene' or 'integrator_config' is empty");
+  d.buildRanks = static_cast<int>(wholeAttribute(f, "/", "build_ranks", 1, 1e9));
+  d.offlineSeconds = f.doubleAttribute("/", "offline_seconds").at(0);
+  const auto time = finite(f.doubleAttribute("/", "time"), "attribute 'time'");
+  GPHR_REQUIRE(time.size() == 2 && time[1] > 0 && time[0] >= time[1], InputError, "attribute 'time' (T, dt) is not "
+               "two numbers with dt > 0 and T >= dt");
+  d.T = time[0], d.dt = time[1];
+  d.polynomialDegree = static_cast<int>(wholeAttribute(f, "/", "polynomial_degree", 0, 64));
+  d.parameterNames = split(f.stringAttribute("/", "parameter_names"), ',');
+  const auto lo = finite(f.doubleAttribute("/", "box_lower"), "attribute 'box_lower'");
+  const auto hi = finite(f.doubleAttribute("/", "box_upper"), "attribute 'box_upper'");
+  d.enters = wholeNumbers<unsigned>(f.doubleAttribute("/", "parameter_enters"), "attribute 'parameter_enters'", 0, 7);
+  GPHR_REQUIRE(lo.size() == d.parameterNames.size() && hi.size() == lo.size() && d.enters.size() == lo.size(),
+               InputError, "the parameter box is inconsistent (", d.parameterNames.size(), " names, ", lo.size(),
+               " lower and ", hi.size(), " upper bounds, ", d.enters.size(), " entry flags)");
+  for (size_t p = 0; p < lo.size(); ++p) {
+    GPHR_REQUIRE(lo[p] <= hi[p] && !d.parameterNames[p].empty(), InputError, "parameter ", p, " ('",
+                 d.parameterNames[p], "') has the box [", lo[p], ", ", hi[p], "]; allowed: a name and lower <= upper");
+    d.box.emplace_back(lo[p], hi[p]);
+  }
+}
+
+struct ModelKey {
+  std::string method;
+  int k, m;
+};
+
+// "method/k<k>/m<m>", with k and m whole numbers in range.
+ModelKey parseModelKey(const std::string& key) {
+  const auto a = key.find('/'), b = key.rfind('/');
+  const auto whole = [&](const std::string& text, char tag) {
+    GPHR_REQUIRE(text.size() >= 2 && text.size() <= 7 && text[0] == tag &&
+                     text.find_first_not_of("0123456789", 1) == std::string::npos,
+                 InputError, "attribute 'models' has entry '", key, "'; allowed: method/k<k>/m<m>");
+    const int v = std::stoi(text.substr(1));
+    GPHR_REQUIRE(v >= 1 && v <= kMaxReducedSize, InputError, "attribute 'models' has entry '", key, "' with ", tag,
+                 " = ", v, "; allowed: 1 to ", kMaxReducedSize);
+    return v;
+  };
+  GPHR_REQUIRE(a != std::string::npos && b != a && a > 0 && key.find('/', a + 1) == b, InputError,
+               "attribute 'models' has entry '", key, "'; allowed: method/k<k>/m<m>");
+  return ModelKey{key.substr(0, a), whole(key.substr(a + 1, b - a - 1), 'k'), whole(key.substr(b + 1), 'm')};
+}
+
+const StoredBasisData& basisOf(const ReducedModelData& d, int k) { return d.basis(k); }
+
 StoredBasisData readBasisData(const Hdf5File& f, const ReducedModelData& d, int k) {
   StoredBasisData b;
   b.k = k;
   const std::string g = basisGroup(k), iv = g + "/interpolation_values", cv = g + "/constant_values";
-  b.referenceGids = fromDoubles<GO>(readMatrix(f, g + "/reference_gids"));
-  b.interpolated = getList<size_t>(f, iv, "interpolated_parameters");
+  const size_t r = 2 * static_cast<size_t>(k);
+  b.referenceGids = wholeNumbers<GO>(readMatrix(f, g + "/reference_gids"), g + "/reference_gids", 0, kMaxIndex);
+  requireAscending(b.referenceGids, g + "/reference_gids");
+  b.interpolated = getList<size_t>(f, iv, "interpolated_parameters", 0, double(d.box.size()) - 1);
+  requireAscending(b.interpolated, "attribute 'interpolated_parameters' of '" + iv + "'");
   std::vector<std::pair<double, double>> box;
   for (size_t p : b.interpolated) box.push_back(d.box.at(p));
-  const size_t r = 2 * static_cast<size_t>(k);
-  b.interpolant = ParameterInterpolant(box, getList<int>(f, iv, "nodes_per_parameter"),
-                                       r * r + r + b.referenceGids.size());
-  b.interpolant.setValues(f.readArray(iv));
-  b.constant = ParameterInterpolant(d.box, getList<int>(f, cv, "nodes_per_parameter"), 1);
-  b.constant.setValues(f.readArray(cv));
+  const auto nodes = getList<int>(f, iv, "nodes_per_parameter", 1, kMaxNodes);
+  const auto cnodes = getList<int>(f, cv, "nodes_per_parameter", 1, kMaxNodes);
+  GPHR_REQUIRE(nodes.size() == b.interpolated.size() && cnodes.size() == d.box.size(), InputError,
+               "the interpolants of k = ", k, " have ", nodes.size(), " and ", cnodes.size(),
+               " node counts for ", b.interpolated.size(), " and ", d.box.size(), " parameters");
+  // sizes are checked against the datasets before the interpolants allocate anything
+  size_t rows = 0, cols = 0, crows = 0, ccols = 0;
+  const auto values = finite(f.readArray(iv, &rows, &cols), iv), constants = finite(f.readArray(cv, &crows, &ccols), cv);
+  size_t numNodes = 1, numConstNodes = 1;
+  for (int n : nodes) numNodes *= static_cast<size_t>(n);
+  for (int n : cnodes) numConstNodes *= static_cast<size_t>(n);
+  GPHR_REQUIRE(rows == numNodes && cols == r * r + r + b.referenceGids.size(), InputError, iv, " is ", rows, " x ",
+               cols, "; allowed: ", numNodes, " x ", r * r + r + b.referenceGids.size(),
+               " (nodes x [L_r, f_r, y0 at reference_gids])");
+  GPHR_REQUIRE(crows == numConstNodes && ccols == 1, InputError, cv, " is ", crows, " x ", ccols, "; allowed: ",
+               numConstNodes, " x 1");
+  b.interpolant = ParameterInterpolant(box, nodes, r * r + r + b.referenceGids.size());
+  b.interpolant.setValues(values);
+  b.constant = ParameterInterpolant(d.box, cnodes, 1);
+  b.constant.setValues(constants);
   for (const char* piece : {"L", "f", "c", "reference"})
     if (f.hasAttribute(iv, std::string("error_") + piece))
       b.interpolationError[piece] = f.doubleAttribute(iv, std::string("error_") + piece).at(0);
-  b.probeGids = fromDoubles<GO>(readMatrix(f, g + "/probe_gids"));
-  b.probeRows = readMatrix(f, g + "/probe_rows");
+  b.probeGids = wholeNumbers<GO>(readMatrix(f, g + "/probe_gids"), g + "/probe_gids", 0, kMaxIndex);
+  b.probeRows = finite(readMatrix(f, g + "/probe_rows"), g + "/probe_rows");
+  GPHR_REQUIRE(b.probeRows.size() == b.probeGids.size() * r, InputError, g, "/probe_rows has ", b.probeRows.size(),
+               " values; allowed: ", b.probeGids.size(), " probes x 2k = ", r);
+  for (GO gid : b.probeGids)
+    GPHR_REQUIRE(std::binary_search(b.referenceGids.begin(), b.referenceGids.end(), gid), InputError, g,
+                 "/probe_gids names state entry ", gid, ", which has no reference value in ", g, "/reference_gids");
   b.hasBasis = f.exists(g + "/basis");
   return b;
 }
 
-StoredHyperModel readModel(const Hdf5File& f, const std::string& method, int k, int m) {
+StoredHyperModel readModel(const Hdf5File& f, const StoredBasisData& basis, const std::string& method, int k, int m) {
   StoredHyperModel out;
   out.method = method, out.k = k, out.m = m;
   const std::string gm = basisGroup(k) + "/" + method + "/m" + std::to_string(m);
   if (out.onlineNeedsFullSystem()) {
     out.adeimConfig = f.stringAttribute(gm, "adeim_config");
+    GPHR_REQUIRE(!out.adeimConfig.empty(), InputError, "attribute 'adeim_config' of '", gm, "' is empty");
     return out;
   }
   RowSample& s = out.sample;
-  s.rows = fromDoubles<GO>(f.readArray(gm + "/rows"));
-  s.weights = f.readArray(gm + "/weights");
-  s.stencil.offsets = fromDoubles<size_t>(f.readArray(gm + "/stencil_offsets"));
-  s.stencil.gids = fromDoubles<GO>(f.readArray(gm + "/stencil_gids"));
-  s.basisRows = f.readArray(gm + "/basis_rows");
+  s.rows = wholeNumbers<GO>(f.readArray(gm + "/rows"), gm + "/rows", 0, kMaxIndex);
+  {
+    auto sorted = s.rows;  // in the order DEIM chose them, each once
+    std::sort(sorted.begin(), sorted.end());
+    GPHR_REQUIRE(std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end(), InputError, gm,
+                 "/rows names a term twice; allowed: each term once");
+  }
+  s.weights = finite(f.readArray(gm + "/weights"), gm + "/weights");
+  s.stencil.offsets = wholeNumbers<size_t>(f.readArray(gm + "/stencil_offsets"), gm + "/stencil_offsets", 0, kMaxIndex);
+  s.stencil.gids = wholeNumbers<GO>(f.readArray(gm + "/stencil_gids"), gm + "/stencil_gids", 0, kMaxIndex);
+  s.basisRows = finite(f.readArray(gm + "/basis_rows"), gm + "/basis_rows");
   s.reducedDim = 2 * k;
-  s.shifted = f.doubleAttribute(gm, "shifted").at(0) != 0.0;
+  const long shifted = wholeAttribute(f, gm, "shifted", 0, 1);
+  s.shifted = shifted != 0;
   out.conditionNumber = f.doubleAttribute(gm, "cond_PtU").at(0);
+  GPHR_REQUIRE(std::isfinite(out.conditionNumber) && out.conditionNumber >= 0, InputError, "attribute 'cond_PtU' of '",
+               gm, "' = ", out.conditionNumber, "; allowed: a finite number >= 0");
   // m is the budget: gp-eqp may stop with fewer terms (no further term improves its fit).
   GPHR_REQUIRE(!s.rows.empty() && s.rows.size() <= static_cast<size_t>(m) && s.weights.size() == s.rows.size() &&
-                   s.stencil.offsets.size() == s.rows.size() + 1 && s.stencil.offsets.back() == s.stencil.gids.size() &&
-                   s.basisRows.size() == s.stencil.gids.size() * s.reducedDim,
-               InputError, "model ", out.key(), " is inconsistent (rows, weights, stencils and basis rows disagree)");
+                   s.stencil.offsets.size() == s.rows.size() + 1 && s.basisRows.size() == s.stencil.gids.size() * s.reducedDim,
+               InputError, "model ", out.key(), " is inconsistent: ", s.rows.size(), " rows (allowed: 1 to m = ", m,
+               "), ", s.weights.size(), " weights, ", s.stencil.offsets.size(), " stencil offsets (rows + 1), ",
+               s.basisRows.size(), " basis-row values (stencil entries x 2k = ", s.stencil.gids.size() * s.reducedDim, ")");
+  const auto& off = s.stencil.offsets;
+  GPHR_REQUIRE(off.front() == 0 && off.back() == s.stencil.gids.size(), InputError, gm, "/stencil_offsets runs from ",
+               off.front(), " to ", off.back(), "; allowed: from 0 to the ", s.stencil.gids.size(), " stencil entries");
+  for (size_t i = 1; i < off.size(); ++i)
+    GPHR_REQUIRE(off[i - 1] < off[i], InputError, gm, "/stencil_offsets is not increasing at entry ", i, " (",
+                 off[i - 1], ", ", off[i], "): every row has at least one stencil entry");
+  for (GO gid : s.stencil.gids)
+    GPHR_REQUIRE(std::binary_search(basis.referenceGids.begin(), basis.referenceGids.end(), gid), InputError, gm,
+                 "/stencil_gids names state entry ", gid, ", which has no reference value in /k", k, "/reference_gids");
   return out;
 }
 
 RCP<const Comm> selfComm() { return rcp(new Teuchos::SerialComm<int>()); }
 
 }  // namespace
+
+namespace {
+// FNV-1a, 64 bits, over the bytes of the model data in a fixed order: a fingerprint against
+// changed bytes (not a cryptographic signature). Doubles by their bit patterns.
+class Fnv1a {
+ public:
+  void bytes(const void* p, size_t n) {
+    const auto* c = static_cast<const unsigned char*>(p);
+    for (size_t i = 0; i < n; ++i) h_ = (h_ ^ c[i]) * 1099511628211ULL;
+  }
+  void number(double x) { bytes(&x, sizeof x); }
+  void text(const std::string& s) {
+    number(double(s.size()));
+    bytes(s.data(), s.size());
+  }
+  template <class T>
+  void numbers(const std::vector<T>& v) {
+    number(double(v.size()));
+    for (const auto& x : v) number(double(x));
+  }
+  std::string hex() const {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "fnv1a64:%016llx", static_cast<unsigned long long>(h_));
+    return buf;
+  }
+
+ private:
+  unsigned long long h_ = 1469598103934665603ULL;
+};
+}  // namespace
+
+std::string modelDataChecksum(const ReducedModelData& d) {
+  Fnv1a h;
+  for (const auto& t : {d.sceneName, d.sceneConfig, d.integratorConfig, d.config}) h.text(t);
+  h.numbers(std::vector<double>{d.T, d.dt, double(d.polynomialDegree)});
+  for (const auto& n : d.parameterNames) h.text(n);
+  for (size_t p = 0; p < d.box.size(); ++p) h.numbers(std::vector<double>{d.box[p].first, d.box[p].second});
+  h.numbers(d.enters);
+  for (const auto& b : d.bases) {
+    h.number(b.k);
+    h.numbers(b.referenceGids);
+    h.numbers(b.interpolated);
+    h.numbers(b.interpolant.nodesPerParameter());
+    h.numbers(b.interpolant.values());
+    h.numbers(b.constant.nodesPerParameter());
+    h.numbers(b.constant.values());
+    h.numbers(b.probeGids);
+    h.numbers(b.probeRows);
+  }
+  for (const auto& m : d.models) {
+    h.text(m.key());
+    if (m.onlineNeedsFullSystem()) {  // stored as its options
+      h.text(m.adeimConfig);
+      continue;
+    }
+    h.numbers(m.sample.rows);
+    h.numbers(m.sample.weights);
+    h.numbers(m.sample.stencil.offsets);
+    h.numbers(m.sample.stencil.gids);
+    h.numbers(m.sample.basisRows);
+    h.numbers(std::vector<double>{m.sample.shifted ? 1.0 : 0.0, m.conditionNumber});
+  }
+  return h.hex();
+}
 
 std::vector<double> StoredBasisData::restrict(const std::vector<double>& mu) const {
   std::vector<double> sub;
@@ -264,6 +461,7 @@ void writeReducedModelFile(const std::string& path, const RCP<const Comm>& comm,
     std::string list;
     for (const auto& m : data.models) list += (list.empty() ? "" : ";") + m.key();
     f.setAttribute("/", "models", list);
+    f.setAttribute("/", "checksum", modelDataChecksum(data));
     f.flush();
   }
   out.commit();
@@ -275,42 +473,32 @@ ReducedModelData readReducedModelFile(const std::string& path) {
     GPHR_REQUIRE(f.hasAttribute("/", "format") && f.stringAttribute("/", "format") == kFormat, InputError,
                  "not a gphr reduced-model file (no format attribute '", kFormat, "'; write one with gphr build)");
     ReducedModelData d;
-    d.schemaVersion = static_cast<int>(f.doubleAttribute("/", "schema_version").at(0));
+    d.schemaVersion = static_cast<int>(wholeAttribute(f, "/", "schema_version", 0, 1e6));
     GPHR_REQUIRE(d.schemaVersion == kReducedModelSchema, InputError, "schema version ", d.schemaVersion,
                  "; this gphr reads schema version ", kReducedModelSchema, " (rebuild the model with this gphr build)");
-    d.sceneName = f.stringAttribute("/", "scene");
-    d.sceneConfig = f.stringAttribute("/", "scene_config");
-    d.integratorConfig = f.stringAttribute("/", "integrator_config");
-    d.config = f.stringAttribute("/", "config");
-    d.gphrVersion = f.stringAttribute("/", "gphr_version");
-    d.trilinosVersion = f.stringAttribute("/", "trilinos_version");
-    d.created = f.stringAttribute("/", "created");
-    d.buildRanks = static_cast<int>(f.doubleAttribute("/", "build_ranks").at(0));
-    d.offlineSeconds = f.doubleAttribute("/", "offline_seconds").at(0);
-    const auto time = f.doubleAttribute("/", "time");
-    d.T = time.at(0), d.dt = time.at(1);
-    d.polynomialDegree = static_cast<int>(f.doubleAttribute("/", "polynomial_degree").at(0));
-    d.parameterNames = split(f.stringAttribute("/", "parameter_names"), ',');
-    const auto lo = f.doubleAttribute("/", "box_lower"), hi = f.doubleAttribute("/", "box_upper");
-    d.enters = fromDoubles<unsigned>(f.doubleAttribute("/", "parameter_enters"));
-    GPHR_REQUIRE(lo.size() == d.parameterNames.size() && hi.size() == lo.size() && d.enters.size() == lo.size(),
-                 InputError, "the parameter box is inconsistent");
-    for (size_t p = 0; p < lo.size(); ++p) d.box.emplace_back(lo[p], hi[p]);
-    for (const auto& key : split(f.stringAttribute("/", "models"), ';')) {  // method/k<k>/m<m>
-      std::string method;
-      int k = 0, m = 0;
-      const auto a = key.find('/'), b = key.rfind('/');
-      method = key.substr(0, a);
-      k = std::stoi(key.substr(a + 2, b - a - 2));
-      m = std::stoi(key.substr(b + 2));
+    readProvenance(f, d);
+    const std::string list = f.stringAttribute("/", "models");
+    for (const auto& key : split(list, ';')) {  // method/k<k>/m<m>
+      const auto [method, k, m] = parseModelKey(key);
+      GPHR_REQUIRE(f.exists(basisGroup(k) + "/" + method + "/m" + std::to_string(m)), InputError, "attribute 'models' "
+                   "names ", key, ", which the file does not hold");
       if (std::none_of(d.bases.begin(), d.bases.end(), [&](const StoredBasisData& x) { return x.k == k; }))
         d.bases.push_back(readBasisData(f, d, k));
-      d.models.push_back(readModel(f, method, k, m));
+      GPHR_REQUIRE(std::none_of(d.models.begin(), d.models.end(), [&](const StoredHyperModel& x) { return x.key() == key; }),
+                   InputError, "attribute 'models' names ", key, " twice");
+      d.models.push_back(readModel(f, basisOf(d, k), method, k, m));
     }
+    GPHR_REQUIRE(!d.models.empty(), InputError, "it holds no model (attribute 'models' is empty)");
+    // a changed byte anywhere in the model data is an error, not a different model
+    GPHR_REQUIRE(f.hasAttribute("/", "checksum"), InputError, "it has no checksum attribute (write it with gphr build)");
+    const std::string stored = f.stringAttribute("/", "checksum"), computed = modelDataChecksum(d);
+    GPHR_REQUIRE(stored == computed, InputError, "its model data do not match its checksum (stored ", stored,
+                 ", computed ", computed, "): the file was changed or damaged after gphr build wrote it");
+    d.checksum = stored;
     return d;
   } catch (const InputError& e) {
     throw InputError(detail::concat("reduced-model file '", path, "': ", e.what()));
-  } catch (const std::logic_error& e) {  // std::stoi, .at(): a damaged attribute
+  } catch (const std::logic_error& e) {  // .at() of a damaged attribute
     throw InputError(detail::concat("reduced-model file '", path, "' is damaged: ", e.what()));
   }
 }

@@ -2,6 +2,7 @@
 
 #include <Teuchos_DefaultMpiComm.hpp>
 #include <cstdio>
+#include <filesystem>
 
 #include "gphr/core/Error.hpp"
 
@@ -43,6 +44,14 @@ Hdf5File::Hdf5File(const std::string& path, const RCP<const Comm>& comm, Mode mo
     file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.id);
     GPHR_REQUIRE(file_ >= 0, InputError, "cannot create HDF5 file '", path, "' (is the directory writable?)");
   } else {
+    // Checked before HDF5's MPI-IO driver opens it: on a directory it prints one error per read.
+    std::error_code ec;
+    const auto st = std::filesystem::status(path, ec);
+    GPHR_REQUIRE(st.type() != std::filesystem::file_type::not_found, InputError, "cannot open HDF5 file '", path,
+                 "': no such file");
+    GPHR_REQUIRE(st.type() == std::filesystem::file_type::regular, InputError, "cannot open HDF5 file '", path,
+                 "': it is ", st.type() == std::filesystem::file_type::directory ? "a directory" : "not a regular file",
+                 "; allowed: an HDF5 file");
     file_ = H5Fopen(path.c_str(), mode == Mode::ReadOnly ? H5F_ACC_RDONLY : H5F_ACC_RDWR, fapl.id);
     GPHR_REQUIRE(file_ >= 0, InputError, "cannot open HDF5 file '", path,
                  "': missing, truncated or not an HDF5 file");
@@ -214,6 +223,18 @@ std::vector<double> Hdf5File::readArray(const std::string& name, size_t* rows, s
   GPHR_REQUIRE(nd >= 1 && nd <= 2, InputError, "HDF5 file '", path_, "': dataset '", name, "' is not 1-D or 2-D");
   H5Sget_simple_extent_dims(fspace.id, dims, nullptr);
   if (nd == 1) dims[1] = 1;
+  Id type{H5Dget_type(dset.id), H5Tclose};
+  const H5T_class_t cls = H5Tget_class(type.id);
+  GPHR_REQUIRE(cls == H5T_FLOAT || cls == H5T_INTEGER, InputError, "HDF5 file '", path_, "': dataset '", name,
+               "' is not numeric; allowed: numbers");
+  // Checked before allocating: a dataset resized beyond the file's bytes (its chunks unwritten)
+  // would claim memory the file never held. GPHR writes contiguous, uncompressed data.
+  hsize_t fileBytes = 0;
+  H5Fget_filesize(file_, &fileBytes);
+  const double elements = double(dims[0]) * double(dims[1]);
+  GPHR_REQUIRE(elements * sizeof(double) <= double(fileBytes) + 1048576.0, InputError, "HDF5 file '", path_,
+               "': dataset '", name, "' claims ", dims[0], " x ", dims[1], " values in a file of ", fileBytes,
+               " bytes; allowed: values the file holds");
   std::vector<double> out(dims[0] * dims[1]);
   Id xfer{collectiveTransfer(), H5Pclose};
   check(H5Dread(dset.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, xfer.id, out.data()),
@@ -255,6 +276,20 @@ std::string Hdf5File::stringAttribute(const std::string& object, const std::stri
                "HDF5 file '", path_, "': '", object, "' has no attribute '", key, "'");
   Id attr{H5Aopen_by_name(file_, object.c_str(), key.c_str(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose};
   Id type{H5Aget_type(attr.id), H5Tclose};
+  Id space{H5Aget_space(attr.id), H5Sclose};
+  GPHR_REQUIRE(H5Tget_class(type.id) == H5T_STRING && H5Sget_simple_extent_npoints(space.id) == 1, InputError,
+               "HDF5 file '", path_, "': attribute '", key, "' of '", object,
+               "' is not a string; allowed: one fixed- or variable-length string");
+  if (H5Tis_variable_str(type.id) > 0) {  // as h5py and other writers make them
+    Id memType{H5Tcopy(H5T_C_S1), H5Tclose};
+    H5Tset_size(memType.id, H5T_VARIABLE);
+    H5Tset_cset(memType.id, H5Tget_cset(type.id));  // ASCII or UTF-8, as the writer chose
+    char* value = nullptr;
+    check(H5Aread(attr.id, memType.id, &value), "reading attribute '" + key + "'", path_);
+    std::string out = value ? value : "";
+    H5free_memory(value);
+    return out;
+  }
   std::string s(H5Tget_size(type.id), '\0');
   check(H5Aread(attr.id, type.id, s.data()), "reading attribute '" + key + "'", path_);
   return s.substr(0, s.find('\0'));
@@ -264,6 +299,10 @@ std::vector<double> Hdf5File::doubleAttribute(const std::string& object, const s
   GPHR_REQUIRE(H5Aexists_by_name(file_, object.c_str(), key.c_str(), H5P_DEFAULT) > 0, InputError,
                "HDF5 file '", path_, "': '", object, "' has no attribute '", key, "'");
   Id attr{H5Aopen_by_name(file_, object.c_str(), key.c_str(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose};
+  Id type{H5Aget_type(attr.id), H5Tclose};
+  const H5T_class_t cls = H5Tget_class(type.id);
+  GPHR_REQUIRE(cls == H5T_FLOAT || cls == H5T_INTEGER, InputError, "HDF5 file '", path_, "': attribute '", key,
+               "' of '", object, "' is not numeric; allowed: numbers");
   Id space{H5Aget_space(attr.id), H5Sclose};
   std::vector<double> v(H5Sget_simple_extent_npoints(space.id));
   check(H5Aread(attr.id, H5T_NATIVE_DOUBLE, v.data()), "reading attribute '" + key + "'", path_);

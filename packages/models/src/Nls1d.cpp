@@ -36,7 +36,7 @@ Nls1d::Nls1d(GO n, double halfLength) : n_(n), L_(halfLength) {
 
 RCP<const RowEvaluator> Nls1d::rowKernel(const std::vector<double>& mu) const {
   GPHR_REQUIRE(mu.size() == 1, InputError, "nls1d takes one parameter (eps), got ", mu.size());
-  return makeRowEvaluator(NlsKernel{mu[0]}, 4);
+  return makeRowEvaluator(NlsKernel{mu[0]}, 4, 2);  // stencil (q_i, p_i)
 }
 
 std::pair<RCP<HamiltonianSystem>, RCP<Vector>> Nls1d::build(const RCP<const Comm>& comm,

@@ -50,7 +50,7 @@ Swe2d::Swe2d(GO nx, double halfLength) : nx_(nx), L_(halfLength) {
 RCP<const RowEvaluator> Swe2d::rowKernel(const std::vector<double>& mu) const {
   GPHR_REQUIRE(mu.size() == 2, InputError, "swe2d takes two parameters (beta, gamma), got ", mu.size());
   const double dx = 2 * L_ / nx_;  // as in build(): the same h to the last bit
-  return makeRowEvaluator(SweKernel{mu[1], 0.5 / dx}, 3);
+  return makeRowEvaluator(SweKernel{mu[1], 0.5 / dx}, 3, 5);  // chi_i and Phi at E, W, N, S
 }
 
 std::pair<RCP<HamiltonianSystem>, RCP<Vector>> Swe2d::build(const RCP<const Comm>& comm,

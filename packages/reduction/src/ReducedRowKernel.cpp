@@ -27,6 +27,11 @@ ReducedRowKernel::ReducedRowKernel(RCP<const RowEvaluator> term, RowSample sampl
                " weights");
   GPHR_REQUIRE(s.basisRows.size() == M * r && s.reference.size() == M, InputError,
                "reduced row kernel: basis rows / reference do not match the ", M, " stencil entries");
+  // The kernel reads stencilSize() values per row: a stencil of another size (a damaged file)
+  // would make it read past its row.
+  for (LO i = 0; term->stencilSize() > 0 && i < s.stencil.numRows(); ++i)
+    GPHR_REQUIRE(s.stencil.size(i) == term->stencilSize(), InputError, "reduced row kernel: row ", s.rows[i], " has ",
+                 s.stencil.size(i), " stencil entries; the row kernel reads ", term->stencilSize());
   batch_.allocate(s.rows, s.stencil.offsets, true, true);
   // AS_ is written in full below and W_ before every read: no zero fill (GP-ADEIM builds a kernel
   // per update, and at m = 100, 2k = 400 these are 640 KB each).

@@ -4,14 +4,6 @@
 
 namespace gphr {
 
-void applyCanonicalJ(const DenseVector& x, DenseVector& out) {
-  const int k = x.length() / 2;
-  for (int i = 0; i < k; ++i) {
-    out(i) = x(k + i);
-    out(k + i) = -x(i);
-  }
-}
-
 DenseBackend::DenseBackend(DenseHamiltonian& model)
     : model_(model), hbar_(model.dim(), model.dim()), K_(model.dim(), model.dim()), pivots_(model.dim()) {}
 

@@ -61,13 +61,17 @@ class RowEvaluator {
   virtual void evaluate(const RowBatch& batch) const = 0;
   /// Polynomial degree of G in y (0 if not polynomial): AVF picks its quadrature from it.
   int polynomialDegree() const { return degree_; }
+  /// Entries of y every row's stencil has (the kernel reads that many values), or 0 where rows
+  /// differ: a sample mesh read from a file is checked against it before the kernel runs.
+  int stencilSize() const { return stencilSize_; }
 
  protected:
-  /// Evaluator of a row kernel whose G is a polynomial of degree `degree` (0: not polynomial).
-  explicit RowEvaluator(int degree) : degree_(degree) {}
+  /// Evaluator of a row kernel whose G is a polynomial of degree `degree` (0: not polynomial) and
+  /// whose rows each read `stencilSize` entries (0: not the same for every row).
+  explicit RowEvaluator(int degree, int stencilSize = 0) : degree_(degree), stencilSize_(stencilSize) {}
 
  private:
-  int degree_;
+  int degree_, stencilSize_;
 };
 
 /// The one place a row kernel is called: a parallel_for over the rows of a batch. The virtual
@@ -96,17 +100,19 @@ template <class Kernel>
 class KernelRows final : public RowEvaluator {
  public:
   /// Wraps `kernel`; `degree` as in polynomialDegree().
-  KernelRows(const Kernel& kernel, int degree) : RowEvaluator(degree), kernel_(kernel) {}
+  KernelRows(const Kernel& kernel, int degree, int stencilSize = 0)
+      : RowEvaluator(degree, stencilSize), kernel_(kernel) {}
   void evaluate(const RowBatch& b) const override { runRowKernel(kernel_, b); }
 
  private:
   Kernel kernel_;
 };
 
-/// A RowEvaluator over a kernel functor (KernelRows).
+/// A RowEvaluator over a kernel functor (KernelRows): G of polynomial degree `degree`, each row
+/// reading `stencilSize` entries of y (0: not the same for every row).
 template <class Kernel>
-RCP<const RowEvaluator> makeRowEvaluator(const Kernel& kernel, int degree) {
-  return rcp(new KernelRows<Kernel>(kernel, degree));
+RCP<const RowEvaluator> makeRowEvaluator(const Kernel& kernel, int degree, int stencilSize = 0) {
+  return rcp(new KernelRows<Kernel>(kernel, degree, stencilSize));
 }
 
 /// The decomposed nonlinearity of a full system: the row kernel with the layout of the rows of G

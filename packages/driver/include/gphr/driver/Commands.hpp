@@ -17,6 +17,15 @@ void prepareOutputDir(RunContext& ctx, bool removeSummary);
 /// Creates `dir` on rank 0; collective like prepareOutputDir.
 void makeDirectory(const std::string& dir, const RCP<const Comm>& comm);
 
+/// Writes `text` to `path` through `path`.tmp and a rename, so that the file appears whole or not
+/// at all; InputError naming the path and the system's reason (a full disk, a read-only or missing
+/// directory) if any step fails. On the calling rank alone.
+void writeTextFile(const std::string& path, const std::string& text);
+
+/// Collective: `error` is rank 0's (empty: none); every rank throws it as an InputError, so a
+/// failure of rank 0's work (its report, its files) ends all ranks with one message.
+void agreeOnError(const RCP<const Comm>& comm, std::string error);
+
 /// `gphr build`: the offline stages of the config at `configPath` -> the reduced-model file `modelPath`.
 int runBuild(const std::string& configPath, const std::string& modelPath, const std::string& artifactsDir,
              const RCP<const Comm>& comm);

@@ -10,10 +10,13 @@
 #include <functional>
 
 #include "gphr/driver/FomStage.hpp"
-#include "gphr/driver/Pipeline.hpp"
-#include "gphr/driver/RunStatus.hpp"
+#include "gphr/driver/ModelRun.hpp"
+#include "gphr/driver/RunContext.hpp"
+#include "gphr/reduction/SymplecticBasis.hpp"
+#include "gphr/online/RunStatus.hpp"
+#include "gphr/online/TimeLoop.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
-#include "gphr/timeint/DenseBackend.hpp"
+#include "gphr/core/DenseHamiltonian.hpp"
 
 namespace gphr {
 
@@ -23,19 +26,12 @@ std::vector<int> stageK(const Teuchos::ParameterList& cfg, const ReducedBasis& b
 /// [kb, kb + k) (still orthonormal and symplectic).
 RCP<MultiVector> leadingBasis(const ReducedBasis& basis, int k);
 
-/// Called after every step (and at step 0) with the state, after it was measured (GP-ADEIM's
-/// update). Online time. A lagged Newton matrix is kept across it: the lag rule refactors when
-/// Newton slows.
-using AfterStepHook = std::function<void(long, const DenseVector&)>;
-
-/// GP-ADEIM's update after every step (GpAdeimModel::afterStep), a degenerate update mid-run
-/// reported as a SolverError (the run's result `diverged`, not a crash of gphr).
-AfterStepHook adeimUpdateHook(GpAdeimModel& model);
-
 /// hasHamiltonian: the model has one (rom, gp-deim, gp-adeim); the classic DEIM baselines do not.
+/// adapt: called after every step (and at step 0) once the state was measured, in online time
+/// (GP-ADEIM's update, adeimUpdateHook).
 ModelRun evaluateReducedModel(const RunContext& ctx, const FomResult& fom, const HamiltonianSystem& system,
                               const MultiVector& A, DenseHamiltonian& model, bool hasHamiltonian,
                               const std::string& method, int k, int m, bool keepStates = false,
-                              const AfterStepHook& afterStep = {});
+                              const StepHook& adapt = {});
 
 }  // namespace gphr

@@ -8,11 +8,18 @@
 #include <string>
 #include <vector>
 
-#include "gphr/driver/ReducedModel.hpp"
+#include "gphr/online/ReducedModel.hpp"
 
 namespace gphr {
 
 /// One query: a model of the file (method, k, m) at parameter mu over [0, T] with step dt.
+/// Limits of a queries or validation file, checked before anything is run or allocated.
+/// @{
+constexpr size_t kMaxQueryName = 64;        ///< characters of a query's name (it names its result files)
+constexpr long kMaxQuerySteps = 10000000;   ///< T / dt of one query (H_hr is kept at every step: 80 MB)
+constexpr size_t kMaxQueries = 100000;      ///< queries in one file (points and grid together)
+/// @}
+
 struct Query {
   std::string name;  ///< Name of the query (of its point, or grid-NNNN).
   std::vector<double> mu;  ///< The parameter mu.
@@ -38,6 +45,10 @@ struct Query {
 /// `validate`: the same sections; each point runs every model of the file, so method, k, m and
 /// probes are not keys there, and points outside the box are allowed and marked).
 enum class QueryFileKind { Queries, Validation };
+
+/// What a finished result of query q is keyed by: the query (Query::key()), the model file's
+/// checksum and the gphr version. A result is reused only when all three match.
+std::string resultKey(const Query& q, const ReducedModelData& data);
 /// Reads and checks a queries (or validation) file against `model`; InputError on any problem.
 std::vector<Query> readQueries(const std::string& path, const ReducedModel& model,
                                QueryFileKind kind = QueryFileKind::Queries);

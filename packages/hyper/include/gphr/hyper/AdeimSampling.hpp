@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "gphr/timeint/DenseBackend.hpp"
+#include "gphr/core/DenseTypes.hpp"
 #include "gphr/core/Types.hpp"
 #include "gphr/hyper/AdeimUpdate.hpp"
 

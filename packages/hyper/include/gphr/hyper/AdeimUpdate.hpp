@@ -16,7 +16,7 @@
 #include <Teuchos_RCP.hpp>
 #include <vector>
 
-#include "gphr/timeint/DenseBackend.hpp"
+#include "gphr/core/DenseTypes.hpp"
 
 namespace gphr {
 

@@ -17,7 +17,7 @@
 
 namespace gphr {
 
-constexpr int kReducedModelSchema = 2;  ///< Version of the reduced-model file's layout (doc/model-file.md).
+constexpr int kReducedModelSchema = 3;  ///< Version of the reduced-model file's layout (doc/model-file.md).
 
 /// One hyper-reduced model: its sample mesh without the parameter-dependent reference rows.
 struct StoredHyperModel {
@@ -77,6 +77,7 @@ struct ReducedModelData {
   std::string gphrVersion, trilinosVersion, created;
   /// @}
   int buildRanks = 1;  ///< MPI ranks of the build.
+  std::string checksum;  ///< the file's checksum of its model data (modelDataChecksum), as read and verified
   double offlineSeconds = 0.0;   ///< the build's wall time (training, bases, DEIM pairs, interpolants)
   /// the build configuration's time section (query defaults)
   /// @{
@@ -100,9 +101,16 @@ struct ReducedModelData {
 /// appears complete or not at all.
 void writeReducedModelFile(const std::string& path, const RCP<const Comm>& comm, const ReducedModelData& data,
                            const std::vector<RCP<const MultiVector>>& bases, const PhaseSpace* space = nullptr);
-/// Reads everything but the bases, on the calling process alone (no collective). InputError, one
-/// line naming the file, for a file that is missing, truncated, of another format or schema.
+/// Reads everything but the bases, on the calling process alone (no collective), and validates it
+/// whole before anything uses it: every dataset's shape and type, indices whole and in range,
+/// stencil offsets consistent with the stencils, counts consistent between datasets, every value
+/// finite, every attribute of its type, and the checksum. InputError, one line naming the file, the
+/// dataset and what is allowed, for a file that is missing, truncated, of another format or schema,
+/// or changed after gphr build wrote it.
 ReducedModelData readReducedModelFile(const std::string& path);
+/// The fingerprint of the model data (FNV-1a over every dataset and attribute a query reads, but the
+/// basis A and the provenance: versions, date, ranks, seconds), as the file's `checksum` holds it.
+std::string modelDataChecksum(const ReducedModelData& data);
 /// A of reduced size k on space's map (collective over its communicator). InputError if the file
 /// was built without it.
 RCP<MultiVector> readReducedModelBasis(const std::string& path, int k, const PhaseSpace& space);

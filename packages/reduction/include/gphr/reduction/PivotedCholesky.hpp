@@ -6,7 +6,7 @@
 /// QR of U gives (R the same up to signs), at O(m^3) on the m x m Gram matrix instead of O(d m^2).
 #include <vector>
 
-#include "gphr/timeint/DenseBackend.hpp"
+#include "gphr/core/DenseTypes.hpp"
 
 namespace gphr {
 

@@ -6,7 +6,7 @@
 /// (eq:Hyperred_model; m sampled rows, w = DEIM weights) are this class with different row
 /// samples: the time schemes, Newton and the report see one DenseHamiltonian.
 #include "gphr/reduction/ReducedRowKernel.hpp"
-#include "gphr/timeint/DenseBackend.hpp"
+#include "gphr/core/DenseHamiltonian.hpp"
 
 namespace gphr {
 

@@ -36,7 +36,7 @@
 #include <string>
 
 #include "gphr/core/Error.hpp"
-#include "gphr/timeint/Quadrature.hpp"
+#include "gphr/core/Quadrature.hpp"
 
 namespace gphr {
 

@@ -10,7 +10,7 @@
 
 #include "gphr/core/HamiltonianSystem.hpp"
 #include "gphr/core/LocalScatter.hpp"
-#include "gphr/timeint/Quadrature.hpp"
+#include "gphr/core/Quadrature.hpp"
 
 namespace gphr {
 

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "gphr/core/Error.hpp"
-#include "gphr/timeint/Quadrature.hpp"
+#include "gphr/core/Quadrature.hpp"
 
 using namespace gphr;
 

@@ -19,17 +19,10 @@
 #include "gphr/hyper/GpDeimModel.hpp"
 #include "gphr/hyper/ReducedModelFile.hpp"
 #include "gphr/models/Scene.hpp"
-#include "gphr/timeint/DenseModelIntegrator.hpp"
+#include "gphr/online/Lift.hpp"
+#include "gphr/online/TimeLoop.hpp"
 
 namespace gphr {
-
-/// The number of steps T / dt; InputError naming T and dt unless dt > 0, T >= dt and T is a whole
-/// number of steps (to 1e-9 relative).
-long wholeSteps(double T, double dt);
-
-/// The lifted physical state at probe entries: out = reference + rows z (rows: probes x 2k, row-major).
-void liftProbes(const std::vector<double>& reference, const std::vector<double>& rows, const DenseVector& z,
-                std::vector<double>& out);
 
 /// How a query obtains what its parameter changes in L_r, f_r, c and the reference rows.
 enum class SetupRoute { Interpolated, Exact };
@@ -44,16 +37,6 @@ struct QueryStep {
   const std::vector<double>& probes;  ///< Lifted state at the probe entries.
 };
 using QueryObserver = std::function<void(const QueryStep&)>;  ///< Called by OnlineModel::simulate() after each step.
-
-/// The outcome and costs of one OnlineModel::simulate().
-struct SimulationStats {
-  RunStats run;  ///< Newton and time-loop statistics.
-  double onlineSeconds = 0.0;   ///< the time loop without the observer's share
-  double observeSeconds = 0.0;  ///< H_hr and probes per step, and the observer itself
-  std::string status = "ok";    ///< ok | diverged
-  std::string reason;           ///< why it diverged
-  long lastStep = 0;  ///< Last step reached.
-};
 
 /// One hyper-reduced model at one parameter.
 class OnlineModel {
@@ -74,8 +57,8 @@ class OnlineModel {
  private:
   friend class ReducedModel;
   RCP<GpDeimModel> model_;
-  Teuchos::ParameterList integrator_;
-  int degree_ = 0;
+  Teuchos::ParameterList integrator_;  ///< the file's integrator section
+  int degree_ = 0;                     ///< polynomial degree of the scene's G
   std::vector<double> mu_;
   std::vector<GO> probeGids_;
   std::vector<double> probeRows_, probeReference_;

@@ -1,4 +1,4 @@
-#include "gphr/timeint/Quadrature.hpp"
+#include "gphr/core/Quadrature.hpp"
 
 #include <Teuchos_LAPACK.hpp>
 #include <cmath>

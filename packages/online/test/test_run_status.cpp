@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "gphr/driver/RunStatus.hpp"
+#include "gphr/online/RunStatus.hpp"
 
 using gphr::firstUnboundedStep;
 using gphr::kUnboundedHamiltonian;

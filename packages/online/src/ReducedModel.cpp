@@ -1,4 +1,4 @@
-#include "gphr/driver/ReducedModel.hpp"
+#include "gphr/online/ReducedModel.hpp"
 
 #include <Teuchos_DefaultSerialComm.hpp>
 #include <Teuchos_Time.hpp>
@@ -9,9 +9,9 @@
 
 #include "gphr/core/Error.hpp"
 #include "gphr/core/ReplicatedGather.hpp"
-#include "gphr/driver/ModelEvaluation.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/models/SceneFactory.hpp"
+#include "gphr/online/Method.hpp"
 
 namespace gphr {
 
@@ -90,7 +90,7 @@ OnlineModel ReducedModel::instantiate(const std::string& method, int k, int m, c
   OnlineModel out;
   out.extrapolated_ = checkParameter(mu, allowExtrapolation);
   const StoredHyperModel& stored = data_.model(method, k, m);
-  GPHR_REQUIRE(!stored.onlineNeedsFullSystem(), InputError, method, " k=", k, " m=", m,
+  GPHR_REQUIRE(!methodInfo(method).needsFullResidual, InputError, method, " k=", k, " m=", m,
                " samples the full residual online: use ReducedModel::simulateAdaptive (gphr query runs it on every "
                "rank)");
   const StoredBasisData& basis = data_.basis(k);
@@ -113,56 +113,13 @@ OnlineModel ReducedModel::instantiate(const std::string& method, int k, int m, c
 }
 
 namespace {
-using StepHook = std::function<void(long, double, const DenseVector&)>;
-
-// The time loop shared by both online paths: z from 0 over T / dt steps; after every step `observe`
-// (its time left out of the online time) and `adapt` (the adaptive model's update: online time); a
-// Newton failure or a non-finite state ends the run as `diverged`.
-SimulationStats runLoop(DenseHamiltonian& model, const Teuchos::ParameterList& integrator, int degree, double T,
-                        double dt, const StepHook& observe, const StepHook& adapt = {}) {
-  const long steps = wholeSteps(T, dt);
-  SimulationStats stats;
-  DenseModelIntegrator integ(model, integrator, degree);
-  DenseVector z(model.dim());
-  Teuchos::Time wall("online"), obs("observe");
-  wall.start();
-  try {
-    stats.run = integ.run(z, dt, steps, [&](long j, double t, const DenseVector& zj, const StepReport&) {
-      obs.start(true);
-      stats.lastStep = j;
-      for (int i = 0; i < zj.length(); ++i)
-        GPHR_REQUIRE(std::isfinite(zj(i)), SolverError, "non-finite reduced state at step ", j);
-      observe(j, t, zj);
-      stats.observeSeconds += obs.stop();
-      if (adapt) adapt(j, t, zj);
-    });
-  } catch (const SolverError& e) {
-    stats.status = "diverged";
-    stats.reason = e.what();
-    if (obs.isRunning()) stats.observeSeconds += obs.stop();
-  }
-  stats.onlineSeconds = wall.stop() - stats.observeSeconds;
-  return stats;
+// The time loop's settings of a query: the file's integrator at step dt over T / dt steps.
+SimulationSettings settingsOf(const Teuchos::ParameterList& integrator, int degree, double T, double dt) {
+  SimulationSettings out;
+  out.dt = dt, out.steps = wholeSteps(T, dt), out.integrator = integrator, out.polynomialDegree = degree;
+  return out;
 }
 }  // namespace
-
-long wholeSteps(double T, double dt) {
-  GPHR_REQUIRE(std::isfinite(dt) && dt > 0 && std::isfinite(T) && T >= dt, InputError, "T = ", T, ", dt = ", dt,
-               "; allowed: dt > 0 and T >= dt");
-  const double ratio = T / dt;
-  const long steps = std::lround(ratio);
-  GPHR_REQUIRE(std::abs(ratio - steps) <= 1e-9 * ratio, InputError, "T = ", T, " is not a whole number of steps dt = ",
-               dt, " (T / dt = ", ratio, ")");
-  return steps;
-}
-
-void liftProbes(const std::vector<double>& reference, const std::vector<double>& rows, const DenseVector& z,
-                std::vector<double>& out) {
-  const size_t r = static_cast<size_t>(z.length());
-  out.assign(reference.begin(), reference.end());
-  for (size_t i = 0; i < out.size(); ++i)
-    for (size_t j = 0; j < r; ++j) out[i] += rows[i * r + j] * z(static_cast<int>(j));
-}
 
 void OnlineModel::probeValues(const DenseVector& z, std::vector<double>& out) const {
   liftProbes(probeReference_, probeRows_, z, out);
@@ -170,12 +127,13 @@ void OnlineModel::probeValues(const DenseVector& z, std::vector<double>& out) co
 
 SimulationStats OnlineModel::simulate(double T, double dt, const QueryObserver& observer) {
   std::vector<double> probes;
-  return runLoop(*model_, integrator_, degree_, T, dt, [&](long j, double t, const DenseVector& z) {
-    if (!observer) return;
-    const double H = model_->hamiltonian(z);
-    if (!probeGids_.empty()) probeValues(z, probes);
-    observer(QueryStep{j, t, z, H, probes});
-  });
+  DenseVector z;
+  const StepHook observe = [&](long j, double t, const DenseVector& zj) {
+    const double H = model_->hamiltonian(zj);
+    if (!probeGids_.empty()) probeValues(zj, probes);
+    observer(QueryStep{j, t, zj, H, probes});
+  };
+  return gphr::simulate(*model_, settingsOf(integrator_, degree_, T, dt), z, observer ? observe : StepHook());
 }
 
 RCP<GpAdeimModel> ReducedModel::adaptiveModel(int k, int m, const SceneInstance& inst, const RCP<const MultiVector>& A,
@@ -208,9 +166,9 @@ SimulationStats ReducedModel::simulateAdaptive(int k, int m, const std::vector<d
     liftProbes(y0, basis.probeRows, z, probes);
     observer(QueryStep{j, t, z, model.hamiltonian(z), probes});  // H_hr^j of the model of this step
   };
-  const AfterStepHook update = adeimUpdateHook(model);
-  const StepHook adapt = [&](long j, double, const DenseVector& z) { update(j, z); };
-  return runLoop(model, integrator, data_.polynomialDegree, T, dt, observe, adapt);
+  DenseVector z;
+  return gphr::simulate(model, settingsOf(integrator, data_.polynomialDegree, T, dt), z, observe,
+                        adeimUpdateHook(model));
 }
 
 }  // namespace gphr

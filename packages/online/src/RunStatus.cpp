@@ -1,4 +1,4 @@
-#include "gphr/driver/RunStatus.hpp"
+#include "gphr/online/RunStatus.hpp"
 
 #include <cmath>
 

@@ -1,0 +1,97 @@
+#include "gphr/driver/InputFile.hpp"
+
+#include <Teuchos_XMLParameterListCoreHelpers.hpp>
+#include <Teuchos_YamlParameterListCoreHelpers.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <vector>
+
+#include "gphr/core/Error.hpp"
+
+namespace gphr {
+
+namespace {
+
+// The line of Teuchos' message that names the problem ("Parser failure at line L column C").
+std::string firstLineOf(const std::string& s) {
+  std::string line = s.substr(0, s.find('\n'));
+  const auto pos = s.find("Parser failure");
+  if (pos != std::string::npos) line = s.substr(pos, s.find('\n', pos) - pos);
+  return line;
+}
+
+// The file's bytes, after the checks that need no parsing.
+std::string readText(const std::string& path, const std::string& what) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const auto st = fs::status(path, ec);
+  GPHR_REQUIRE(st.type() != fs::file_type::not_found, InputError, "cannot read ", what, " file '", path,
+               "': no such file");
+  GPHR_REQUIRE(st.type() != fs::file_type::directory, InputError, what, " file '", path,
+               "' is a directory; allowed: a YAML file");
+  GPHR_REQUIRE(st.type() == fs::file_type::regular, InputError, what, " file '", path,
+               "' is not a regular file; allowed: a YAML file");
+  const auto size = fs::file_size(path, ec);
+  GPHR_REQUIRE(!ec && size <= kMaxParameterFileBytes, InputError, what, " file '", path, "' has ", size,
+               " bytes; allowed: at most ", kMaxParameterFileBytes);
+  std::ifstream in(path, std::ios::binary);
+  GPHR_REQUIRE(in.good(), InputError, "cannot read ", what, " file '", path, "'");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  GPHR_REQUIRE(text.find_first_not_of(" \t\r\n") != std::string::npos, InputError, what, " file '", path,
+               "' is empty; allowed: a YAML mapping under the key '", what == "config" ? "gphr" : what, "'");
+  for (size_t i = 0; i < text.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    GPHR_REQUIRE(c >= 0x20 || c == '\t' || c == '\n' || c == '\r', InputError, what, " file '", path,
+                 "' is not a text file (byte ", static_cast<int>(c), " at offset ", i, "); allowed: a YAML file");
+  }
+  return text;
+}
+
+}  // namespace
+
+std::string duplicateYamlKey(const std::string& text) {
+  // Block mappings: a key is a line "  name:" (no flow braces before the colon); a mapping's keys
+  // share its indent, and a deeper line opens a child mapping of the key above it.
+  struct Level {
+    size_t indent;
+    std::map<std::string, int> keys;  // key -> line
+  };
+  std::vector<Level> stack;
+  std::istringstream in(text);
+  int lineNo = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++lineNo;
+    const size_t indent = line.find_first_not_of(' ');
+    if (indent == std::string::npos || line[indent] == '#' || line[indent] == '-') continue;
+    const size_t colon = line.find(':', indent);
+    if (colon == std::string::npos || line.find_first_of("{[\"'", indent) < colon) continue;
+    const std::string key = line.substr(indent, colon - indent);
+    while (!stack.empty() && stack.back().indent > indent) stack.pop_back();
+    if (stack.empty() || stack.back().indent < indent) stack.push_back(Level{indent, {}});
+    const auto [it, added] = stack.back().keys.emplace(key, lineNo);
+    if (!added) return detail::concat("key '", key, "' at line ", lineNo, " (first at line ", it->second, ")");
+  }
+  return "";
+}
+
+Teuchos::RCP<Teuchos::ParameterList> readParameterFile(const std::string& path, const std::string& what, bool xml) {
+  const std::string text = readText(path, what);
+  try {
+    return xml ? Teuchos::getParametersFromXmlString(text) : Teuchos::getParametersFromYamlString(text);
+  } catch (const std::exception& e) {
+    const std::string dup = xml ? "" : duplicateYamlKey(text);
+    GPHR_REQUIRE(dup.empty(), InputError, what, " file '", path, "' has a duplicate ", dup,
+                 "; allowed: each key once per mapping");
+    // Teuchos' YAML reader takes a flow mapping {a: 1, b: 2} on one line only: say so, since its
+    // own message gives just a position.
+    throw InputError(detail::concat(what, " file '", path, "' is malformed ", xml ? "XML" : "YAML", ": ",
+                                    firstLineOf(e.what()),
+                                    xml ? "" : " (a {key: value, ...} mapping must fit on one line; "
+                                               "write longer sections in block style, one key per line)"));
+  }
+}
+
+}  // namespace gphr

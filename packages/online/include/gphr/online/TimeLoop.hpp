@@ -1,0 +1,91 @@
+#pragma once
+/// @file
+/// The one observed time loop: `gphr run`'s evaluation of the full model and of every reduced
+/// method, `gphr query`, `gphr validate` and an embedding code's OnlineModel::simulate all
+/// integrate through it. After every step (and at step 0) the observer sees the state, then the
+/// adaptive hook (GP-ADEIM's update) may change the model. A Newton failure or a non-finite state
+/// ends the run with status `diverged` and its reason: a result, not an exception. The observer's
+/// time is measured apart from the loop's (the online time), the adaptive hook's is online time.
+#include <Teuchos_ParameterList.hpp>
+#include <Teuchos_Time.hpp>
+#include <cmath>
+#include <functional>
+#include <string>
+
+#include "gphr/core/DenseHamiltonian.hpp"
+#include "gphr/core/Error.hpp"
+#include "gphr/core/Types.hpp"
+#include "gphr/timeint/Integrator.hpp"
+
+namespace gphr {
+
+class GpAdeimModel;
+
+/// The number of steps T / dt; InputError naming T and dt unless dt > 0, T >= dt and T is a whole
+/// number of steps (to 1e-9 relative).
+long wholeSteps(double T, double dt);
+
+/// What a time loop runs: the step, the number of steps, and the integrator's settings.
+struct SimulationSettings {
+  double dt = 0.0;                         ///< the time step
+  long steps = 0;                          ///< steps from t = 0 (T = steps dt)
+  Teuchos::ParameterList integrator;       ///< the validated `integrator` section (scheme, Newton)
+  int polynomialDegree = 0;                ///< of the nonlinear term (AVF's exact quadrature), 0 unknown
+};
+
+/// Called after each step j (and at j = 0) with t_j and z^j.
+using StepHook = std::function<void(long, double, const DenseVector&)>;
+
+/// The outcome and costs of one time loop.
+struct SimulationStats {
+  RunStats run;                 ///< Newton and time-loop statistics
+  double onlineSeconds = 0.0;   ///< the loop's wall seconds without the observer's share (the adaptive hook counts)
+  double observeSeconds = 0.0;  ///< the observer's seconds
+  std::string status = "ok";    ///< ok | diverged
+  std::string reason;           ///< why it diverged
+  long lastStep = 0;            ///< the last step whose state was observed
+  bool ok() const { return status == "ok"; }  ///< it ran to the end
+};
+
+/// Whether every entry of a state is finite (dense: entry by entry; distributed: its norm, collective).
+bool allFinite(const DenseVector& z);
+/// @copydoc allFinite(const DenseVector&)
+bool allFinite(const Vector& y);
+
+/// The loop itself, for an integrator of timeint (DenseModelIntegrator, FullModelIntegrator) and its
+/// state y, integrated in place over `steps` steps of size dt (see the file's description).
+template <class Integrator, class State>
+SimulationStats observedTimeLoop(Integrator& integ, State& y, double dt, long steps,
+                                 const std::function<void(long, double, const State&)>& observe,
+                                 const std::function<void(long, double, const State&)>& adapt = {}) {
+  SimulationStats stats;
+  Teuchos::Time wall("online"), obs("observe");
+  wall.start();
+  try {
+    stats.run = integ.run(y, dt, steps, [&](long j, double t, const State& yj, const StepReport&) {
+      obs.start(true);
+      stats.lastStep = j;
+      if (!allFinite(yj)) throw SolverError(detail::concat("non-finite state at step ", j));
+      if (observe) observe(j, t, yj);
+      stats.observeSeconds += obs.stop();
+      if (adapt) adapt(j, t, yj);
+    });
+  } catch (const SolverError& e) {
+    stats.status = "diverged";
+    stats.reason = e.what();
+    if (obs.isRunning()) stats.observeSeconds += obs.stop();
+  }
+  stats.onlineSeconds = wall.stop() - stats.observeSeconds;
+  return stats;
+}
+
+/// Integrates `model` from z = 0 over settings.steps steps (see the file's description); z holds
+/// the last state reached.
+SimulationStats simulate(DenseHamiltonian& model, const SimulationSettings& settings, DenseVector& z,
+                         const StepHook& observe = {}, const StepHook& adapt = {});
+
+/// GP-ADEIM's update after step j as an adaptive hook: a degenerate update mid-run (InputError from
+/// the update) is reported as the run's divergence, as any other failure of the online model.
+StepHook adeimUpdateHook(GpAdeimModel& model);
+
+}  // namespace gphr
