@@ -4,7 +4,8 @@
 # run is under a timeout; the test fails on any exit code other than the expected one (2 for bad
 # input, 0 for an edit that keeps the model), a hang, a crash, more than one line from gphr on
 # stderr, an output directory left by a failed run, or a status other than `ok` from a file that
-# loads. Every case runs on 1 rank, every fifth on 2 ranks as well; validate runs on a sample.
+# loads. Every case runs on 1 rank, every eighth and the issue's table rows on 2 ranks as well;
+# validate runs on a sample.
 # usage: model_file_fuzz.sh GPHR MPIEXEC
 set -u
 gphr=$(cd "$(dirname "$1")" && pwd)/$(basename "$1"); mpiexec=$2
@@ -43,10 +44,14 @@ run() {
 
 while read -r name expect; do
   run "$expect" "query $name" "$gphr" query "bad/$name.h5" q.yaml --output out
-  if [ $((runs % 5)) -eq 0 ]; then
+  if [ $((runs % 8)) -eq 0 ]; then
     run "$expect" "query $name (2 ranks)" "$mpiexec" -np 2 "$gphr" query "bad/$name.h5" q.yaml --output out
   fi
 done < bad/cases.txt
+# the issue's rows on 2 ranks whatever the sampling above: an offset out of range, NaN in c and in w
+for name in offsets_1000 nan_k6_constant_values nan_k6_gp-deim_m12_weights; do
+  run 2 "query $name (2 ranks)" "$mpiexec" -np 2 "$gphr" query "bad/$name.h5" q.yaml --output out
+done
 for name in offsets_1000 nan_k6_constant_values flipped_k6_gp-deim_m12_basis_rows; do
   run 2 "validate $name" "$gphr" validate "bad/$name.h5" v.yaml --output out
   run 2 "validate $name (2 ranks)" "$mpiexec" -np 2 "$gphr" validate "bad/$name.h5" v.yaml --output out
@@ -64,8 +69,10 @@ for q in qdir empty.yaml binary.yaml duplicate.yaml long_name.yaml empty_name.ya
   run 2 "queries file $q" "$gphr" query good.h5 "$q" --output out
   run 2 "queries file $q (2 ranks)" "$mpiexec" -np 2 "$gphr" query good.h5 "$q" --output out
 done
-run 2 "model file is a directory" "$gphr" query qdir q.yaml --output out
-grep -q 'Is a directory' stderr.txt && fail "model file is a directory: MPI-IO's messages reached the user"
+for launch in "" "$mpiexec -np 2"; do
+  run 2 "model file is a directory ${launch:+(2 ranks)}" $launch "$gphr" query qdir q.yaml --output out
+  grep -q 'Is a directory' stderr.txt && fail "model file is a directory: MPI-IO's messages reached the user"
+done
 
 # output directories that cannot take the results: a full disk (/dev/full) and a report path taken
 PREPARE='mkdir -p out && ln -s /dev/full out/queries.csv.tmp'

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "gphr/driver/Commands.hpp"
 #include "gphr/driver/Config.hpp"
 #include "gphr/driver/ModelEvaluation.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
@@ -62,6 +63,7 @@ void writeRunsCsv(const RomStages& st, double fomOnline, const std::string& path
     os << r.method << "," << r.k << "," << r.m << "," << r.status() << "," << r.eL2 << "," << r.tOnline << "," << (r.tOnline > 0 ? fomOnline / r.tOnline : NAN) << "," << eRom << ","
        << r.run.number("t_total_s") << "\n";
   }
+  finishText(os, path);
 }
 
 // Hamiltonian error terms of eq:ham_cons_bound for one GP-DEIM run: |H(y^j) - H(y^0)| (full
@@ -76,6 +78,7 @@ void writeHamiltonianTerms(const FomResult& fom, const ModelRun& r, double dt, c
     os << j * dt << "," << std::abs(fom.hamiltonian[j] - H0) << "," << std::abs(r.modelHamiltonian[j] - Hhr0) << ","
        << std::abs(r.hamiltonian[j] - r.modelHamiltonian[j]) << "," << std::abs(fom.hamiltonian[j] - r.hamiltonian[j])
        << "\n";
+  finishText(os, csv);
 }
 
 // One row per GP-ADEIM adaptation: what it did (rank, m_s, residuals: fig:schro_samplingstrats,
@@ -118,6 +121,7 @@ void writeAdeimUpdates(const FomResult& fom, const std::vector<ModelRun>& runs, 
       segStart = u.hrAfter;
     }
   }
+  finishText(os, csv);
 }
 
 // GP-ADEIM runs whose window has fewer columns than m (2k w < m): C_j then has rank at most 2k w,
@@ -281,7 +285,7 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
   std::vector<std::string> written;
   writeRunsCsv(st, fom.tOnline, p.at("runs.csv"));
   written.push_back("runs.csv");
-  std::ofstream(p.at("report.md")) << reportMd(ctx, fom, st);
+  writeTextFile(p.at("report.md"), reportMd(ctx, fom, st));
   written.push_back("report.md");
   if (!st.deimSingularValues.empty()) {
     std::ofstream os(p.at("deim_singular_values.csv"));
@@ -289,6 +293,7 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
     os << "index,sigma,sigma_rel\n";
     const auto& s = st.deimSingularValues;
     for (size_t j = 0; j < s.size(); ++j) os << j + 1 << "," << s[j] << "," << s[j] / s[0] << "\n";
+    finishText(os, p.at("deim_singular_values.csv"));
     written.push_back("deim_singular_values.csv");
   }
   const ModelRun* terms = nullptr;  // the GP-DEIM run with the largest k, then m

@@ -49,6 +49,12 @@ void writeTextFile(const std::string& path, const std::string& text) {
   }
 }
 
+void finishText(std::ofstream& os, const std::string& path) {
+  const bool opened = os.is_open();
+  if (opened) os.close();
+  GPHR_REQUIRE(opened && !os.fail(), InputError, "cannot write '", path, "': ", std::strerror(errno));
+}
+
 void agreeOnError(const RCP<const Comm>& comm, std::string error) {
   int length = comm->getRank() == 0 ? static_cast<int>(error.size()) : 0;
   Teuchos::broadcast(*comm, 0, Teuchos::outArg(length));

@@ -15,6 +15,7 @@
 #include <sstream>
 #include <thread>
 
+#include "gphr/core/Error.hpp"
 #include "gphr/driver/Commands.hpp"
 #include "gphr/driver/Config.hpp"
 #include "gphr/driver/HyperReport.hpp"
@@ -152,6 +153,7 @@ void writeHistoryCsv(const std::vector<double>& H, double H0, const std::vector<
     }
     os << "\n";
   }
+  finishText(os, path);
 }
 
 // Plot |H(y^j) - H(y^0)| with gnuplot; returns false (with the reason) when it cannot.
@@ -183,6 +185,7 @@ void writeSingularValues(const std::vector<double>& s, const std::string& csv, c
     os.precision(17);
     os << "index,sigma,sigma_rel\n";
     for (size_t j = 0; j < s.size(); ++j) os << j + 1 << "," << s[j] << "," << s[j] / s[0] << "\n";
+    finishText(os, csv);
   }
   if (!plot || std::system("command -v gnuplot > /dev/null 2>&1") != 0) return;
   const std::string script = png + ".gp";
@@ -246,21 +249,27 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
   }
   const std::string spaceTime = rom ? spaceTimeData(ctx, fom, *rom) : "";
   std::vector<std::string> hyperFiles;
+  std::string error;  // rank 0 writes the report; its failure (a full disk, say) ends every rank
   if (root) {
-    const double H0 = fom.hamiltonian.front();
-    writeHistoryCsv(fom.hamiltonian, H0, nullptr, saveEvery, dt, csv.tempPath());
-    if (firstRom) writeHistoryCsv(firstRom->hamiltonian, H0, &firstRom->errors, saveEvery, dt, romCsv.tempPath());
-    if (rom) hyperFiles = writeHyperReport(ctx, fom, *rom, spaceTime, hyperPaths, ctx.config.sublist("output").get<bool>("plots"));
-    const bool deimSv = std::find(hyperFiles.begin(), hyperFiles.end(), "deim_singular_values.csv") != hyperFiles.end();
-    if (rom) writeSingularValues(rom->basis.singularValues, svCsv.tempPath(), svPng.tempPath(),
-                                 ctx.config.sublist("output").get<bool>("plots"),
-                                 deimSv ? hyperPaths.at("deim_singular_values.csv") : "");
-    if (ctx.config.sublist("output").get<bool>("plots"))
-      plotted = plotHamiltonian(csv.tempPath(), firstRom ? romCsv.tempPath() : "", png.tempPath(), why);
-    if (!plotted && !why.empty()) std::fprintf(stderr, "[gphr] no plots: %s\n", why.c_str());
-    std::ofstream(json.tempPath()) << summary.str() << "\n";
-    std::ofstream(configFile.tempPath()) << configYaml(ctx.config);
+    try {
+      const double H0 = fom.hamiltonian.front();
+      writeHistoryCsv(fom.hamiltonian, H0, nullptr, saveEvery, dt, csv.tempPath());
+      if (firstRom) writeHistoryCsv(firstRom->hamiltonian, H0, &firstRom->errors, saveEvery, dt, romCsv.tempPath());
+      if (rom) hyperFiles = writeHyperReport(ctx, fom, *rom, spaceTime, hyperPaths, ctx.config.sublist("output").get<bool>("plots"));
+      const bool deimSv = std::find(hyperFiles.begin(), hyperFiles.end(), "deim_singular_values.csv") != hyperFiles.end();
+      if (rom) writeSingularValues(rom->basis.singularValues, svCsv.tempPath(), svPng.tempPath(),
+                                   ctx.config.sublist("output").get<bool>("plots"),
+                                   deimSv ? hyperPaths.at("deim_singular_values.csv") : "");
+      if (ctx.config.sublist("output").get<bool>("plots"))
+        plotted = plotHamiltonian(csv.tempPath(), firstRom ? romCsv.tempPath() : "", png.tempPath(), why);
+      if (!plotted && !why.empty()) std::fprintf(stderr, "[gphr] no plots: %s\n", why.c_str());
+      writeTextFile(json.tempPath(), summary.str() + "\n");
+      writeTextFile(configFile.tempPath(), configYaml(ctx.config));
+    } catch (const InputError& e) {
+      error = detail::concat("gphr run: the report: ", e.what());
+    }
   }
+  agreeOnError(ctx.comm, error);
   int plottedAll = plotted;
   Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(plottedAll));
   // In the directory of an earlier run, a report file this run does not write is that run's and

@@ -1,7 +1,10 @@
 #include "gphr/io/Hdf5File.hpp"
 
+#include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_DefaultMpiComm.hpp>
 #include <cstdio>
+#include <cstring>
+#include <cerrno>
 #include <filesystem>
 
 #include "gphr/core/Error.hpp"
@@ -318,10 +321,12 @@ RenameOnCommit::~RenameOnCommit() {
 
 void RenameOnCommit::commit() {
   comm_->barrier();
-  if (comm_->getRank() == 0)
-    GPHR_REQUIRE(std::rename(temp_.c_str(), final_.c_str()) == 0, InputError, "cannot rename '", temp_,
-                 "' to '", final_, "'");
-  comm_->barrier();
+  // Rank 0 renames; its failure is every rank's (a rank that threw alone would leave the others
+  // waiting in their next collective).
+  int error = 0;
+  if (comm_->getRank() == 0 && std::rename(temp_.c_str(), final_.c_str()) != 0) error = errno ? errno : EIO;
+  Teuchos::broadcast(*comm_, 0, Teuchos::outArg(error));
+  GPHR_REQUIRE(error == 0, InputError, "cannot rename '", temp_, "' to '", final_, "': ", std::strerror(error));
   done_ = true;
 }
 

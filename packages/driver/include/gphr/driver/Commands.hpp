@@ -4,6 +4,7 @@
 /// file's models at many parameters, spread over the ranks) and validate (the models against the
 /// full model over a set of test parameters). Each returns the process exit code; bad input is an
 /// InputError (exit 2), thrown on every rank.
+#include <fstream>
 #include <string>
 
 #include "gphr/driver/RunContext.hpp"
@@ -21,6 +22,10 @@ void makeDirectory(const std::string& dir, const RCP<const Comm>& comm);
 /// at all; InputError naming the path and the system's reason (a full disk, a read-only or missing
 /// directory) if any step fails. On the calling rank alone.
 void writeTextFile(const std::string& path, const std::string& text);
+
+/// Ends writing the text file `path` through `os`: flushes and closes it; InputError naming the path
+/// and the system's reason if it could not be opened or a write failed (a full disk).
+void finishText(std::ofstream& os, const std::string& path);
 
 /// Collective: `error` is rank 0's (empty: none); every rank throws it as an InputError, so a
 /// failure of rank 0's work (its report, its files) ends all ranks with one message.

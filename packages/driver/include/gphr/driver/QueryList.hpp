@@ -12,7 +12,6 @@
 
 namespace gphr {
 
-/// One query: a model of the file (method, k, m) at parameter mu over [0, T] with step dt.
 /// Limits of a queries or validation file, checked before anything is run or allocated.
 /// @{
 constexpr size_t kMaxQueryName = 64;        ///< characters of a query's name (it names its result files)
@@ -20,6 +19,7 @@ constexpr long kMaxQuerySteps = 10000000;   ///< T / dt of one query (H_hr is ke
 constexpr size_t kMaxQueries = 100000;      ///< queries in one file (points and grid together)
 /// @}
 
+/// One query: a model of the file (method, k, m) at parameter mu over [0, T] with step dt.
 struct Query {
   std::string name;  ///< Name of the query (of its point, or grid-NNNN).
   std::vector<double> mu;  ///< The parameter mu.
