@@ -43,13 +43,25 @@ double maxDeviation(const std::vector<double>& H, double H0) {
   return d;
 }
 
-FomResult runFullModel(const Teuchos::ParameterList& cfg, const Scene& scene, const std::vector<double>& mu,
+EvaluationSettings evaluationSettingsFrom(const Teuchos::ParameterList& cfg) {
+  EvaluationSettings s;
+  s.time.dt = cfg.sublist("time").get<double>("dt");
+  s.time.steps = numSteps(cfg);
+  s.time.integrator = cfg.sublist("integrator");
+  s.saveEvery = cfg.sublist("output").get<int>("saveEvery");
+  s.progressSeconds = cfg.sublist("output").get<double>("progressSeconds");
+  s.onlineRepeats = cfg.sublist("pipeline").get<int>("onlineRepeats");
+  s.onlineRepeatSeconds = cfg.sublist("pipeline").get<double>("onlineRepeatSeconds");
+  s.shift = cfg.sublist("scene").get<bool>("shift");
+  return s;
+}
+
+FomResult runFullModel(const EvaluationSettings& settings, const Scene& scene, const std::vector<double>& mu,
                        const RCP<const Comm>& comm) {
-  const auto& out = cfg.sublist("output");
-  const long steps = numSteps(cfg), saveEvery = out.get<int>("saveEvery");
-  const double dt = cfg.sublist("time").get<double>("dt");
-  auto inst = scene.instantiate(comm, mu, cfg.sublist("scene").get<bool>("shift"));
-  FullModelIntegrator integ(inst.system, cfg.sublist("integrator"));
+  const long steps = settings.time.steps, saveEvery = settings.saveEvery;
+  const double dt = settings.time.dt;
+  auto inst = scene.instantiate(comm, mu, settings.shift);
+  FullModelIntegrator integ(inst.system, settings.time.integrator);
 
   FomResult res;
   const long numSaved = steps / saveEvery + 1 + (steps % saveEvery != 0);
@@ -57,7 +69,7 @@ FomResult runFullModel(const Teuchos::ParameterList& cfg, const Scene& scene, co
   res.hamiltonian.reserve(steps + 1);
   Vector y(*inst.y0, Teuchos::Copy);
   const auto ref = inst.system->reference();
-  Progress progress("fom", steps, out.get<double>("progressSeconds"), comm->getRank() == 0);
+  Progress progress("fom", steps, settings.progressSeconds, comm->getRank() == 0);
   long saved = 0;
   const std::function<void(long, double, const Vector&)> observe = [&](long j, double t, const Vector& yj) {
     res.hamiltonian.push_back(inst.system->hamiltonian(yj));

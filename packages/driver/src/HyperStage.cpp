@@ -127,7 +127,7 @@ ModelRun evaluateTermModel(const RunContext& ctx, const FomResult& fom, const Sc
   DenseMatrix Hhr(2 * k, 2 * k);
   model.addHessian(DenseVector(2 * k), 1.0, Hhr);
   const double lminHr = smallestEigenvalue(Hhr);
-  ModelRun run = evaluateReducedModel(ctx, fom, *inst.system, A, model, true, method, k, m, keep);
+  ModelRun run = evaluateReducedModel(ctx.comm, evaluationSettingsFrom(ctx.config), fom, *inst.system, A, model, true, method, k, m, keep);
   run.run.set("hess_min_eig_hr", lminHr)
       .set("hess_min_eig_rom", lminR)
       .set("convexity_lost", lminHr < 0.0 && lminR >= 0.0)
@@ -415,7 +415,7 @@ void runGpAdeim(const RunContext& ctx, const FomResult& fom, RomStages& st, cons
     // Jacobian approximation like any lagged one, and the lag rule refactors when Newton slows
     // (resetting it at every update cost 600 LU factorisations instead of 143 on the NLS benchmark).
     const StepHook hook = adeimUpdateHook(model);
-    ModelRun run = evaluateReducedModel(ctx, fom, *inst.system, *A, model, true, "gp-adeim", k, m, false, hook);
+    ModelRun run = evaluateReducedModel(ctx.comm, evaluationSettingsFrom(ctx.config), fom, *inst.system, *A, model, true, "gp-adeim", k, m, false, hook);
     run.adeimUpdates = model.updates();
     setAdeimSummary(run, o, tInitial, tPair);
     st.runs.push_back(std::move(run));
@@ -437,7 +437,7 @@ void runGradientDeim(const RunContext& ctx, const FomResult& fom, RomStages& st,
     if (method == "deim" && kind == GradientSnapshots::Full) pair = withReferenceGradient(std::move(pair), *inst.system, A);
     GradientDeimModel model(*inst.system, A, pair, linear);
     const double tPair = clock.stop();
-    ModelRun run = evaluateReducedModel(ctx, fom, *inst.system, A, model, false, method, k, m,
+    ModelRun run = evaluateReducedModel(ctx.comm, evaluationSettingsFrom(ctx.config), fom, *inst.system, A, model, false, method, k, m,
                                         method == "sdeim");
     run.run.set("kernel_rows_per_evaluation", static_cast<long>(model.kernelRowsPerEvaluation()))
         .set("t_deim_basis_s", tBasis)

@@ -113,16 +113,14 @@ UnboundedStep unboundedStepOf(const FomResult& fom, const ModelRun& run) {
 }
 }  // namespace
 
-ModelRun evaluateReducedModel(const RunContext& ctx, const FomResult& fom, const HamiltonianSystem& sys,
-                              const MultiVector& A, DenseHamiltonian& model, bool hasHamiltonian,
-                              const std::string& method, int k, int m, bool keepStates,
+ModelRun evaluateReducedModel(const RCP<const Comm>& comm, const EvaluationSettings& evaluation, const FomResult& fom,
+                              const HamiltonianSystem& sys, const MultiVector& A, DenseHamiltonian& model,
+                              bool hasHamiltonian, const std::string& method, int k, int m, bool keepStates,
                               const StepHook& adapt) {
-  const long steps = numSteps(ctx.config), saveEvery = ctx.config.sublist("output").get<int>("saveEvery");
-  const double dt = ctx.config.sublist("time").get<double>("dt");
+  const long steps = evaluation.time.steps, saveEvery = evaluation.saveEvery;
   ModelRun run;
   run.method = method, run.k = k, run.m = m;
-  SimulationSettings settings;
-  settings.dt = dt, settings.steps = steps, settings.integrator = ctx.config.sublist("integrator");
+  SimulationSettings settings = evaluation.time;
   settings.polynomialDegree = sys.nonlinearTerm().polynomialDegree();
   DenseVector z;
   DeferredLift lift(A, sys, fom, steps, saveEvery, keepStates, run);
@@ -140,16 +138,15 @@ ModelRun evaluateReducedModel(const RunContext& ctx, const FomResult& fom, const
   // runs, with an after-step hook, is not repeatable); t_online_s is the fastest.
   // pipeline.onlineRepeatSeconds caps the repeats' total time: on a shared machine a few-ms run's
   // time swings 2x over spells of tens of ms, so short runs need many repeats, long ones none.
-  const auto& pipe = ctx.config.sublist("pipeline");
-  const int repeats = adapt ? 1 : pipe.get<int>("onlineRepeats");
-  const double budget = pipe.get<double>("onlineRepeatSeconds");
+  const int repeats = adapt ? 1 : evaluation.onlineRepeats;
+  const double budget = evaluation.onlineRepeatSeconds;
   std::vector<double> times{run.tOnline};
   double spent = 0.0;
   for (int r = 1; r < repeats && run.ok && spent < budget; ++r) {
     times.push_back(simulate(model, settings, z).onlineSeconds);  // from z = 0 again, unobserved
     // The ranks decide together: a ROM repeat has collectives, so all ranks must run it or none.
     const double mine = spent + times.back();
-    Teuchos::reduceAll(*ctx.comm, Teuchos::REDUCE_MAX, mine, Teuchos::outArg(spent));
+    Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, mine, Teuchos::outArg(spent));
   }
   run.tOnline = *std::min_element(times.begin(), times.end());
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -174,14 +171,14 @@ ModelRun evaluateReducedModel(const RunContext& ctx, const FomResult& fom, const
   }
   if (run.unboundedAt >= 0) {
     run.run.set("unbounded_at_step", run.unboundedAt).set("unbounded_reason", run.unboundedReason);
-    if (ctx.comm->getRank() == 0)
+    if (comm->getRank() == 0)
       std::fprintf(stderr, "[gphr] %s unbounded from step %ld: %s\n", run.label().c_str(), run.unboundedAt,
                    run.unboundedReason.c_str());
   }
   run.run.set("status", run.status());
   if (hasHamiltonian && run.ok) run.run.set("H_model_err_max", maxDeviation(run.modelHamiltonian, run.modelHamiltonian.front()));
   if (!run.ok) run.run.set("diverged_at_step", lastStep + 1).set("diverged_reason", why);
-  if (!run.ok && ctx.comm->getRank() == 0)
+  if (!run.ok && comm->getRank() == 0)
     std::fprintf(stderr, "[gphr] %s diverged at step %ld: %s\n", run.label().c_str(), lastStep + 1, why.c_str());
   return run;
 }

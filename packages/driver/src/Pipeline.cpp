@@ -207,7 +207,7 @@ void runRom(const RunContext& ctx, const FomResult& fom, RomStages& st) {
   for (int k : stageK(ctx.config, st.basis)) {
     auto A = leadingBasis(st.basis, k);
     GalerkinRom rom(inst.system, A);
-    ModelRun run = evaluateReducedModel(ctx, fom, *inst.system, *A, rom, true, "rom", k, 0);
+    ModelRun run = evaluateReducedModel(ctx.comm, evaluationSettingsFrom(ctx.config), fom, *inst.system, *A, rom, true, "rom", k, 0);
     run.run.set("basis", st.basis.method)
         .set("energy_captured", st.basis.energyCaptured)
         .set("training_parameters", static_cast<long>(st.training.parameters.size()))

@@ -29,16 +29,17 @@ namespace gphr {
 
 namespace {
 
-// The build configuration with the point's time settings: what the full model and the reduced
-// models' evaluation read.
-Teuchos::ParameterList pointConfig(const ReducedModelData& d, const Query& q) {
-  Teuchos::ParameterList cfg("gphr");
-  cfg.sublist("scene") = *Teuchos::getParametersFromYamlString(d.sceneConfig);
-  cfg.sublist("integrator") = *Teuchos::getParametersFromYamlString(d.integratorConfig);
-  cfg.sublist("time").set("T", q.T).set("dt", q.dt);
-  cfg.sublist("output").set("saveEvery", static_cast<int>(q.saveEvery));
-  cfg.sublist("pipeline").set("onlineRepeats", 1);
-  return validateConfig(cfg);
+// The point's evaluation: its T, dt and saveEvery with the file's integrator, one timing run per
+// model, the shifted system (the file's models are of it).
+EvaluationSettings pointSettings(const ReducedModelData& d, const Query& q) {
+  EvaluationSettings s;
+  s.time.dt = q.dt;
+  s.time.steps = wholeSteps(q.T, q.dt);
+  s.time.integrator = *Teuchos::getParametersFromYamlString(d.integratorConfig);
+  s.saveEvery = q.saveEvery;
+  s.onlineRepeats = 1;
+  s.shift = true;
+  return s;
 }
 
 std::string fomKey(const Query& q, const ReducedModelData& d) {
@@ -72,7 +73,7 @@ FomResult fullModel(const RunContext& ctx, const Scene& scene, const ReducedMode
     fom.tOnline = f.doubleAttribute("/", "t_online_s").at(0);
     return fom;
   }
-  fom = runFullModel(ctx.config, scene, q.mu, ctx.comm);
+  fom = runFullModel(pointSettings(d, q), scene, q.mu, ctx.comm);
   RenameOnCommit commit(path, ctx.comm);
   {
     Hdf5File f(commit.tempPath(), ctx.comm, Hdf5File::Mode::Create);
@@ -98,8 +99,7 @@ ValidationRecord recordOf(const ModelRun& run, const Query& q, double setupSecon
 std::vector<ValidationRecord> evaluatePoint(RunContext& ctx, const ReducedModel& rm, const Query& q, double& tFom,
                                             bool& cached) {
   const auto& d = rm.data();
-  ctx.config = pointConfig(d, q);
-  ctx.mu = q.mu;
+  const EvaluationSettings settings = pointSettings(d, q);
   const auto inst = rm.scene().instantiate(ctx.comm, q.mu, true);
   const FomResult fom = fullModel(ctx, rm.scene(), d, q, inst.system->space(), cached);
   tFom = fom.tOnline;
@@ -108,7 +108,7 @@ std::vector<ValidationRecord> evaluatePoint(RunContext& ctx, const ReducedModel&
   for (const auto& b : d.bases) {
     const RCP<const MultiVector> A = readReducedModelBasis(rm.path(), b.k, inst.system->space());
     GalerkinRom rom(inst.system, A);
-    out.push_back(recordOf(evaluateReducedModel(ctx, fom, *inst.system, *A, rom, true, "rom", b.k, 0), q, 0.0, outside));
+    out.push_back(recordOf(evaluateReducedModel(ctx.comm, settings, fom, *inst.system, *A, rom, true, "rom", b.k, 0), q, 0.0, outside));
     for (const auto& sm : d.models) {
       if (sm.k != b.k) continue;
       if (methodInfo(sm.method).needsFullResidual) {  // gp-adeim: on the full system, adapting as it runs
@@ -116,13 +116,13 @@ std::vector<ValidationRecord> evaluatePoint(RunContext& ctx, const ReducedModel&
         clock.start();
         const auto hr = rm.adaptiveModel(sm.k, sm.m, inst, A, q.dt);
         const double setup = clock.stop();
-        const ModelRun run = evaluateReducedModel(ctx, fom, *inst.system, *A, *hr, true, sm.method, sm.k, sm.m,
+        const ModelRun run = evaluateReducedModel(ctx.comm, settings, fom, *inst.system, *A, *hr, true, sm.method, sm.k, sm.m,
                                                   false, adeimUpdateHook(*hr));
         out.push_back(recordOf(run, q, setup, outside));
         continue;
       }
       OnlineModel online = rm.instantiate(sm.method, sm.k, sm.m, q.mu, true, q.setup);
-      const ModelRun run = evaluateReducedModel(ctx, fom, *inst.system, *A, online.model(), true, sm.method, sm.k, sm.m);
+      const ModelRun run = evaluateReducedModel(ctx.comm, settings, fom, *inst.system, *A, online.model(), true, sm.method, sm.k, sm.m);
       out.push_back(recordOf(run, q, online.setupSeconds(), outside));
     }
   }

@@ -119,7 +119,7 @@ int runMain(const Args& args, const gphr::RCP<const gphr::Comm>& comm) {
                    rom->basisCached ? " (cached)" : "", rom->basisSeconds, rom->basisCpuSeconds, rom->basis.tsqrSteps,
                    rom->basis.stackedSteps, rom->basis.replicatedSteps);
   }
-  const FomResult fom = runFullModel(ctx.config, *ctx.scene, ctx.mu, comm);
+  const FomResult fom = runFullModel(evaluationSettingsFrom(ctx.config), *ctx.scene, ctx.mu, comm);
   if (rom && std::find(methods.begin(), methods.end(), "rom") != methods.end()) runRom(ctx, fom, *rom);
   if (rom) runHyperReduction(ctx, fom, *rom);
   writeReport(ctx, fom, rom.get());

@@ -8,6 +8,7 @@
 
 #include "gphr/driver/Json.hpp"
 #include "gphr/models/Scene.hpp"
+#include "gphr/online/TimeLoop.hpp"
 
 namespace gphr {
 
@@ -26,8 +27,25 @@ inline bool isSavedStep(long j, long steps, long saveEvery) { return j % saveEve
 /// The largest |H_j - H0| of a Hamiltonian history.
 double maxDeviation(const std::vector<double>& H, double H0);
 
-/// Integrates the scene's full model at parameter `mu` with the configured integrator (see the file's description).
-FomResult runFullModel(const Teuchos::ParameterList& cfg, const Scene& scene, const std::vector<double>& mu,
+/// What an evaluation against the full model runs, for the full model and every reduced one: the
+/// time loop (dt, steps, the integrator section), the saved steps, the timing repeats of the
+/// reduced models, the full model's progress lines and whether the system is shifted. `gphr run`
+/// takes it from its config (evaluationSettingsFrom), `gphr validate` from the model file and the
+/// test point.
+struct EvaluationSettings {
+  SimulationSettings time;           ///< dt, steps and the integrator section (the degree is the model's)
+  long saveEvery = 1;                ///< keep every saveEvery-th state (and the last)
+  int onlineRepeats = 1;             ///< timing repeats of a reduced model's time loop (pipeline.onlineRepeats)
+  double onlineRepeatSeconds = 60.0; ///< their total time at most (pipeline.onlineRepeatSeconds)
+  double progressSeconds = 2.0;      ///< between the full model's progress lines (0: none)
+  bool shift = true;                 ///< integrate the shifted system (scene.shift)
+};
+
+/// The evaluation settings of a validated `gphr run` configuration.
+EvaluationSettings evaluationSettingsFrom(const Teuchos::ParameterList& cfg);
+
+/// Integrates the scene's full model at parameter `mu` (see the file's description).
+FomResult runFullModel(const EvaluationSettings& settings, const Scene& scene, const std::vector<double>& mu,
                        const RCP<const Comm>& comm);
 
 }  // namespace gphr

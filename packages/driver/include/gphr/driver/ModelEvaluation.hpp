@@ -29,9 +29,9 @@ RCP<MultiVector> leadingBasis(const ReducedBasis& basis, int k);
 /// hasHamiltonian: the model has one (rom, gp-deim, gp-adeim); the classic DEIM baselines do not.
 /// adapt: called after every step (and at step 0) once the state was measured, in online time
 /// (GP-ADEIM's update, adeimUpdateHook).
-ModelRun evaluateReducedModel(const RunContext& ctx, const FomResult& fom, const HamiltonianSystem& system,
-                              const MultiVector& A, DenseHamiltonian& model, bool hasHamiltonian,
-                              const std::string& method, int k, int m, bool keepStates = false,
+ModelRun evaluateReducedModel(const RCP<const Comm>& comm, const EvaluationSettings& settings, const FomResult& fom,
+                              const HamiltonianSystem& system, const MultiVector& A, DenseHamiltonian& model,
+                              bool hasHamiltonian, const std::string& method, int k, int m, bool keepStates = false,
                               const StepHook& adapt = {});
 
 }  // namespace gphr
