@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# Hostile input to gphr query and validate (issue: a model file is a shipped artefact): damaged
+# Hostile input to gphr query and validate (a model file is a shipped artefact): damaged
 # model files derived from a good one by fuzz_model_files.py (h5py), and bad queries files. Each
 # run is under a timeout; the test fails on any exit code other than the expected one (2 for bad
 # input, 0 for an edit that keeps the model), a hang, a crash, more than one line from gphr on
 # stderr, an output directory left by a failed run, or a status other than `ok` from a file that
-# loads. Every case runs on 1 rank, every eighth and the issue's table rows on 2 ranks as well;
+# loads. Every case runs on 1 rank, every eighth and the cases below on 2 ranks as well;
 # validate runs on a sample.
 # usage: model_file_fuzz.sh GPHR MPIEXEC
 set -u
@@ -48,7 +48,7 @@ while read -r name expect; do
     run "$expect" "query $name (2 ranks)" "$mpiexec" -np 2 "$gphr" query "bad/$name.h5" q.yaml --output out
   fi
 done < bad/cases.txt
-# the issue's rows on 2 ranks whatever the sampling above: an offset out of range, NaN in c and in w
+# on 2 ranks whatever the sampling above: an offset out of range, NaN in c and in w
 for name in offsets_1000 nan_k6_constant_values nan_k6_gp-deim_m12_weights; do
   run 2 "query $name (2 ranks)" "$mpiexec" -np 2 "$gphr" query "bad/$name.h5" q.yaml --output out
 done
