@@ -1,6 +1,5 @@
 #include "gphr/driver/OutputLock.hpp"
 
-#include <Teuchos_CommHelpers.hpp>
 #include <fcntl.h>
 #include <sys/file.h>
 #include <sys/stat.h>
@@ -11,6 +10,7 @@
 #include <ctime>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/driver/Commands.hpp"
 
 namespace gphr {
 
@@ -74,13 +74,7 @@ OutputLock::OutputLock(const std::string& dir, const std::string& command, const
     : path_(dir + "/.gphr.lock") {
   std::string error;
   if (comm->getRank() == 0) fd_ = acquire(path_, command, error);
-  int failed = !error.empty();
-  Teuchos::broadcast(*comm, 0, Teuchos::outArg(failed));
-  int length = static_cast<int>(error.size());
-  Teuchos::broadcast(*comm, 0, Teuchos::outArg(length));
-  error.resize(static_cast<size_t>(length));
-  if (length > 0) Teuchos::broadcast(*comm, 0, length, error.data());
-  GPHR_REQUIRE(!failed, InputError, error);
+  agreeOnError(comm, error);  // every rank ends with rank 0's message
 }
 
 OutputLock::~OutputLock() {
