@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/Commands.hpp"
@@ -24,13 +25,6 @@
 
 namespace gphr {
 
-namespace {
-void agree(const RCP<const Comm>& comm, const std::string& error, const char* fallback) {
-  int failed = !error.empty();
-  Teuchos::broadcast(*comm, 0, Teuchos::outArg(failed));
-  GPHR_REQUIRE(!failed, InputError, error.empty() ? fallback : error);
-}
-}  // namespace
 
 void writeTextFile(const std::string& path, const std::string& text) {
   const std::string temp = path + ".tmp";
@@ -63,6 +57,18 @@ void agreeOnError(const RCP<const Comm>& comm, std::string error) {
   GPHR_REQUIRE(length == 0, InputError, error);
 }
 
+void onRootAgreed(const RCP<const Comm>& comm, const std::string& what, const std::function<void()>& work) {
+  std::string error;
+  if (comm->getRank() == 0) {
+    try {
+      work();
+    } catch (const InputError& e) {
+      error = detail::concat(what, ": ", e.what());
+    }
+  }
+  agreeOnError(comm, error);
+}
+
 void makeDirectory(const std::string& dir, const RCP<const Comm>& comm) {
   std::string error;
   if (comm->getRank() == 0) {
@@ -70,7 +76,7 @@ void makeDirectory(const std::string& dir, const RCP<const Comm>& comm) {
     std::filesystem::create_directories(dir, ec);
     if (ec) error = detail::concat("cannot create directory '", dir, "': ", ec.message());
   }
-  agree(comm, error, "rank 0 could not create the directory");
+  agreeOnError(comm, error);
 }
 
 void prepareOutputDir(RunContext& ctx, bool removeSummary) {
@@ -86,7 +92,7 @@ void prepareOutputDir(RunContext& ctx, bool removeSummary) {
         error = detail::concat("cannot remove the earlier run's '", earlier, "': ", ec.message());
     }
   }
-  agree(ctx.comm, error, "rank 0 could not prepare the output directory");
+  agreeOnError(ctx.comm, error);
 }
 
 const char* gphrVersion() { return GPHR_VERSION_STRING; }

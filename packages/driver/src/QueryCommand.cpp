@@ -40,15 +40,14 @@ struct QueryOutcome {
 
 // The outcome stored in a finished query's file if its key matches (resultKey: the query, the
 // model file's checksum, the gphr version); else the query is redone, and a file of another key
-// is said to be (rank 0).
-bool finished(const std::string& path, const std::string& key, QueryOutcome& out, bool say) {
+// is said to be by the rank that redoes it.
+bool finished(const std::string& path, const std::string& key, QueryOutcome& out) {
   std::ifstream probe(path);
   if (!probe.good()) return false;
   try {
     Hdf5File f(path, selfComm(), Hdf5File::Mode::ReadOnly);
     if (!f.hasAttribute("/", "key") || f.stringAttribute("/", "key") != key) {
-      if (say)
-        std::fprintf(stderr, "[gphr] query: %s holds a result of another model file, query or gphr version: redone\n",
+      std::fprintf(stderr, "[gphr] query: %s holds a result of another model file, query or gphr version: redone\n",
                      path.c_str());
       return false;
     }
@@ -60,7 +59,7 @@ bool finished(const std::string& path, const std::string& key, QueryOutcome& out
     out.reused = true;
     return true;
   } catch (const std::exception&) {
-    if (say) std::fprintf(stderr, "[gphr] query: %s is unreadable: redone\n", path.c_str());
+    std::fprintf(stderr, "[gphr] query: %s is unreadable: redone\n", path.c_str());
     return false;  // unreadable (a damaged file): redo it
   }
 }
@@ -253,14 +252,14 @@ int runQuery(const std::string& modelPath, const std::string& queriesPath, const
   double lastPrint = -1e9;
   for (size_t i : adaptive) {  // all ranks together, one after another
     const std::string path = queryFile(outputDir, queries[i]);
-    int reuse = rank == 0 && finished(path, resultKey(queries[i], model.data()), outs[i], true);
+    int reuse = rank == 0 && finished(path, resultKey(queries[i], model.data()), outs[i]);
     Teuchos::broadcast(*comm, 0, Teuchos::outArg(reuse));
     if (!reuse) outs[i] = runAdaptive(model, queries[i], path, comm);
     ++done;
   }
   for (size_t i : local) {
     const std::string path = queryFile(outputDir, queries[i]);
-    if (!finished(path, resultKey(queries[i], model.data()), outs[i], true)) outs[i] = runOne(model, queries[i], path);
+    if (!finished(path, resultKey(queries[i], model.data()), outs[i])) outs[i] = runOne(model, queries[i], path);
     ++done;
     const double t = wall.totalElapsedTime(true);
     if (rank == 0 && (t - lastPrint > 2.0 || done == mine)) {
@@ -272,27 +271,22 @@ int runQuery(const std::string& modelPath, const std::string& queriesPath, const
   double seconds = wall.stop(), slowest = 0.0;
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, seconds, Teuchos::outArg(slowest));
   shareOutcomes(comm, outs);
-  std::string error;  // rank 0 writes the tables; its failure (a full disk, say) ends every rank
-  if (rank == 0) {
-    try {
-      long ran = 0, ok = 0;
-      for (const auto& o : outs) ran += !o.reused, ok += o.status == "ok";
-      writeResults(outputDir, queries);
-      writeTable(outputDir, model.data(), queries, outs);
-      JsonObject s;
-      s.set("model_file", modelPath).set("queries", static_cast<long>(queries.size())).set("queries_run", ran)
-          .set("queries_reused", static_cast<long>(queries.size()) - ran).set("queries_ok", ok).set("ranks", size)
-          .set("wall_s", slowest).set("queries_per_s", ran > 0 ? ran / slowest : NAN).set("gphr_version", gphrVersion());
-      writeTextFile(outputDir + "/query_summary.json", s.str(2) + "\n");
-      std::printf("gphr query: %zu queries (%ld run, %ld reused, %ld ok) on %d rank(s) in %.2f s: %.1f queries/s; "
-                  "results in %s/results.h5, table %s/queries.csv\n", queries.size(), ran,
-                  static_cast<long>(queries.size()) - ran, ok, size, slowest, ran > 0 ? ran / slowest : 0.0,
-                  outputDir.c_str(), outputDir.c_str());
-    } catch (const InputError& e) {
-      error = detail::concat("gphr query: the results: ", e.what());
-    }
-  }
-  agreeOnError(comm, error);
+  // rank 0 writes the tables; its failure (a full disk, say) ends every rank
+  onRootAgreed(comm, "gphr query: the results", [&] {
+    long ran = 0, ok = 0;
+    for (const auto& o : outs) ran += !o.reused, ok += o.status == "ok";
+    writeResults(outputDir, queries);
+    writeTable(outputDir, model.data(), queries, outs);
+    JsonObject s;
+    s.set("model_file", modelPath).set("queries", static_cast<long>(queries.size())).set("queries_run", ran)
+        .set("queries_reused", static_cast<long>(queries.size()) - ran).set("queries_ok", ok).set("ranks", size)
+        .set("wall_s", slowest).set("queries_per_s", ran > 0 ? ran / slowest : NAN).set("gphr_version", gphrVersion());
+    writeTextFile(outputDir + "/query_summary.json", s.str(2) + "\n");
+    std::printf("gphr query: %zu queries (%ld run, %ld reused, %ld ok) on %d rank(s) in %.2f s: %.1f queries/s; "
+                "results in %s/results.h5, table %s/queries.csv\n", queries.size(), ran,
+                static_cast<long>(queries.size()) - ran, ok, size, slowest, ran > 0 ? ran / slowest : 0.0,
+                outputDir.c_str(), outputDir.c_str());
+  });
   return 0;
 }
 

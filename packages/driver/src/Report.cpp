@@ -249,27 +249,22 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
   }
   const std::string spaceTime = rom ? spaceTimeData(ctx, fom, *rom) : "";
   std::vector<std::string> hyperFiles;
-  std::string error;  // rank 0 writes the report; its failure (a full disk, say) ends every rank
-  if (root) {
-    try {
-      const double H0 = fom.hamiltonian.front();
-      writeHistoryCsv(fom.hamiltonian, H0, nullptr, saveEvery, dt, csv.tempPath());
-      if (firstRom) writeHistoryCsv(firstRom->hamiltonian, H0, &firstRom->errors, saveEvery, dt, romCsv.tempPath());
-      if (rom) hyperFiles = writeHyperReport(ctx, fom, *rom, spaceTime, hyperPaths, ctx.config.sublist("output").get<bool>("plots"));
-      const bool deimSv = std::find(hyperFiles.begin(), hyperFiles.end(), "deim_singular_values.csv") != hyperFiles.end();
-      if (rom) writeSingularValues(rom->basis.singularValues, svCsv.tempPath(), svPng.tempPath(),
-                                   ctx.config.sublist("output").get<bool>("plots"),
-                                   deimSv ? hyperPaths.at("deim_singular_values.csv") : "");
-      if (ctx.config.sublist("output").get<bool>("plots"))
-        plotted = plotHamiltonian(csv.tempPath(), firstRom ? romCsv.tempPath() : "", png.tempPath(), why);
-      if (!plotted && !why.empty()) std::fprintf(stderr, "[gphr] no plots: %s\n", why.c_str());
-      writeTextFile(json.tempPath(), summary.str() + "\n");
-      writeTextFile(configFile.tempPath(), configYaml(ctx.config));
-    } catch (const InputError& e) {
-      error = detail::concat("gphr run: the report: ", e.what());
-    }
-  }
-  agreeOnError(ctx.comm, error);
+  // rank 0 writes the report; its failure (a full disk, say) ends every rank
+  onRootAgreed(ctx.comm, "gphr run: the report", [&] {
+    const double H0 = fom.hamiltonian.front();
+    writeHistoryCsv(fom.hamiltonian, H0, nullptr, saveEvery, dt, csv.tempPath());
+    if (firstRom) writeHistoryCsv(firstRom->hamiltonian, H0, &firstRom->errors, saveEvery, dt, romCsv.tempPath());
+    if (rom) hyperFiles = writeHyperReport(ctx, fom, *rom, spaceTime, hyperPaths, ctx.config.sublist("output").get<bool>("plots"));
+    const bool deimSv = std::find(hyperFiles.begin(), hyperFiles.end(), "deim_singular_values.csv") != hyperFiles.end();
+    if (rom) writeSingularValues(rom->basis.singularValues, svCsv.tempPath(), svPng.tempPath(),
+                                 ctx.config.sublist("output").get<bool>("plots"),
+                                 deimSv ? hyperPaths.at("deim_singular_values.csv") : "");
+    if (ctx.config.sublist("output").get<bool>("plots"))
+      plotted = plotHamiltonian(csv.tempPath(), firstRom ? romCsv.tempPath() : "", png.tempPath(), why);
+    if (!plotted && !why.empty()) std::fprintf(stderr, "[gphr] no plots: %s\n", why.c_str());
+    writeTextFile(json.tempPath(), summary.str() + "\n");
+    writeTextFile(configFile.tempPath(), configYaml(ctx.config));
+  });
   int plottedAll = plotted;
   Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(plottedAll));
   // In the directory of an earlier run, a report file this run does not write is that run's and

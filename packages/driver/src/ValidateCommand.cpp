@@ -52,7 +52,7 @@ std::string fomKey(const Query& q, const ReducedModelData& d) {
 
 // The full model at the point, from DIR/fom/<point>.h5 when its key matches, else run and cached.
 FomResult fullModel(const RunContext& ctx, const Scene& scene, const ReducedModelData& d, const Query& q,
-                    const PhaseSpace& space, bool& cached) {
+                    const EvaluationSettings& settings, const PhaseSpace& space, bool& cached) {
   const std::string path = ctx.outputDir + "/fom/" + q.name + ".h5", key = fomKey(q, d);
   int usable = 0;
   if (ctx.comm->getRank() == 0 && std::ifstream(path).good()) {
@@ -73,7 +73,7 @@ FomResult fullModel(const RunContext& ctx, const Scene& scene, const ReducedMode
     fom.tOnline = f.doubleAttribute("/", "t_online_s").at(0);
     return fom;
   }
-  fom = runFullModel(pointSettings(d, q), scene, q.mu, ctx.comm);
+  fom = runFullModel(settings, scene, q.mu, ctx.comm);
   RenameOnCommit commit(path, ctx.comm);
   {
     Hdf5File f(commit.tempPath(), ctx.comm, Hdf5File::Mode::Create);
@@ -101,7 +101,7 @@ std::vector<ValidationRecord> evaluatePoint(RunContext& ctx, const ReducedModel&
   const auto& d = rm.data();
   const EvaluationSettings settings = pointSettings(d, q);
   const auto inst = rm.scene().instantiate(ctx.comm, q.mu, true);
-  const FomResult fom = fullModel(ctx, rm.scene(), d, q, inst.system->space(), cached);
+  const FomResult fom = fullModel(ctx, rm.scene(), d, q, settings, inst.system->space(), cached);
   tFom = fom.tOnline;
   const bool outside = d.outsideBox(q.mu);
   std::vector<ValidationRecord> out;
@@ -169,15 +169,9 @@ int runValidate(const std::string& modelPath, const std::string& testsPath, cons
                    recs.size(), t, t / (i + 1) * (points.size() - i - 1));
     }
   }
-  std::string error;  // rank 0 writes the report; its failure (a full disk, say) ends every rank
-  if (comm->getRank() == 0) {
-    try {
-      writeValidationReport(outputDir, rm, points, all, fomSeconds);
-    } catch (const InputError& e) {
-      error = detail::concat("gphr validate: the report: ", e.what());
-    }
-  }
-  agreeOnError(comm, error);
+  // rank 0 writes the report; its failure (a full disk, say) ends every rank
+  onRootAgreed(comm, "gphr validate: the report",
+               [&] { writeValidationReport(outputDir, rm, points, all, fomSeconds); });
   return 0;
 }
 

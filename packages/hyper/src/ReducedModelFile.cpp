@@ -221,8 +221,6 @@ ModelKey parseModelKey(const std::string& key) {
   return ModelKey{key.substr(0, a), whole(key.substr(a + 1, b - a - 1), 'k'), whole(key.substr(b + 1), 'm')};
 }
 
-const StoredBasisData& basisOf(const ReducedModelData& d, int k) { return d.basis(k); }
-
 StoredBasisData readBasisData(const Hdf5File& f, const ReducedModelData& d, int k) {
   StoredBasisData b;
   b.k = k;
@@ -486,7 +484,7 @@ ReducedModelData readReducedModelFile(const std::string& path) {
         d.bases.push_back(readBasisData(f, d, k));
       GPHR_REQUIRE(std::none_of(d.models.begin(), d.models.end(), [&](const StoredHyperModel& x) { return x.key() == key; }),
                    InputError, "attribute 'models' names ", key, " twice");
-      d.models.push_back(readModel(f, basisOf(d, k), method, k, m));
+      d.models.push_back(readModel(f, d.basis(k), method, k, m));
     }
     GPHR_REQUIRE(!d.models.empty(), InputError, "it holds no model (attribute 'models' is empty)");
     // a changed byte anywhere in the model data is an error, not a different model

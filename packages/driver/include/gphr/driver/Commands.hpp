@@ -5,6 +5,7 @@
 /// full model over a set of test parameters). Each returns the process exit code; bad input is an
 /// InputError (exit 2), thrown on every rank.
 #include <fstream>
+#include <functional>
 #include <string>
 
 #include "gphr/driver/RunContext.hpp"
@@ -30,6 +31,10 @@ void finishText(std::ofstream& os, const std::string& path);
 /// Collective: `error` is rank 0's (empty: none); every rank throws it as an InputError, so a
 /// failure of rank 0's work (its report, its files) ends all ranks with one message.
 void agreeOnError(const RCP<const Comm>& comm, std::string error);
+
+/// Collective: rank 0 runs `work` (its report, its files); an InputError from it, prefixed with
+/// `what`, ends every rank (agreeOnError).
+void onRootAgreed(const RCP<const Comm>& comm, const std::string& what, const std::function<void()>& work);
 
 /// `gphr build`: the offline stages of the config at `configPath` -> the reduced-model file `modelPath`.
 int runBuild(const std::string& configPath, const std::string& modelPath, const std::string& artifactsDir,
