@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Installs GPHR from the build tree into a temporary prefix, builds examples/embedding (GPHR::gphr)
-# and examples/query (GPHR::online: its link line is printed and must name the online library and
-# none of the application's, gphr_driver) against the *installed* package, from projects that
+# Installs GPHR from the build tree into a temporary prefix, builds examples/embedding (GPHR::offline:
+# it trains, builds and writes a model file of its own scene, then queries it) and examples/query
+# (GPHR::online) - their link lines are printed and must name the libraries they use and none of
+# the application's, gphr_driver - against the *installed* package, from projects that
 # enable LANGUAGES CXX only, as a C++-only consumer would; runs the embedding on 1 and 2 ranks, and
 # the query program on a model file written by the installed `gphr build`.
 # usage: check_install.sh BUILD_DIR SOURCE_DIR MPIEXEC
@@ -18,9 +19,14 @@ test -f "$work/prefix/lib/cmake/GPHR/GPHRConfig.cmake"
 test -f "$work/prefix/include/gphr/core/HamiltonianSystem.hpp"
 cmake -S "$src/examples/embedding" -B "$work/embed" -G Ninja -DCMAKE_PREFIX_PATH="$work/prefix" > "$work/cfg.log" \
   || { cat "$work/cfg.log"; exit 1; }
-cmake --build "$work/embed" > "$work/build.log" 2>&1 || { cat "$work/build.log"; exit 1; }
-"$work/embed/fpu_lattice"
-"$mpiexec" --allow-run-as-root --oversubscribe -np 2 "$work/embed/fpu_lattice"
+cmake --build "$work/embed" -v > "$work/build.log" 2>&1 || { cat "$work/build.log"; exit 1; }
+link=$(grep -E -- "-o fpu_lattice( |$)" "$work/build.log" | tail -1)
+echo "examples/embedding link line: $link"
+[[ "$link" == *libgphr_offline.a* && "$link" == *libgphr_online.a* ]] \
+  || { echo "FAIL: examples/embedding does not link the offline and online libraries"; exit 1; }
+[[ "$link" != *libgphr_driver.a* ]] || { echo "FAIL: examples/embedding links the application's library gphr_driver"; exit 1; }
+(cd "$work" && "$work/embed/fpu_lattice" fpu1.h5)
+(cd "$work" && "$mpiexec" --allow-run-as-root --oversubscribe -np 2 "$work/embed/fpu_lattice" fpu2.h5)
 # examples/query on a model built by the installed gphr.
 cmake -S "$src/examples/query" -B "$work/query" -G Ninja -DCMAKE_PREFIX_PATH="$work/prefix" > "$work/cfg.log" \
   || { cat "$work/cfg.log"; exit 1; }

@@ -20,7 +20,8 @@ ALLOWED = {
     "io": {"core"},
     "hyper": {"core", "timeint", "reduction", "io"},
     "online": {"core", "models", "timeint", "reduction", "hyper", "io"},
-    "driver": {"core", "models", "timeint", "reduction", "hyper", "io", "online"},
+    "offline": {"core", "models", "timeint", "reduction", "hyper", "io", "online"},
+    "driver": {"core", "models", "timeint", "reduction", "hyper", "io", "online", "offline"},
 }
 # Tests of a package may also use the packages that build their fixtures (never the application).
 TEST_EXTRA = {"reduction": {"timeint", "models"}, "hyper": {"models"}, "online": {"models"},

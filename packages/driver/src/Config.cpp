@@ -12,6 +12,7 @@
 #include "gphr/driver/InputFile.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/models/SceneFactory.hpp"
+#include "gphr/offline/Training.hpp"
 #include "gphr/online/Method.hpp"
 #include "gphr/timeint/Integrator.hpp"
 
@@ -172,44 +173,7 @@ long numSteps(const Teuchos::ParameterList& cfg) {
 }
 
 std::vector<std::vector<double>> trainingParameters(const Teuchos::ParameterList& cfg) {
-  const auto scene = makeScene(cfg.sublist("scene"));
-  const auto& box = scene->parameterBox();
-  const size_t p = box.names.size();
-  const auto& tr = cfg.sublist("training");
-  const auto& values = tr.get<Teuchos::Array<double>>("values");
-  std::vector<std::vector<double>> out;
-  if (!values.empty()) {
-    GPHR_REQUIRE(values.size() % static_cast<long>(p) == 0, InputError, "key 'training.values' has ", values.size(),
-                 " numbers; allowed: a multiple of ", p, " (one value per parameter of the box, in order)");
-    const size_t count = values.size();
-    for (size_t i = 0; i < count; i += p) out.emplace_back(values.begin() + i, values.begin() + i + p);
-  } else {
-    const auto& pts = tr.get<Teuchos::Array<int>>("points");
-    GPHR_REQUIRE(static_cast<size_t>(pts.size()) == p, InputError, "key 'training.points' has ", pts.size(), " entries; allowed: ", p,
-                 " (one per parameter of the box)");
-    std::vector<size_t> idx(p, 0);
-    for (int c : pts) GPHR_REQUIRE(c >= 1 && c <= 10000, InputError, "key 'training.points' has entry ", c,
-                                   "; allowed: integers in [1, 10000]");
-    for (;;) {  // tensor grid, first parameter fastest
-      std::vector<double> mu(p);
-      for (size_t d = 0; d < p; ++d) {
-        const auto [lo, hi] = box.bounds[d];
-        mu[d] = pts[d] == 1 ? 0.5 * (lo + hi) : lo + (hi - lo) * idx[d] / (pts[d] - 1);
-      }
-      out.push_back(mu);
-      size_t d = 0;
-      while (d < p && ++idx[d] == static_cast<size_t>(pts[d])) idx[d++] = 0;
-      if (d == p) break;
-    }
-  }
-  for (const auto& mu : out) {
-    try {
-      box.check(mu);
-    } catch (const InputError& e) {
-      throw InputError(detail::concat("training set: ", e.what()));
-    }
-  }
-  return out;
+  return trainingOptionsFrom(cfg, makeScene(cfg.sublist("scene"))->parameterBox()).parameters;
 }
 
 std::vector<std::string> pipelineMethods(const Teuchos::ParameterList& cfg) {
@@ -240,13 +204,6 @@ std::vector<int> pipelineK(const Teuchos::ParameterList& cfg) {
   for (int k : cfg.sublist("pipeline").get<Teuchos::Array<int>>("k")) ks.push_back(k);
   if (ks.empty()) ks.push_back(cfg.sublist("reduction").get<int>("k"));
   return ks;
-}
-
-std::string toYaml(const Teuchos::ParameterList& pl) {
-  std::ostringstream os;
-  os << std::showpoint;  // else Teuchos warns that 1.0 would be written as the integer 1
-  Teuchos::writeParameterListToYamlOStream(pl, os);
-  return os.str();
 }
 
 std::string helpText() {

@@ -1,7 +1,5 @@
-// The hyper-reduction stages of `gphr run` (paper Sec. 3 and the Sec. 5.2 baselines): for every
-// k of the pipeline, the reduced-Jacobian DEIM basis (cached in artifacts.h5 /deim/k<k> with its
-// provenance), then for every m the DEIM pair, the sample mesh and the model, evaluated like the
-// reduced model. Offline time is split by stage in each run's summary entry.
+#include "gphr/driver/HyperStage.hpp"
+
 #include <Teuchos_Time.hpp>
 #include <algorithm>
 #include <cmath>
@@ -11,14 +9,13 @@
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/Config.hpp"
 #include "gphr/driver/ModelEvaluation.hpp"
-#include "gphr/driver/Pipeline.hpp"
 #include "gphr/hyper/DeimBasis.hpp"
 #include "gphr/hyper/EmpiricalQuadrature.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/hyper/GpDeimModel.hpp"
 #include "gphr/hyper/GradientDeimModel.hpp"
-#include "gphr/io/Hdf5File.hpp"
 #include "gphr/reduction/Deim.hpp"
+#include "gphr/offline/TermWeightFits.hpp"
 #include "gphr/reduction/GalerkinRom.hpp"
 
 namespace gphr {
@@ -34,72 +31,6 @@ std::vector<int> mList(const Teuchos::ParameterList& cfg) {
   for (int m : cfg.sublist("pipeline").get<Teuchos::Array<int>>("m")) ms.push_back(m);
   return ms;
 }
-
-// The training systems (shifted, one per training parameter): cheap to build, kernels differ.
-std::vector<RCP<const HamiltonianSystem>> trainingSystems(const RunContext& ctx, const TrainingResult& tr) {
-  std::vector<RCP<const HamiltonianSystem>> out;
-  for (const auto& mu : tr.parameters) out.push_back(ctx.scene->instantiate(ctx.comm, mu, true).system);
-  return out;
-}
-
-}  // namespace
-
-CachedDeimBasis deimBasisFor(const RunContext& ctx, const RomStages& st, const MultiVector& A, int k,
-                             const HamiltonianSystem& test) {
-  const auto& hyp = ctx.config.sublist("hyper");
-  const auto ms = mList(ctx.config);
-  const std::string name = "/deim/k" + std::to_string(k);
-  // The algorithm's revision is part of the key: a basis cached by an earlier one is recomputed
-  // (2: the randomized range finder draws random signs instead of Gaussian numbers).
-  // hyper.deimSnapshots configures the classic DEIM baseline only: out of this basis's key.
-  Teuchos::ParameterList keyed = hyp;
-  keyed.remove("deimSnapshots", false);
-  const std::string key = basisKey(ctx.config) + toYaml(keyed) + "deim basis revision 2, m <= " +
-                          std::to_string(*std::max_element(ms.begin(), ms.end())) + ", k = " + std::to_string(k);
-  Teuchos::Time clock("deim basis");
-  clock.start();
-  CachedDeimBasis out;
-  Hdf5File f(ctx.artifactsPath(), ctx.comm, Hdf5File::Mode::ReadWrite);
-  if (f.hasAttribute(name, "config") && f.stringAttribute(name, "config") == key) {
-    out.basis.U = f.readColumns(name, test.nonlinearTerm().rowMap());
-    out.basis.singularValues = f.doubleAttribute(name, "singularValues");
-    out.basis.snapshots = static_cast<long>(f.doubleAttribute(name, "snapshots")[0]);
-    out.computeSeconds = f.hasAttribute(name, "seconds") ? f.doubleAttribute(name, "seconds")[0] : NAN;
-    out.cached = true;
-  } else {
-    DeimBasisOptions opt;
-    opt.snapshotEvery = hyp.get<int>("snapshotEvery");
-    opt.blockSnapshots = hyp.get<int>("blockSnapshots");
-    opt.svd = hyp.get<std::string>("svd");
-    opt.oversampling = hyp.get<int>("oversampling");
-    opt.powerIterations = hyp.get<int>("powerIterations");
-    opt.podRoute = hyp.get<std::string>("podRoute");
-    opt.maxRank = hyp.get<int>("maxRank") > 0 ? hyp.get<int>("maxRank")
-                                              : *std::max_element(ms.begin(), ms.end()) + 32;
-    try {
-      out.basis = computeDeimBasis(trainingSystems(ctx, st.training), st.training.snapshots, A, opt);
-    } catch (const InputError& e) {  // e.g. hyper.podRoute 'tsqr' on too few rows per rank: name the section
-      throw InputError(detail::concat("hyper: ", e.what()));
-    }
-    out.computeSeconds = clock.totalElapsedTime(true);
-    if (!f.exists("/deim")) f.createGroup("/deim");
-    f.remove(name);
-    f.writeColumns(name, *out.basis.U);
-    f.setAttribute(name, "singularValues", out.basis.singularValues);
-    f.setAttribute(name, "snapshots", std::vector<double>{double(out.basis.snapshots)});
-    f.setAttribute(name, "seconds", std::vector<double>{out.computeSeconds});
-    f.setAttribute(name, "layout", std::string("rows are the DEIM basis vectors U (d entries each, row-of-G order)"));
-    f.flush();
-    f.setAttribute(name, "config", key);  // last: marks the dataset complete
-  }
-  out.seconds = clock.stop();
-  if (ctx.comm->getRank() == 0)
-    std::fprintf(stderr, "[gphr] deim basis k = %d: %zu vectors from %ld snapshots%s, %.1f s\n", k,
-                 out.basis.singularValues.size(), out.basis.snapshots, out.cached ? " (cached)" : "", out.seconds);
-  return out;
-}
-
-namespace {
 
 ModelRun unavailable(const std::string& method, int k, int m, const std::string& why) {
   ModelRun r;
@@ -138,7 +69,7 @@ ModelRun evaluateTermModel(const RunContext& ctx, const FomResult& fom, const Sc
 
 void runGpDeim(const RunContext& ctx, const FomResult& fom, RomStages& st, const SceneInstance& inst,
                const MultiVector& A, int k, const ReducedLinearPart& linear) {
-  const CachedDeimBasis db = deimBasisFor(ctx, st, A, k, *inst.system);
+  const CachedDeimBasis db = deimBasisFor(ctx, st, A, *inst.system);
   if (k == stageK(ctx.config, st.basis).back()) st.deimSingularValues = db.basis.singularValues;
   const double lminR = romHessianMinEig(inst, A, k);
   const std::string indices = ctx.config.sublist("hyper").get<std::string>("indices");
@@ -173,143 +104,29 @@ void runGpDeim(const RunContext& ctx, const FomResult& fom, RomStages& st, const
   }
 }
 
-// gp-eqp (DESIGN.md "Term weights"): the training system of section eqp, built once per k when a
-// fit is not in the cache.
-QuadratureOptions quadratureOptionsFrom(const Teuchos::ParameterList& eq) {
-  QuadratureOptions o;
-  o.snapshotEvery = eq.get<int>("snapshotEvery");
-  o.energyWeight = eq.get<double>("energyWeight");
-  o.sketchRows = eq.get<int>("sketchRows");
-  o.columnFloor = eq.get<double>("columnFloor");
-  o.seed = static_cast<unsigned long long>(eq.get<int>("seed"));
-  return o;
-}
-
-struct CachedFit {
-  QuadratureFit fit;
-  double exactResidual = NAN;  // on the unsketched rows (= fit.residual without a sketch)
-  bool cached = false;
-  double fitSeconds = 0.0;       // the NNLS / refit solve
-  double trainingSeconds = 0.0;  // building the training system of this k (each fit stands for it)
-};
-
-// The fits of one k: read from artifacts.h5 /eqp/<method>_k<k>_m<m> when their key matches,
-// else computed (the training system built on first need) and stored. The key holds the basis,
-// section eqp (and for the refit, section hyper: the DEIM terms) and the algorithm's revision.
-class QuadratureFits {
- public:
-  QuadratureFits(const RunContext& ctx, RomStages& st, const MultiVector& A, int k, const HamiltonianSystem& test)
-      : ctx_(ctx), st_(st), A_(A), k_(k), test_(test), opt_(quadratureOptionsFrom(ctx.config.sublist("eqp"))) {}
-
-  CachedFit get(const std::string& method, int m) {
-    const bool refit = method == "gp-eqp-refit";
-    CachedFit out;
-    if (read(name(method, m), key(method, m), out)) return out;
-    if (refit) {
-      computed_[m] = refitQuadrature(training(), deimTerms(m));
-    } else if (!computed_.count(m)) {
-      // One greedy path for every budget of pipeline.m not in the cache (each budget's fit is
-      // the path up to it, and its time the path's time to it).
-      std::vector<int> budgets;
-      for (int b : mList(ctx_.config))
-        if (CachedFit c; !read(name(method, b), key(method, b), c)) budgets.push_back(b);
-      const auto path = nnlsQuadraturePath(training(), budgets, ctx_.config.sublist("eqp").get<double>("tolerance"));
-      for (size_t i = 0; i < budgets.size(); ++i) computed_[budgets[i]] = path[i];
-    }
-    out.fit = computed_.at(m);
-    out.exactResidual = opt_.sketchRows > 0 ? exactRowsResidual(systems(), st_.training.snapshots, A_, opt_, out.fit)
-                                            : out.fit.residual;
-    out.fitSeconds = out.fit.seconds;
-    out.trainingSeconds = trainingSeconds_;
-    store(name(method, m), key(method, m), out);
-    computed_.erase(m);
-    return out;
-  }
-
- private:
-  std::string name(const std::string& method, int m) const {
-    return "/eqp/" + method + "_k" + std::to_string(k_) + "_m" + std::to_string(m);
-  }
-  // The revision: 2, the budgets' fits along one greedy path (the same fits, times along the path).
-  std::string key(const std::string& method, int m) const {
-    return basisKey(ctx_.config) + toYaml(ctx_.config.sublist("eqp")) +
-           (method == "gp-eqp-refit" ? toYaml(ctx_.config.sublist("hyper")) : std::string()) +
-           "eqp revision 2, k = " + std::to_string(k_) + ", m = " + std::to_string(m);
-  }
-  // Separate opens: the DEIM basis of the refit opens the same file in between.
-  bool read(const std::string& name, const std::string& key, CachedFit& out) const {
-    Hdf5File f(ctx_.artifactsPath(), ctx_.comm, Hdf5File::Mode::ReadWrite);
-    if (!f.hasAttribute(name, "config") || f.stringAttribute(name, "config") != key) return false;
-    const std::vector<double> a = f.readArray(name);  // row 0 the terms, row 1 the weights
-    const size_t p = a.size() / 2;
-    for (size_t j = 0; j < p; ++j) out.fit.terms.push_back(static_cast<GO>(a[j])), out.fit.weights.push_back(a[p + j]);
-    const std::vector<double> d = f.doubleAttribute(name, "diagnostics");
-    out.fit.residual = d[0], out.exactResidual = d[1], out.fit.iterations = static_cast<int>(d[2]);
-    out.fitSeconds = d[3], out.trainingSeconds = d[4];
-    out.fit.stop = f.stringAttribute(name, "stop");
-    out.cached = true;
-    return true;
-  }
-  const std::vector<RCP<const HamiltonianSystem>>& systems() {
-    if (systems_.empty()) systems_ = trainingSystems(ctx_, st_.training);
-    return systems_;
-  }
-  const QuadratureTraining& training() {
-    if (training_.termMap.is_null()) {
-      Teuchos::Time clock("eqp training");
-      clock.start();
-      try {
-        training_ = buildQuadratureTraining(systems(), st_.training.snapshots, A_, opt_);
-      } catch (const InputError& e) {  // e.g. too many rows: name the section
-        throw InputError(detail::concat("eqp: ", e.what()));
-      }
-      trainingSeconds_ = clock.stop();
-      if (ctx_.comm->getRank() == 0)
-        std::fprintf(stderr, "[gphr] eqp training k = %d: %d rows%s from %ld states, %.1f s\n", k_, training_.numRows,
-                     training_.sketched ? " (sketched)" : "", training_.snapshots, trainingSeconds_);
-    }
-    return training_;
-  }
-  std::vector<GO> deimTerms(int m) {
-    const CachedDeimBasis db = deimBasisFor(ctx_, st_, A_, k_, test_);
+// The term-weight fits of the basis A (sections eqp and, for the refit's terms, hyper) through
+// the artifacts cache.
+TermWeightFits termWeightFits(const RunContext& ctx, const RomStages& st, const MultiVector& A,
+                              const HamiltonianSystem& test) {
+  const ModelBuildKeys keys = cacheKeys(ctx.config);
+  const ArtifactsCache cache = artifactsCache(ctx, test.space().fullDim());
+  const std::string indices = ctx.config.sublist("hyper").get<std::string>("indices");
+  auto deimTerms = [&ctx, &st, &A, &test, indices](int m) {
+    const CachedDeimBasis db = deimBasisFor(ctx, st, A, test);
     GPHR_REQUIRE(m <= static_cast<int>(db.basis.U->getNumVectors()), InputError, "the DEIM basis has ",
                  db.basis.U->getNumVectors(), " vectors, m = ", m);
-    return selectDeimIndices(*db.basis.U, m, ctx_.config.sublist("hyper").get<std::string>("indices"));
-  }
-  void store(const std::string& name, const std::string& key, const CachedFit& c) const {
-    Hdf5File f(ctx_.artifactsPath(), ctx_.comm, Hdf5File::Mode::ReadWrite);
-    const size_t p = c.fit.terms.size();
-    std::vector<double> a(2 * p);
-    for (size_t j = 0; j < p; ++j) a[j] = static_cast<double>(c.fit.terms[j]), a[p + j] = c.fit.weights[j];
-    if (!f.exists("/eqp")) f.createGroup("/eqp");
-    f.remove(name);
-    f.writeArray(name, a, 2, p);
-    f.setAttribute(name, "diagnostics",
-                   std::vector<double>{c.fit.residual, c.exactResidual, double(c.fit.iterations), c.fitSeconds,
-                                       c.trainingSeconds});
-    f.setAttribute(name, "stop", c.fit.stop);
-    f.setAttribute(name, "layout", std::string("row 0: the terms (rows of G), row 1: their weights; diagnostics: "
-                                               "fit residual, exact-rows residual, selections, fit seconds, training seconds"));
-    f.flush();
-    f.setAttribute(name, "config", key);  // last: marks the dataset complete
-  }
-  const RunContext& ctx_;
-  RomStages& st_;
-  const MultiVector& A_;
-  int k_;
-  const HamiltonianSystem& test_;
-  QuadratureOptions opt_;
-  std::vector<RCP<const HamiltonianSystem>> systems_;
-  QuadratureTraining training_;
-  double trainingSeconds_ = 0.0;
-  std::map<int, QuadratureFit> computed_;  // fits of the current path not yet returned
-};
+    return selectDeimIndices(*db.basis.U, m, indices);
+  };
+  return TermWeightFits(*ctx.scene, ctx.comm, st.training, A, quadratureOptionsFrom(ctx.config.sublist("eqp")),
+                        ctx.config.sublist("eqp").get<double>("tolerance"), mList(ctx.config), deimTerms,
+                        &cache, keys.nnls, keys.refit);
+}
 
 // gp-eqp (NNLS terms and weights, pipeline.m the term budget) or gp-eqp-refit (GP-DEIM's terms,
 // least-squares weights) for every m: the fit, then GpDeimModel on its sample mesh.
 void runGpEqp(const RunContext& ctx, const FomResult& fom, RomStages& st, const SceneInstance& inst,
               const MultiVector& A, int k, const ReducedLinearPart& linear, const std::string& method) {
-  QuadratureFits fits(ctx, st, A, k, *inst.system);
+  TermWeightFits fits = termWeightFits(ctx, st, A, *inst.system);
   const double lminR = romHessianMinEig(inst, A, k);
   for (int m : mList(ctx.config)) {
     CachedFit c;
@@ -400,7 +217,7 @@ void runGpAdeim(const RunContext& ctx, const FomResult& fom, RomStages& st, cons
         continue;
       }
     } else {
-      U0 = deimBasisFor(ctx, st, *A, k, *inst.system).basis.U;
+      U0 = deimBasisFor(ctx, st, *A, *inst.system).basis.U;
       if (m > static_cast<int>(U0->getNumVectors())) {
         st.runs.push_back(unavailable("gp-adeim", k, m, "the training DEIM basis has " +
                                                             std::to_string(U0->getNumVectors()) + " vectors"));
@@ -451,7 +268,7 @@ void runGradientDeim(const RunContext& ctx, const FomResult& fom, RomStages& st,
     Teuchos::Time clock("gradient pod");
     clock.start();
     const int maxRank = *std::max_element(ms.begin(), ms.end()) + 32;
-    auto Ug = gradientDeimBasis(trainingSystems(ctx, st.training), st.training.snapshots, A, maxRank,
+    auto Ug = gradientDeimBasis(trainingSystems(*ctx.scene, ctx.comm, st.training), st.training.snapshots, A, maxRank,
                                 ctx.config.sublist("hyper").get<int>("snapshotEvery"), kind);
     const double t = clock.stop();
     for (int m : ms) {
@@ -467,21 +284,6 @@ void runGradientDeim(const RunContext& ctx, const FomResult& fom, RomStages& st,
 }
 
 }  // namespace
-
-std::map<int, QuadratureFit> termWeightFits(const RunContext& ctx, RomStages& st, const MultiVector& A, int k,
-                                            const HamiltonianSystem& test, const std::string& method,
-                                            const std::vector<int>& ms, std::map<int, std::string>& skipped) {
-  QuadratureFits fits(ctx, st, A, k, test);  // one training system for every budget
-  std::map<int, QuadratureFit> out;
-  for (int m : ms) {
-    try {
-      out[m] = fits.get(method, m).fit;
-    } catch (const InputError& e) {
-      skipped[m] = e.what();
-    }
-  }
-  return out;
-}
 
 void runHyperReduction(const RunContext& ctx, const FomResult& fom, RomStages& st) {
   const auto methods = pipelineMethods(ctx.config);

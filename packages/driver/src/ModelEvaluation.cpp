@@ -17,22 +17,7 @@ std::string ModelRun::label() const {
 }
 
 std::vector<int> stageK(const Teuchos::ParameterList& cfg, const ReducedBasis& basis) {
-  std::vector<int> ks;
-  for (int k : pipelineK(cfg)) {
-    if (k == 0) k = basis.k;
-    GPHR_REQUIRE(k <= basis.k, InputError, "k = ", k, " is larger than the basis (k = ", basis.k, ")");
-    ks.push_back(k);
-  }
-  return ks;
-}
-
-RCP<MultiVector> leadingBasis(const ReducedBasis& basis, int k) {
-  const int kb = basis.k;
-  if (k == kb) return basis.A;
-  Teuchos::Array<size_t> cols;
-  for (int j = 0; j < k; ++j) cols.push_back(j);
-  for (int j = 0; j < k; ++j) cols.push_back(kb + j);
-  return rcp(new MultiVector(*basis.A->subCopy(cols())));
+  return basisSizes(pipelineK(cfg), basis);
 }
 
 namespace {

@@ -13,16 +13,6 @@
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/Commands.hpp"
 
-#ifndef GPHR_VERSION_STRING
-#define GPHR_VERSION_STRING "unknown"
-#endif
-#ifndef GPHR_BUILD_TYPE
-#define GPHR_BUILD_TYPE "unknown"
-#endif
-#ifndef GPHR_CXX_FLAGS
-#define GPHR_CXX_FLAGS "unknown"
-#endif
-
 namespace gphr {
 
 
@@ -94,9 +84,5 @@ void prepareOutputDir(RunContext& ctx, bool removeSummary) {
   }
   agreeOnError(ctx.comm, error);
 }
-
-const char* gphrVersion() { return GPHR_VERSION_STRING; }
-const char* gphrBuildType() { return GPHR_BUILD_TYPE; }
-const char* gphrCxxFlags() { return GPHR_CXX_FLAGS; }
 
 }  // namespace gphr

@@ -19,7 +19,9 @@
 #include "gphr/driver/Console.hpp"
 #include "gphr/driver/Config.hpp"
 #include "gphr/driver/OutputLock.hpp"
+#include "gphr/driver/HyperStage.hpp"
 #include "gphr/driver/Report.hpp"
+#include "gphr/driver/RomStage.hpp"
 #include "gphr/models/SceneFactory.hpp"
 
 namespace {
@@ -104,21 +106,7 @@ int runMain(const Args& args, const gphr::RCP<const gphr::Comm>& comm) {
                  comm->getSize(), ctx.outputDir.c_str());
   std::unique_ptr<RomStages> rom;
   const auto methods = pipelineMethods(ctx.config);
-  if (!methods.empty()) {
-    rom = std::make_unique<RomStages>();
-    rom->training = runTraining(ctx);
-    Teuchos::Time t("basis");
-    t.start();
-    const std::clock_t cpu0 = std::clock();
-    rom->basis = runReduction(ctx, rom->training, rom->basisCached);
-    rom->basisSeconds = t.stop();
-    rom->basisCpuSeconds = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
-    if (root)
-      std::fprintf(stderr, "[gphr] reduce: %s basis, 2k = %d, energy captured %.10f%s, %.1f s (%.1f s CPU; POD steps: "
-                   "%d tsqr, %d stacked, %d replicated)\n", rom->basis.method.c_str(), 2 * rom->basis.k, rom->basis.energyCaptured,
-                   rom->basisCached ? " (cached)" : "", rom->basisSeconds, rom->basisCpuSeconds, rom->basis.tsqrSteps,
-                   rom->basis.stackedSteps, rom->basis.replicatedSteps);
-  }
+  if (!methods.empty()) rom = std::make_unique<RomStages>(runOfflineStages(ctx));
   const FomResult fom = runFullModel(evaluationSettingsFrom(ctx.config), *ctx.scene, ctx.mu, comm);
   if (rom && std::find(methods.begin(), methods.end(), "rom") != methods.end()) runRom(ctx, fom, *rom);
   if (rom) runHyperReduction(ctx, fom, *rom);

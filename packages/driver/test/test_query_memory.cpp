@@ -13,7 +13,7 @@
 #include <cstdio>
 
 #include "TestUtils.hpp"
-#include "gphr/driver/ModelFileBuilder.hpp"
+#include "gphr/offline/ModelFileBuilder.hpp"
 #include "gphr/online/ReducedModel.hpp"
 
 namespace {

@@ -11,7 +11,7 @@
 
 #include "HyperTestUtils.hpp"
 #include "gphr/driver/Config.hpp"
-#include "gphr/driver/ModelFileBuilder.hpp"
+#include "gphr/offline/ModelFileBuilder.hpp"
 #include "gphr/online/ReducedModel.hpp"
 
 using namespace gphr;

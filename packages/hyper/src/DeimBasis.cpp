@@ -239,4 +239,16 @@ DeimBasis computeDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& syst
   return out;
 }
 
+DeimBasisOptions deimBasisOptionsFrom(const Teuchos::ParameterList& hyp, int largestM) {
+  DeimBasisOptions o;
+  o.snapshotEvery = hyp.get<int>("snapshotEvery");
+  o.blockSnapshots = hyp.get<int>("blockSnapshots");
+  o.svd = hyp.get<std::string>("svd");
+  o.oversampling = hyp.get<int>("oversampling");
+  o.powerIterations = hyp.get<int>("powerIterations");
+  o.podRoute = hyp.get<std::string>("podRoute");
+  o.maxRank = hyp.get<int>("maxRank") > 0 ? hyp.get<int>("maxRank") : largestM + 32;
+  return o;
+}
+
 }  // namespace gphr

@@ -379,4 +379,14 @@ RCP<GpDeimModel> buildQuadratureModel(const HamiltonianSystem& system, const Mul
   return rcp(new GpDeimModel(system.nonlinearTermPtr(), buildSampleMesh(system, A, fit.terms, fit.weights, linear)));
 }
 
+QuadratureOptions quadratureOptionsFrom(const Teuchos::ParameterList& eq) {
+  QuadratureOptions o;
+  o.snapshotEvery = eq.get<int>("snapshotEvery");
+  o.energyWeight = eq.get<double>("energyWeight");
+  o.sketchRows = eq.get<int>("sketchRows");
+  o.columnFloor = eq.get<double>("columnFloor");
+  o.seed = static_cast<unsigned long long>(eq.get<int>("seed"));
+  return o;
+}
+
 }  // namespace gphr

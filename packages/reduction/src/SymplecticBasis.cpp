@@ -208,4 +208,34 @@ ReducedBasis computeSymplecticBasis(const std::vector<RCP<const MultiVector>>& s
   return out;
 }
 
+BasisOptions basisOptionsFrom(const Teuchos::ParameterList& red, int k) {
+  BasisOptions o;
+  o.method = red.get<std::string>("method");
+  o.k = k;
+  o.energyTolerance = red.get<double>("energyTolerance");
+  o.blockColumns = red.get<int>("blockColumns");
+  o.maxRank = red.get<int>("maxRank");
+  o.podRoute = red.get<std::string>("podRoute");
+  return o;
+}
+
+RCP<MultiVector> leadingBasis(const ReducedBasis& basis, int k) {
+  const int kb = basis.k;
+  if (k == kb) return basis.A;
+  Teuchos::Array<size_t> cols;
+  for (int j = 0; j < k; ++j) cols.push_back(j);
+  for (int j = 0; j < k; ++j) cols.push_back(kb + j);
+  return rcp(new MultiVector(*basis.A->subCopy(cols())));
+}
+
+std::vector<int> basisSizes(const std::vector<int>& requested, const ReducedBasis& basis) {
+  std::vector<int> ks;
+  for (int k : requested) {
+    if (k == 0) k = basis.k;
+    GPHR_REQUIRE(k <= basis.k, InputError, "k = ", k, " is larger than the basis (k = ", basis.k, ")");
+    ks.push_back(k);
+  }
+  return ks;
+}
+
 }  // namespace gphr

@@ -10,6 +10,8 @@
 
 #include "gphr/driver/RunContext.hpp"
 
+#include "gphr/core/Provenance.hpp"
+
 namespace gphr {
 
 /// Creates ctx.outputDir (rank 0) and, if removeSummary, removes an earlier run's summary.json
@@ -47,10 +49,5 @@ int runQuery(const std::string& modelPath, const std::string& queriesPath, const
 int runValidate(const std::string& modelPath, const std::string& testsPath, const std::string& outputDir,
                 const RCP<const Comm>& comm);
 
-/// Provenance: the gphr version (git describe at configure time), the CMake build type and the
-/// C++ flags of that build type.
-const char* gphrVersion();
-const char* gphrBuildType();  ///< The CMake build type of this build.
-const char* gphrCxxFlags();  ///< The C++ flags of that build type.
 
 }  // namespace gphr

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "gphr/core/Provenance.hpp"
+
 namespace gphr {
 
 /// The valid list for a given scene (the scene decides its size key and parameters).
@@ -25,8 +27,6 @@ std::vector<std::vector<double>> trainingParameters(const Teuchos::ParameterList
 std::vector<std::string> pipelineMethods(const Teuchos::ParameterList& cfg);
 /// The k values of the reduced models: pipeline.k, else reduction.k.
 std::vector<int> pipelineK(const Teuchos::ParameterList& cfg);
-/// A ParameterList as YAML text (stored as provenance in artifacts.h5, compared for caching).
-std::string toYaml(const Teuchos::ParameterList& pl);
 /// `gphr --help` text: usage and every key with default, allowed values and description.
 std::string helpText();
 

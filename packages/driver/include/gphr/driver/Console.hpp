@@ -6,7 +6,7 @@
 #include <string>
 
 #include "gphr/driver/FomStage.hpp"
-#include "gphr/driver/Pipeline.hpp"
+#include "gphr/driver/OfflineStages.hpp"
 
 namespace gphr {
 

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "gphr/driver/FomStage.hpp"
-#include "gphr/driver/Pipeline.hpp"
+#include "gphr/driver/OfflineStages.hpp"
 #include "gphr/driver/RunContext.hpp"
 
 namespace gphr {

@@ -22,9 +22,6 @@ namespace gphr {
 
 /// The k values of the reduced stages: pipeline.k (or reduction.k; 0 means the basis' own k).
 std::vector<int> stageK(const Teuchos::ParameterList& cfg, const ReducedBasis& basis);
-/// The leading 2k columns of a symplectic basis of size kb: [E_k, J^T E_k] = columns [0, k) and
-/// [kb, kb + k) (still orthonormal and symplectic).
-RCP<MultiVector> leadingBasis(const ReducedBasis& basis, int k);
 
 /// hasHamiltonian: the model has one (rom, gp-deim, gp-adeim); the classic DEIM baselines do not.
 /// adapt: called after every step (and at step 0) once the state was measured, in online time

@@ -4,6 +4,7 @@
 ///   M_J = [ J_G(y0_j + A A^T y_s) A ]   (eq:snaps_JG, shifted: y_s = y - y0_j),
 /// d x 2k per kept training state, streamed into an incremental SVD (StreamingPod) or a
 /// randomized range finder, so that M_J (d x 2k x states: 5 GB at the paper's NLS sizes) is never held.
+#include <Teuchos_ParameterList.hpp>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,10 @@ struct DeimBasisOptions {
   bool gramProjection = true;
   unsigned long long seed = 20231122;  ///< randomized: seed of the Gaussian test matrix.
 };
+
+/// The options of a `hyper` configuration section (validated: every key present); largestM: the
+/// largest DEIM size wanted (maxRank 0 keeps largestM + 32 triplets).
+DeimBasisOptions deimBasisOptionsFrom(const Teuchos::ParameterList& hyper, int largestM);
 
 constexpr int kDefaultDeimRank = 400;  ///< Default largest m (singular triplets kept) of the DEIM basis.
 

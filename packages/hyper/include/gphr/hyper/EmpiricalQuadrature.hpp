@@ -12,6 +12,7 @@
 /// G_e A is positive semi-definite wherever every term's Hessian is (the SWE at rest): H_hr keeps
 /// the convexity that negative DEIM weights can destroy. The model online is GpDeimModel on the
 /// sample mesh of (E, xi): the same code path.
+#include <Teuchos_ParameterList.hpp>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,9 @@ struct QuadratureOptions {
   double maxNumbersPerRank = 2.5e8;
   unsigned long long seed = 20261124;  ///< the sketch's hash seed (sketchRows > 0)
 };
+
+/// The options of an `eqp` configuration section (validated: every key present).
+QuadratureOptions quadratureOptionsFrom(const Teuchos::ParameterList& eqp);
 
 /// The training system of the fit: this rank's columns (its own rows of G, as their reduced-gradient
 /// columns), the target b (replicated) and the column norms.

@@ -11,6 +11,7 @@
 /// real triplets, as in libROM; the same on any rank count); a complex Gram-Schmidt of its left
 /// vectors in the small coordinates keeps one vector of each J-pair. Nothing n x N_snap is
 /// gathered and nothing n x n is formed; with all snapshots in one block it is the exact thin SVD.
+#include <Teuchos_ParameterList.hpp>
 #include <string>
 #include <vector>
 
@@ -45,5 +46,16 @@ struct ReducedBasis {
 /// model is shifted). Collective.
 ReducedBasis computeSymplecticBasis(const std::vector<RCP<const MultiVector>>& snapshots,
                                     const PhaseSpace& space, const BasisOptions& options);
+
+/// The options of a `reduction` configuration section (validated: every key present) for a basis
+/// of half-size k (0: chosen by the energy tolerance).
+BasisOptions basisOptionsFrom(const Teuchos::ParameterList& reduction, int k);
+
+/// The leading 2k columns of a symplectic basis of size kb: [E_k, J^T E_k] = columns [0, k) and
+/// [kb, kb + k) (still orthonormal and symplectic).
+RCP<MultiVector> leadingBasis(const ReducedBasis& basis, int k);
+
+/// The reduced sizes asked for, 0 standing for the basis's own k; InputError for a k above it.
+std::vector<int> basisSizes(const std::vector<int>& ks, const ReducedBasis& basis);
 
 }  // namespace gphr

@@ -1,5 +1,5 @@
 // The contents of a reduced-model file from the offline results (ModelFileBuilder.hpp).
-#include "gphr/driver/ModelFileBuilder.hpp"
+#include "gphr/offline/ModelFileBuilder.hpp"
 
 #include <Trilinos_version.h>
 
@@ -10,8 +10,7 @@
 
 #include "gphr/core/Error.hpp"
 #include "gphr/core/ReplicatedGather.hpp"
-#include "gphr/driver/Commands.hpp"
-#include "gphr/driver/Config.hpp"
+#include "gphr/core/Provenance.hpp"
 #include "gphr/hyper/SampleMesh.hpp"
 #include "gphr/reduction/Deim.hpp"
 

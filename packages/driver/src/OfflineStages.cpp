@@ -1,0 +1,96 @@
+#include "gphr/driver/OfflineStages.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "gphr/driver/Config.hpp"
+
+namespace gphr {
+
+namespace {
+
+// The config that determines the training snapshots: scene, time, integrator, training.
+std::string trainingKey(const Teuchos::ParameterList& cfg) {
+  Teuchos::ParameterList k("training-stage");
+  for (const char* s : {"scene", "time", "integrator", "training"}) k.sublist(s) = cfg.sublist(s);
+  return toYaml(k);
+}
+
+std::string basisKey(const Teuchos::ParameterList& cfg) {
+  // podRoute's default (auto) is what every basis cached before the key existed was computed with
+  // (then TSQR where it fit, now the stacked route: both exact SVDs, equal to round-off): it stays
+  // out of the key, so those caches remain valid; another route is a different key.
+  Teuchos::ParameterList red = cfg.sublist("reduction");
+  if (red.isParameter("podRoute") && red.get<std::string>("podRoute") == "auto") red.remove("podRoute");
+  return trainingKey(cfg) + toYaml(red) + "k = " + std::to_string(basisK(cfg));
+}
+
+int largestM(const Teuchos::ParameterList& cfg) {
+  const auto& ms = cfg.sublist("pipeline").get<Teuchos::Array<int>>("m");
+  return ms.empty() ? 0 : *std::max_element(ms.begin(), ms.end());  // empty: no hyper-reduced model
+}
+
+}  // namespace
+
+int basisK(const Teuchos::ParameterList& cfg) {
+  const auto ks = pipelineK(cfg);
+  return std::max(cfg.sublist("reduction").get<int>("k"), *std::max_element(ks.begin(), ks.end()));
+}
+
+ModelBuildKeys cacheKeys(const Teuchos::ParameterList& cfg) {
+  ModelBuildKeys k;
+  k.training = trainingKey(cfg);
+  k.basis = basisKey(cfg);
+  // The DEIM algorithm's revision is part of the key: a basis cached by an earlier one is
+  // recomputed (2: the randomized range finder draws random signs instead of Gaussian numbers).
+  // hyper.deimSnapshots configures the classic DEIM baseline only: out of this basis's key.
+  Teuchos::ParameterList hyper = cfg.sublist("hyper");
+  hyper.remove("deimSnapshots", false);
+  k.deim = k.basis + toYaml(hyper) + "deim basis revision 2, m <= " + std::to_string(largestM(cfg));
+  k.nnls = k.basis + toYaml(cfg.sublist("eqp"));
+  k.refit = k.nnls + toYaml(cfg.sublist("hyper"));  // the refit's terms are GP-DEIM's
+  return k;
+}
+
+ArtifactsCache artifactsCache(const RunContext& ctx, long fullDim) {
+  return ArtifactsCache(ctx.artifactsPath(), ctx.comm, ctx.scene->name(), fullDim);
+}
+
+RomStages runOfflineStages(const RunContext& ctx) {
+  const auto inst = ctx.scene->instantiate(ctx.comm, ctx.mu, true);
+  const ArtifactsCache cache = artifactsCache(ctx, inst.system->space().fullDim());
+  const ModelBuildKeys keys = cacheKeys(ctx.config);
+  RomStages st;
+  st.training = runTraining(*ctx.scene, ctx.comm, trainingOptionsFrom(ctx.config, ctx.scene->parameterBox()), &cache,
+                            keys.training);
+  const BasisStageResult b = runBasisStage(st.training, inst.system->space(),
+                                           basisOptionsFrom(ctx.config.sublist("reduction"), basisK(ctx.config)),
+                                           ctx.scene->name(), &cache, keys.basis);
+  st.basis = b.basis, st.basisCached = b.cached, st.basisSeconds = b.seconds, st.basisCpuSeconds = b.cpuSeconds;
+  if (ctx.comm->getRank() == 0)
+    std::fprintf(stderr, "[gphr] reduce: %s basis, 2k = %d, energy captured %.10f%s, %.1f s (%.1f s CPU; POD steps: "
+                 "%d tsqr, %d stacked, %d replicated)\n", st.basis.method.c_str(), 2 * st.basis.k,
+                 st.basis.energyCaptured, st.basisCached ? " (cached)" : "", st.basisSeconds, st.basisCpuSeconds,
+                 st.basis.tsqrSteps, st.basis.stackedSteps, st.basis.replicatedSteps);
+  return st;
+}
+
+CachedDeimBasis deimBasisFor(const RunContext& ctx, const RomStages& st, const MultiVector& A,
+                             const HamiltonianSystem& test) {
+  const ArtifactsCache cache = artifactsCache(ctx, test.space().fullDim());
+  return runDeimBasisStage(*ctx.scene, ctx.comm, st.training, A, test,
+                           deimBasisOptionsFrom(ctx.config.sublist("hyper"), largestM(ctx.config)), &cache,
+                           cacheKeys(ctx.config).deim);
+}
+
+void setBasisKeys(const RunContext& ctx, const RomStages& st, JsonObject& run) {
+  run.set("t_training_s", st.training.seconds)
+      .set("t_basis_s", st.basisSeconds)
+      .set("t_basis_cpu_s", st.basisCpuSeconds)
+      .set("pod_route", ctx.config.sublist("reduction").get<std::string>("podRoute"))
+      .set("pod_steps_tsqr", static_cast<long>(st.basis.tsqrSteps))
+      .set("pod_steps_replicated", static_cast<long>(st.basis.replicatedSteps))
+      .set("pod_steps_stacked", static_cast<long>(st.basis.stackedSteps));
+}
+
+}  // namespace gphr

@@ -1,0 +1,40 @@
+#pragma once
+/// @file
+/// The offline stages' cache: one HDF5 file (DIR/artifacts.h5 of `gphr run` and `gphr build`)
+/// that holds the training snapshots, the basis, the DEIM bases and the term-weight fits, each a
+/// keyed dataset. A dataset is reused only when its `config` attribute equals the key of what
+/// would be computed now (the configuration text it depends on) and it carries the `complete`
+/// mark, written last: a run killed while writing leaves a dataset without the mark, redone by
+/// the next run. A file of another scene or state size is refused, naming the file.
+#include <memory>
+#include <string>
+
+#include "gphr/core/Types.hpp"
+#include "gphr/io/Hdf5File.hpp"
+
+namespace gphr {
+
+/// The artifacts file of one scene and state size (see the file's description).
+class ArtifactsCache {
+ public:
+  /// Opens the file at `path` or creates it with the scene's name and the state size 2n. An existing
+  /// file of another scene or size is an InputError naming the file. Collective over `comm`.
+  ArtifactsCache(std::string path, RCP<const Comm> comm, const std::string& sceneName, long fullDim);
+  const std::string& path() const { return path_; }       ///< The file's path.
+  const RCP<const Comm>& comm() const { return comm_; }   ///< The ranks that open it.
+  /// The file opened for reading and writing (closed when the pointer goes): stages open it per
+  /// dataset, so that a kill between two datasets leaves the finished ones intact. Collective.
+  std::unique_ptr<Hdf5File> open() const;
+  /// Whether `name` is complete and was computed from `key`.
+  static bool holds(const Hdf5File& file, const std::string& name, const std::string& key);
+  /// Marks `name` complete for `key`, after its data and attributes: flush, the key, the mark.
+  static void seal(Hdf5File& file, const std::string& name, const std::string& key);
+  /// Removes `name` and creates its parent groups if missing: the dataset can be written anew.
+  static void clear(Hdf5File& file, const std::string& name);
+
+ private:
+  std::string path_;
+  RCP<const Comm> comm_;
+};
+
+}  // namespace gphr

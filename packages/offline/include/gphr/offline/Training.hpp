@@ -1,0 +1,52 @@
+#pragma once
+/// @file
+/// The training stage: the full model of a scene integrated at each training parameter, its
+/// shifted states y - y0(mu) kept every snapshotEvery-th step (the snapshots of the basis, the
+/// DEIM basis and the term-weight fits). With an artifacts cache each parameter's snapshots are
+/// written as soon as it finishes, so that a resumed run keeps every finished parameter.
+#include <Teuchos_ParameterList.hpp>
+#include <string>
+#include <vector>
+
+#include "gphr/models/Scene.hpp"
+#include "gphr/offline/ArtifactsCache.hpp"
+
+namespace gphr {
+
+/// What the training stage integrates.
+struct TrainingOptions {
+  std::vector<std::vector<double>> parameters;  ///< the training parameters mu (each inside the box)
+  double dt = 0.0;                              ///< time step
+  long steps = 0;                               ///< steps per parameter
+  long snapshotEvery = 1;                       ///< keep every snapshotEvery-th state (and state 0)
+  Teuchos::ParameterList integrator{"integrator"};  ///< the integrator section (scheme, Newton)
+  bool progress = true;                         ///< one progress line per parameter on rank 0 (stderr)
+};
+
+/// The training options of a `gphr` configuration's sections time (T, dt), training (values or
+/// points, snapshotEvery) and integrator, the parameters checked against `box`.
+TrainingOptions trainingOptionsFrom(const Teuchos::ParameterList& config, const ParameterBox& box);
+
+/// The tensor grid over `box` with points[i] equispaced values of parameter i (1: its midpoint),
+/// the first parameter fastest. InputError unless there is one count per parameter, each in [1, 10000].
+std::vector<std::vector<double>> trainingGrid(const ParameterBox& box, const std::vector<int>& points);
+
+/// The training stage's results: the training parameters and their shifted snapshots.
+struct TrainingResult {
+  std::vector<std::vector<double>> parameters;    ///< The training parameters mu.
+  std::vector<RCP<const MultiVector>> snapshots;  ///< shifted states per training parameter
+  long reused = 0;                                ///< parameters taken from the cache
+  double seconds = 0.0;                           ///< Wall seconds of the stage.
+};
+
+/// Integrates the scene at every training parameter. With `cache`, a parameter whose dataset is
+/// complete for `key` is read back, one without its mark (killed mid-write) is redone, and a
+/// cache trained with another key is trained again. Collective over `comm`.
+TrainingResult runTraining(const Scene& scene, const RCP<const Comm>& comm, const TrainingOptions& options,
+                           const ArtifactsCache* cache = nullptr, const std::string& key = "");
+
+/// The shifted systems of the training parameters (cheap to build: the kernels differ by mu).
+std::vector<RCP<const HamiltonianSystem>> trainingSystems(const Scene& scene, const RCP<const Comm>& comm,
+                                                          const TrainingResult& training);
+
+}  // namespace gphr

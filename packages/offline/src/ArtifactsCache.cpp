@@ -1,0 +1,54 @@
+#include "gphr/offline/ArtifactsCache.hpp"
+
+#include <filesystem>
+
+#include "gphr/core/Error.hpp"
+
+namespace gphr {
+
+ArtifactsCache::ArtifactsCache(std::string path, RCP<const Comm> comm, const std::string& sceneName, long fullDim)
+    : path_(std::move(path)), comm_(std::move(comm)) {
+  const bool fresh = !std::filesystem::exists(path_);
+  comm_->barrier();  // every rank has looked before rank 0 may create it
+  if (fresh) {
+    Hdf5File f(path_, comm_, Hdf5File::Mode::Create);
+    f.setAttribute("/", "scene", sceneName);
+    f.setAttribute("/", "fullDim", std::vector<double>{double(fullDim)});
+    return;
+  }
+  Hdf5File f(path_, comm_, Hdf5File::Mode::ReadWrite);
+  const std::string scene = f.hasAttribute("/", "scene") ? f.stringAttribute("/", "scene") : "";
+  GPHR_REQUIRE(scene == sceneName, InputError, "artifacts file '", path_, "' belongs to scene '", scene,
+               "' but the config runs '", sceneName, "' (use another --output directory)");
+  if (f.hasAttribute("/", "fullDim")) {
+    const double nd = f.doubleAttribute("/", "fullDim")[0];
+    GPHR_REQUIRE(nd == fullDim, InputError, "artifacts file '", path_, "' holds states of size ", nd,
+                 " but the config gives size ", fullDim, " (use another --output directory)");
+  } else {
+    f.setAttribute("/", "fullDim", std::vector<double>{double(fullDim)});
+  }
+}
+
+std::unique_ptr<Hdf5File> ArtifactsCache::open() const {
+  return std::make_unique<Hdf5File>(path_, comm_, Hdf5File::Mode::ReadWrite);
+}
+
+bool ArtifactsCache::holds(const Hdf5File& file, const std::string& name, const std::string& key) {
+  return file.hasAttribute(name, "complete") && file.hasAttribute(name, "config") &&
+         file.stringAttribute(name, "config") == key;
+}
+
+void ArtifactsCache::seal(Hdf5File& file, const std::string& name, const std::string& key) {
+  file.flush();
+  file.setAttribute(name, "config", key);
+  file.setAttribute(name, "complete", std::string("yes"));
+}
+
+void ArtifactsCache::clear(Hdf5File& file, const std::string& name) {
+  file.remove(name);
+  // the parent groups, outermost first ("/deim/k10" needs "/deim")
+  for (size_t slash = name.find('/', 1); slash != std::string::npos; slash = name.find('/', slash + 1))
+    if (!file.exists(name.substr(0, slash))) file.createGroup(name.substr(0, slash));
+}
+
+}  // namespace gphr

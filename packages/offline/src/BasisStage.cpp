@@ -1,0 +1,61 @@
+#include "gphr/offline/BasisStage.hpp"
+
+#include <Teuchos_Time.hpp>
+#include <ctime>
+
+#include "gphr/core/Error.hpp"
+
+namespace gphr {
+
+namespace {
+
+ReducedBasis readBasis(const Hdf5File& f, const PhaseSpace& space) {
+  ReducedBasis b;
+  b.A = f.readStates("/basis", space);  // stored as rows: (2k, 2n) -> a MultiVector with 2k columns
+  b.k = static_cast<int>(b.A->getNumVectors()) / 2;
+  b.method = f.stringAttribute("/basis", "method");
+  b.singularValues = f.doubleAttribute("/basis", "singularValues");
+  b.energyCaptured = f.doubleAttribute("/basis", "energyCaptured")[0];
+  return b;
+}
+
+void writeBasis(Hdf5File& f, const ReducedBasis& b, const PhaseSpace& space, const std::string& sceneName,
+                const TrainingResult& training, const std::string& key) {
+  ArtifactsCache::clear(f, "/basis");
+  f.writeStates("/basis", *b.A, space);
+  f.setAttribute("/basis", "method", b.method);
+  f.setAttribute("/basis", "k", std::vector<double>{double(b.k)});
+  f.setAttribute("/basis", "singularValues", b.singularValues);
+  f.setAttribute("/basis", "energyCaptured", std::vector<double>{b.energyCaptured});
+  f.setAttribute("/basis", "scene", sceneName);
+  std::vector<double> flat;
+  for (const auto& mu : training.parameters) flat.insert(flat.end(), mu.begin(), mu.end());
+  f.setAttribute("/basis", "trainingSet", flat);
+  f.setAttribute("/basis", "layout", std::string("rows are the 2k columns of A (2n entries each, global-id order)"));
+  ArtifactsCache::seal(f, "/basis", key);
+}
+
+}  // namespace
+
+BasisStageResult runBasisStage(const TrainingResult& training, const PhaseSpace& space, const BasisOptions& options,
+                               const std::string& sceneName, const ArtifactsCache* cache, const std::string& key) {
+  Teuchos::Time clock("basis");
+  clock.start();
+  const std::clock_t cpu0 = std::clock();
+  BasisStageResult out;
+  std::unique_ptr<Hdf5File> f = cache ? cache->open() : nullptr;
+  if (f && ArtifactsCache::holds(*f, "/basis", key)) {
+    out.basis = readBasis(*f, space);
+    out.cached = true;
+    GPHR_REQUIRE(options.k == 0 || options.k == out.basis.k, InputError, "basis in '", cache->path(), "' has k = ",
+                 out.basis.k, " but the config asks for k = ", options.k);
+  } else {
+    out.basis = computeSymplecticBasis(training.snapshots, space, options);
+    if (f) writeBasis(*f, out.basis, space, sceneName, training, key);
+  }
+  out.seconds = clock.stop();
+  out.cpuSeconds = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
+  return out;
+}
+
+}  // namespace gphr

@@ -1,0 +1,140 @@
+#include "gphr/offline/ModelFileBuild.hpp"
+
+#include <Teuchos_Time.hpp>
+#include <algorithm>
+#include <cstdio>
+#include <iterator>
+
+#include "gphr/core/Error.hpp"
+#include "gphr/core/Provenance.hpp"
+#include "gphr/hyper/GpAdeimModel.hpp"
+#include "gphr/offline/DeimBasisStage.hpp"
+#include "gphr/offline/TermWeightFits.hpp"
+#include "gphr/online/Method.hpp"
+#include "gphr/reduction/Deim.hpp"
+
+namespace gphr {
+
+namespace {
+
+// What the stages of one k share.
+struct BuildState {
+  const Scene& scene;
+  const RCP<const Comm>& comm;
+  const ModelBuildOptions& options;
+  const ArtifactsCache* cache;
+  const TrainingResult& training;
+  const SceneInstance& instance;
+};
+
+int largest(const std::vector<int>& ms) { return ms.empty() ? 0 : *std::max_element(ms.begin(), ms.end()); }
+
+// gp-adeim is stored as its options: its queries build the full system and sample its residual
+// online (alg:SP-ADEIM), from the basis in the file and the first delta0 full-model steps.
+void addAdeimModels(const BuildState& b, int k, std::vector<StoredHyperModel>& out) {
+  const auto& o = b.options;
+  std::string why;
+  if (!o.withBasis) why = "its queries need the basis (build.withBasis: true)";
+  else if (o.adeim.isParameter("initialBasis") && o.adeim.get<std::string>("initialBasis") != "fom")
+    why = "adeim.initialBasis 'training' needs the training DEIM basis online, which the file does not hold";
+  if (!why.empty()) {
+    if (b.comm->getRank() == 0) std::fprintf(stderr, "[gphr] build: gp-adeim not stored: %s\n", why.c_str());
+    return;
+  }
+  Teuchos::ParameterList section(o.adeim);
+  section.setName("adeim");
+  for (int m : o.ms) {
+    StoredHyperModel sm;
+    sm.method = "gp-adeim", sm.k = k, sm.m = m;
+    adeimOptionsFrom(section, m);  // the constraints that involve m, checked now
+    sm.adeimConfig = toYaml(section);
+    out.push_back(sm);
+  }
+}
+
+RCP<const MultiVector> deimBasisOf(const BuildState& b, const MultiVector& A) {
+  DeimBasisOptions opt = b.options.deim;
+  if (opt.maxRank == 0) opt.maxRank = largest(b.options.ms) + 32;
+  return runDeimBasisStage(b.scene, b.comm, b.training, A, *b.instance.system, opt, b.cache, b.options.keys.deim).basis.U;
+}
+
+// The stored models of reduced size k: gp-deim from the DEIM basis, gp-adeim as its options,
+// gp-eqp / gp-eqp-refit from their fits (a budget the training cannot support is left out, with a note).
+std::vector<StoredHyperModel> modelsOfK(const BuildState& b, const MultiVector& A, int k) {
+  const auto& o = b.options;
+  std::vector<StoredHyperModel> out;
+  RCP<const MultiVector> U;  // the DEIM basis, computed on first need
+  auto deimBasis = [&] { return U.is_null() ? (U = deimBasisOf(b, A)) : U; };
+  for (const auto& method : o.methods) {
+    if (method == "gp-adeim") {
+      addAdeimModels(b, k, out);
+    } else if (method == "gp-deim") {
+      auto deim = gpDeimModels(b.instance, A, k, *deimBasis(), o.ms, o.file.indices);
+      std::move(deim.begin(), deim.end(), std::back_inserter(out));
+    } else {
+      TermWeightFits fits(b.scene, b.comm, b.training, A, o.eqp, o.eqpTolerance, o.ms,
+                          [&](int m) { return selectDeimIndices(*deimBasis(), m, o.file.indices); }, b.cache,
+                          o.keys.nnls, o.keys.refit);
+      std::map<int, std::string> skipped;
+      for (const auto& [m, fit] : fits.all(method, o.ms, skipped))
+        out.push_back(termModel(b.instance, A, method, k, m, fit.terms, fit.weights));
+      if (b.comm->getRank() == 0)
+        for (const auto& [m, why] : skipped)
+          std::fprintf(stderr, "[gphr] build: %s k = %d, m = %d not stored: %s\n", method.c_str(), k, m, why.c_str());
+    }
+  }
+  return out;
+}
+
+void checkOptions(const Scene& scene, const ModelBuildOptions& o) {
+  GPHR_REQUIRE(!o.methods.empty(), InputError, "the offline phase stores ",
+               methodNames([](const MethodInfo& m) { return m.storable; }), " models; none was asked for");
+  for (const auto& m : o.methods)
+    GPHR_REQUIRE(methodInfo(m).storable, InputError, "method '", m, "' cannot be stored in a reduced-model file; allowed: ",
+                 methodNames([](const MethodInfo& mi) { return mi.storable; }));
+  GPHR_REQUIRE(!o.ms.empty(), InputError, "no DEIM size m given; allowed: one or more m >= 1");
+  for (int m : o.ms) GPHR_REQUIRE(m >= 1, InputError, "DEIM size m = ", m, "; allowed: m >= 1");
+  GPHR_REQUIRE(o.parameter.empty() || o.parameter.size() == scene.parameterBox().names.size(), InputError,
+               "the instance parameter has ", o.parameter.size(), " values; allowed: ", scene.parameterBox().names.size(),
+               " (one per parameter of the box)");
+}
+
+std::vector<double> boxCentre(const ParameterBox& box) {
+  std::vector<double> c;
+  for (const auto& [lo, hi] : box.bounds) c.push_back(0.5 * (lo + hi));
+  return c;
+}
+
+}  // namespace
+
+ModelBuildResult buildReducedModelFile(const Scene& scene, const RCP<const Comm>& comm,
+                                       const ModelBuildOptions& options, const std::string& path,
+                                       const ArtifactsCache* cache) {
+  checkOptions(scene, options);
+  Teuchos::Time clock("build");
+  clock.start();
+  ModelBuildResult r;
+  r.training = runTraining(scene, comm, options.training, cache, options.keys.training);
+  const auto mu = options.parameter.empty() ? boxCentre(scene.parameterBox()) : options.parameter;
+  const auto inst = scene.instantiate(comm, mu, true);
+  r.basis = runBasisStage(r.training, inst.system->space(), options.basis, scene.name(), cache, options.keys.basis);
+  ReducedModelData& data = r.data;
+  data = modelFileHeader(scene, inst, options.file);
+  data.sceneConfig = options.sceneConfig;
+  data.config = options.config;
+  data.dt = options.training.dt;
+  data.T = options.T > 0.0 ? options.T : options.training.dt * options.training.steps;
+  const BuildState state{scene, comm, options, cache, r.training, inst};
+  std::vector<RCP<const MultiVector>> bases;
+  for (int k : basisSizes(options.ks.empty() ? std::vector<int>{0} : options.ks, r.basis.basis)) {
+    const auto A = leadingBasis(r.basis.basis, k);
+    addReducedBasis(data, scene, inst, *A, k, modelsOfK(state, *A, k), options.file);
+    bases.push_back(options.withBasis ? RCP<const MultiVector>(A) : Teuchos::null);
+  }
+  data.offlineSeconds = clock.totalElapsedTime(true);
+  writeReducedModelFile(path, comm, data, bases, &inst.system->space());
+  r.seconds = clock.stop();
+  return r;
+}
+
+}  // namespace gphr

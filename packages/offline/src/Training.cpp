@@ -1,0 +1,162 @@
+#include "gphr/offline/Training.hpp"
+
+#include <Teuchos_Time.hpp>
+#include <cstdio>
+#include <sstream>
+
+#include "gphr/core/Error.hpp"
+#include "gphr/online/TimeLoop.hpp"
+#include "gphr/timeint/FullModelIntegrator.hpp"
+
+namespace gphr {
+
+std::vector<std::vector<double>> trainingGrid(const ParameterBox& box, const std::vector<int>& points) {
+  const size_t p = box.names.size();
+  GPHR_REQUIRE(points.size() == p, InputError, "key 'training.points' has ", points.size(), " entries; allowed: ", p,
+               " (one per parameter of the box)");
+  for (int c : points)
+    GPHR_REQUIRE(c >= 1 && c <= 10000, InputError, "key 'training.points' has entry ", c,
+                 "; allowed: integers in [1, 10000]");
+  std::vector<std::vector<double>> out;
+  std::vector<size_t> idx(p, 0);
+  for (;;) {  // first parameter fastest
+    std::vector<double> mu(p);
+    for (size_t d = 0; d < p; ++d) {
+      const auto [lo, hi] = box.bounds[d];
+      mu[d] = points[d] == 1 ? 0.5 * (lo + hi) : lo + (hi - lo) * idx[d] / (points[d] - 1);
+    }
+    out.push_back(mu);
+    size_t d = 0;
+    while (d < p && ++idx[d] == static_cast<size_t>(points[d])) idx[d++] = 0;
+    if (d == p) return out;
+  }
+}
+
+TrainingOptions trainingOptionsFrom(const Teuchos::ParameterList& cfg, const ParameterBox& box) {
+  TrainingOptions o;
+  const auto& tr = cfg.sublist("training");
+  const auto& values = tr.get<Teuchos::Array<double>>("values");
+  const size_t p = box.names.size();
+  if (!values.empty()) {
+    GPHR_REQUIRE(values.size() % static_cast<long>(p) == 0, InputError, "key 'training.values' has ", values.size(),
+                 " numbers; allowed: a multiple of ", p, " (one value per parameter of the box, in order)");
+    for (size_t i = 0; i < static_cast<size_t>(values.size()); i += p)
+      o.parameters.emplace_back(values.begin() + i, values.begin() + i + p);
+  } else {
+    const auto& pts = tr.get<Teuchos::Array<int>>("points");
+    o.parameters = trainingGrid(box, std::vector<int>(pts.begin(), pts.end()));
+  }
+  for (const auto& mu : o.parameters) {
+    try {
+      box.check(mu);
+    } catch (const InputError& e) {
+      throw InputError(detail::concat("training set: ", e.what()));
+    }
+  }
+  const auto& time = cfg.sublist("time");
+  o.dt = time.get<double>("dt");
+  o.steps = wholeSteps(time.get<double>("T"), o.dt);
+  o.snapshotEvery = tr.get<int>("snapshotEvery");
+  o.integrator = cfg.sublist("integrator");
+  return o;
+}
+
+namespace {
+
+std::string datasetName(size_t j) { return "/training/p" + std::to_string(j); }
+
+// One line per parameter on rank 0: which, reused or done, elapsed and an estimate of what is left.
+class Progress {
+ public:
+  explicit Progress(bool show) : show_(show), clock_("train") { clock_.start(); }
+  void done(size_t j, size_t total, size_t computed, const std::vector<double>& mu, bool reused) {
+    if (!show_) return;
+    const double el = clock_.totalElapsedTime(true);
+    std::ostringstream m;
+    for (double x : mu) m << (m.tellp() ? ", " : "") << x;
+    std::fprintf(stderr, "[gphr] train: parameter %zu/%zu (%s) %s, %.1f s elapsed, ~%.1f s left\n", j + 1, total,
+                 m.str().c_str(), reused ? "reused from file" : "done", el,
+                 computed ? el / computed * (total - j - 1) : 0.0);
+  }
+
+ private:
+  bool show_;
+  Teuchos::Time clock_;
+};
+
+// A cache trained with another key is emptied (its snapshots and the basis built from them).
+void startCache(const ArtifactsCache& cache, const std::string& key) {
+  auto f = cache.open();
+  if (!f->exists("/training")) f->createGroup("/training");
+  const bool trained = f->hasAttribute("/training", "config");
+  if (trained && f->stringAttribute("/training", "config") == key) return;
+  if (trained && cache.comm()->getRank() == 0)
+    std::fprintf(stderr, "[gphr] train: the training config changed; training again\n");
+  for (size_t j = 0; f->exists(datasetName(j)); ++j) f->remove(datasetName(j));
+  f->remove("/basis");
+  f->setAttribute("/training", "config", key);
+}
+
+RCP<MultiVector> integrate(const Scene& scene, const RCP<const Comm>& comm, const TrainingOptions& o,
+                           const std::vector<double>& mu) {
+  auto inst = scene.instantiate(comm, mu, true);
+  FullModelIntegrator integ(inst.system, o.integrator);
+  auto snaps = rcp(new MultiVector(inst.system->map(), o.steps / o.snapshotEvery + 1));
+  Vector y(*inst.y0, Teuchos::Copy);
+  integ.run(y, o.dt, o.steps, [&](long s, double, const Vector& ys, const StepReport&) {
+    if (s % o.snapshotEvery == 0) Tpetra::deep_copy(*snaps->getVectorNonConst(s / o.snapshotEvery), ys);
+  });
+  return snaps;
+}
+
+}  // namespace
+
+TrainingResult runTraining(const Scene& scene, const RCP<const Comm>& comm, const TrainingOptions& o,
+                           const ArtifactsCache* cache, const std::string& key) {
+  GPHR_REQUIRE(!o.parameters.empty(), InputError, "the training set is empty; allowed: at least one parameter");
+  Teuchos::Time clock("train");
+  clock.start();
+  TrainingResult res;
+  res.parameters = o.parameters;
+  const auto probe = scene.instantiate(comm, o.parameters[0], true);
+  const PhaseSpace& ps = probe.system->space();
+  if (cache) startCache(*cache, key);
+  Progress progress(o.progress && comm->getRank() == 0);
+  size_t computed = 0;
+  for (size_t j = 0; j < o.parameters.size(); ++j) {
+    const auto& mu = o.parameters[j];
+    if (cache) {
+      auto f = cache->open();
+      if (ArtifactsCache::holds(*f, datasetName(j), key)) {
+        res.snapshots.push_back(f->readStates(datasetName(j), ps));
+        res.reused++;
+        progress.done(j, o.parameters.size(), computed, mu, true);
+        continue;
+      }
+      f->remove(datasetName(j));  // half-written by a killed run: redo
+    }
+    auto snaps = integrate(scene, comm, o, mu);
+    if (cache) {
+      // Written when the parameter has finished, the file closed between parameters: a kill
+      // during the next one leaves this one intact.
+      auto f = cache->open();
+      f->writeStates(datasetName(j), *snaps, ps);
+      f->setAttribute(datasetName(j), "parameters", mu);
+      ArtifactsCache::seal(*f, datasetName(j), key);
+    }
+    res.snapshots.push_back(snaps);
+    ++computed;
+    progress.done(j, o.parameters.size(), computed, mu, false);
+  }
+  res.seconds = clock.stop();
+  return res;
+}
+
+std::vector<RCP<const HamiltonianSystem>> trainingSystems(const Scene& scene, const RCP<const Comm>& comm,
+                                                          const TrainingResult& training) {
+  std::vector<RCP<const HamiltonianSystem>> out;
+  for (const auto& mu : training.parameters) out.push_back(scene.instantiate(comm, mu, true).system);
+  return out;
+}
+
+}  // namespace gphr
