@@ -7,7 +7,8 @@
 #include <filesystem>
 
 #include "gphr/core/Error.hpp"
-#include "gphr/driver/Commands.hpp"
+#include "gphr/driver/BuildCommand.hpp"
+#include "gphr/driver/OutputDirectory.hpp"
 #include "gphr/driver/Config.hpp"
 #include "gphr/driver/OfflineStages.hpp"
 #include "gphr/driver/OutputLock.hpp"

@@ -181,14 +181,14 @@ std::vector<std::string> pipelineMethods(const Teuchos::ParameterList& cfg) {
   std::vector<std::string> out;
   for (const auto& m : pipe.get<Teuchos::Array<std::string>>("methods")) {
     GPHR_REQUIRE(isMethod(m), InputError, "key 'pipeline.methods' has entry '", m, "'; allowed: ", methodNames());
-    if (m != "fom" && std::find(out.begin(), out.end(), m) == out.end()) out.push_back(m);
+    if (m != method::kFom && std::find(out.begin(), out.end(), m) == out.end()) out.push_back(m);
   }
-  if (pipe.get<bool>("rom") && std::find(out.begin(), out.end(), "rom") == out.end()) out.insert(out.begin(), "rom");
+  if (pipe.get<bool>("rom") && std::find(out.begin(), out.end(), method::kRom) == out.end()) out.insert(out.begin(), method::kRom);
   for (int k : pipe.get<Teuchos::Array<int>>("k"))
     GPHR_REQUIRE(k >= 1, InputError, "key 'pipeline.k' has entry ", k, "; allowed: integers >= 1");
   const auto& ms = pipe.get<Teuchos::Array<int>>("m");
   for (int m : ms) GPHR_REQUIRE(m >= 1, InputError, "key 'pipeline.m' has entry ", m, "; allowed: integers >= 1");
-  const bool adaptive = std::find(out.begin(), out.end(), "gp-adeim") != out.end();
+  const bool adaptive = std::find(out.begin(), out.end(), method::kGpAdeim) != out.end();
   const bool wantsM =
       std::any_of(out.begin(), out.end(), [](const std::string& m) { return methodInfo(m).hyperReduced; });
   GPHR_REQUIRE(!wantsM || !ms.empty(), InputError, "key 'pipeline.m' is empty but pipeline.methods asks for ",

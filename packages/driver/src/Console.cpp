@@ -1,3 +1,4 @@
+#include "gphr/online/Method.hpp"
 #include "gphr/driver/Console.hpp"
 
 #include <cmath>
@@ -27,7 +28,7 @@ std::string runTable(const RunContext& ctx, const FomResult& fom, const RomStage
   std::snprintf(line, sizeof line, "%-9s %5s %5s  %-11s %10s %10s %9s\n", "method", "k", "m", "status", "E_L2",
                 "online s", "speed-up");
   os << line;
-  std::snprintf(line, sizeof line, "%-9s %5s %5s  %-11s %10s %10s %9s\n", "fom", "-", "-", "ok", "-",
+  std::snprintf(line, sizeof line, "%-9s %5s %5s  %-11s %10s %10s %9s\n", method::kFom, "-", "-", "ok", "-",
                 cell(fom.tOnline, "%.3g").c_str(), "1");
   os << line;
   if (rom)

@@ -9,6 +9,7 @@
 #include "gphr/core/Error.hpp"
 #include "gphr/online/TimeLoop.hpp"
 #include "gphr/timeint/FullModelIntegrator.hpp"
+#include "gphr/online/Method.hpp"
 
 namespace gphr {
 
@@ -69,7 +70,7 @@ FomResult runFullModel(const EvaluationSettings& settings, const Scene& scene, c
   res.hamiltonian.reserve(steps + 1);
   Vector y(*inst.y0, Teuchos::Copy);
   const auto ref = inst.system->reference();
-  Progress progress("fom", steps, settings.progressSeconds, comm->getRank() == 0);
+  Progress progress(method::kFom, steps, settings.progressSeconds, comm->getRank() == 0);
   long saved = 0;
   const std::function<void(long, double, const Vector&)> observe = [&](long j, double t, const Vector& yj) {
     res.hamiltonian.push_back(inst.system->hamiltonian(yj));
@@ -88,22 +89,22 @@ FomResult runFullModel(const EvaluationSettings& settings, const Scene& scene, c
 
   const double H0 = res.hamiltonian.front(), herr = maxDeviation(res.hamiltonian, H0);
   res.tOnline = sim.onlineSeconds;
-  res.run.set("method", "fom")
-      .set("n", static_cast<long>(inst.system->space().n()))
-      .set("fullDim", static_cast<long>(inst.system->space().fullDim()))
-      .set("numTerms", static_cast<long>(inst.system->nonlinearTerm().numTerms()))
-      .set("steps", steps)
-      .set("dt", dt)
-      .set("ranks", comm->getSize())
-      .set("t_online_s", sim.onlineSeconds)
-      .set("newton_iters_avg", double(stats.newtonIterations) / steps)
-      .set("linear_iters_avg", double(stats.linearIterations) / steps)
-      .set("linear_iters_per_newton", stats.newtonIterations ? double(stats.linearIterations) / stats.newtonIterations : 0.0)
-      .set("newton_residual_max", stats.maxResidual)
-      .set("H0", H0)
-      .set("H_err_max", herr)
-      .set("H_err_max_rel", H0 != 0.0 ? herr / std::abs(H0) : herr)
-      .set("status", "ok");
+  res.metrics.set(Metric::Method, method::kFom)
+      .set(Metric::N, static_cast<long>(inst.system->space().n()))
+      .set(Metric::FullDim, static_cast<long>(inst.system->space().fullDim()))
+      .set(Metric::NumTerms, static_cast<long>(inst.system->nonlinearTerm().numTerms()))
+      .set(Metric::Steps, steps)
+      .set(Metric::Dt, dt)
+      .set(Metric::Ranks, comm->getSize())
+      .set(Metric::TOnlineS, sim.onlineSeconds)
+      .set(Metric::NewtonItersAvg, double(stats.newtonIterations) / steps)
+      .set(Metric::LinearItersAvg, double(stats.linearIterations) / steps)
+      .set(Metric::LinearItersPerNewton, stats.newtonIterations ? double(stats.linearIterations) / stats.newtonIterations : 0.0)
+      .set(Metric::NewtonResidualMax, stats.maxResidual)
+      .set(Metric::H0, H0)
+      .set(Metric::HErrMax, herr)
+      .set(Metric::HErrMaxRel, H0 != 0.0 ? herr / std::abs(H0) : herr)
+      .set(Metric::Status, "ok");
   return res;
 }
 

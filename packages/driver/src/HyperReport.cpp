@@ -6,10 +6,11 @@
 #include <fstream>
 #include <sstream>
 
-#include "gphr/driver/Commands.hpp"
+#include "gphr/driver/OutputDirectory.hpp"
 #include "gphr/driver/Config.hpp"
 #include "gphr/driver/ModelEvaluation.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
+#include "gphr/online/Method.hpp"
 
 namespace gphr {
 
@@ -17,10 +18,11 @@ namespace {
 
 bool haveGnuplot() { return std::system("command -v gnuplot > /dev/null 2>&1") == 0; }
 
-bool gnuplot(const std::string& png, const std::string& body) {
+// csv: the data are CSV files whose first line names the columns (the plots address them by name).
+bool gnuplot(const std::string& png, const std::string& body, bool csv = true) {
   const std::string script = png + ".gp";
   std::ofstream(script) << "set terminal pngcairo size 1000,560 noenhanced\nset output '" << png << "'\n"
-                        << "set datafile separator ','\n" << body;
+                        << "set datafile separator ','\n" << (csv ? "set datafile columnheaders\n" : "") << body;
   const int rc = std::system(("gnuplot '" + script + "' > /dev/null 2>&1").c_str());
   std::remove(script.c_str());
   return rc == 0;
@@ -48,8 +50,8 @@ bool anyUnbounded(const RomStages& st) {
 // A gnuplot series of runs.csv's unbounded runs (E_L2 against column x), crosses: they ran to the end,
 // so their errors exist, but they are not among the methods' curves of ok runs.
 std::string unboundedPoints(const std::string& runsCsv, const std::string& x) {
-  return "'" + runsCsv + "' every ::1 using (strcol(4) eq 'unbounded' ? " + x +
-         " : 1/0):5 with points pt 2 ps 2 lw 2 lc rgb 'red' title 'unbounded (any method)'";
+  return "'" + runsCsv + "' using (strcol('status') eq 'unbounded' ? " + x +
+         " : 1/0):(column('E_L2')) with points pt 2 ps 2 lw 2 lc rgb 'red' title 'unbounded (any method)'";
 }
 
 void writeRunsCsv(const RomStages& st, double fomOnline, const std::string& path) {
@@ -59,9 +61,9 @@ void writeRunsCsv(const RomStages& st, double fomOnline, const std::string& path
   for (const auto& r : st.runs) {
     double eRom = NAN;
     for (const auto& q : st.runs)
-      if (q.method == "rom" && q.k == r.k) eRom = q.eL2;
+      if (q.method == method::kRom && q.k == r.k) eRom = q.eL2;
     os << r.method << "," << r.k << "," << r.m << "," << r.status() << "," << r.eL2 << "," << r.tOnline << "," << (r.tOnline > 0 ? fomOnline / r.tOnline : NAN) << "," << eRom << ","
-       << r.run.number("t_total_s") << "\n";
+       << r.metrics.number(Metric::TTotalS) << "\n";
   }
   finishText(os, path);
 }
@@ -101,7 +103,7 @@ void writeAdeimUpdates(const FomResult& fom, const std::vector<ModelRun>& runs, 
   os << "run,k,m,update,step,t,rank,coefficient_rank,m_s,resampled,sampled_residual_before,sampled_residual_after,"
         "full_residual,cond1_PtU,update_s,dH_total,eps_fom,eps_hr,deim_end,deim_start,bound,paper_bound\n";
   for (const auto& r : runs) {
-    if (r.method != "gp-adeim" || r.modelHamiltonian.empty()) continue;
+    if (r.method != method::kGpAdeim || r.modelHamiltonian.empty()) continue;
     const double H0 = fom.hamiltonian.front();
     double segStart = r.modelHamiltonian.front();
     double paperSum = std::abs(H0 - r.hamiltonian.front()) + std::abs(r.hamiltonian.front() - segStart), starts = 0.0;
@@ -132,7 +134,7 @@ void writeAdeimUpdates(const FomResult& fom, const std::vector<ModelRun>& runs, 
 std::string adeimWindowCaution(const RunContext& ctx, const RomStages& st) {
   std::ostringstream md;
   for (const auto& r : st.runs) {
-    if (r.method != "gp-adeim" || !r.available) continue;
+    if (r.method != method::kGpAdeim || !r.available) continue;
     const AdeimOptions o = adeimOptionsFrom(ctx.config.sublist("adeim"), r.m);
     const int wbar = 2 * r.k * o.window;
     if (wbar >= r.m) continue;
@@ -148,7 +150,7 @@ std::string adeimWindowCaution(const RunContext& ctx, const RomStages& st) {
   // status is ok and its error is then the fixed pair's (U_0, P_0).
   const long steps = numSteps(ctx.config);
   for (const auto& r : st.runs) {
-    if (r.method != "gp-adeim" || !r.ok || !r.adeimUpdates.empty()) continue;
+    if (r.method != method::kGpAdeim || !r.ok || !r.adeimUpdates.empty()) continue;
     const AdeimOptions o = adeimOptionsFrom(ctx.config.sublist("adeim"), r.m);
     md << "\nNo update ran in " << r.label() << ": adeim.initialWindow = " << o.initialWindow << " exceeds the "
        << steps << " steps of the run, so it is the non-adaptive model of its initial pair (U_0, P_0).\n";
@@ -162,20 +164,20 @@ std::string adeimWindowCaution(const RunContext& ctx, const RomStages& st) {
 std::string termWeightsTable(const RomStages& st) {
   std::ostringstream md;
   for (const auto& r : st.runs) {
-    const bool eqp = r.method == "gp-eqp" || r.method == "gp-eqp-refit";
-    if ((!eqp && r.method != "gp-deim") || !r.available) continue;
+    const bool eqp = r.method == method::kGpEqp || r.method == method::kGpEqpRefit;
+    if ((!eqp && r.method != method::kGpDeim) || !r.available) continue;
     if (md.tellp() == 0)
       md << "\n## Term weights: GP-DEIM and empirical quadrature\n\n"
             "| method | k | m | status | E_L2 | terms | weight min | weight max | fit residual | exact rows | "
             "lambda_min Hess H_hr(z0) | lambda_min rom | convexity lost |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-    const auto num = [&](const char* key) { return r.run.number(key); };
-    const std::string w = eqp ? "eqp_weight_" : "deim_weight_";
+    const auto num = [&](Metric m) { return r.metrics.number(m); };
     md << "| " << r.method << " | " << r.k << " | " << r.m << " | " << r.statusText() << " | " << fmt(r.eL2) << " | "
-       << (eqp ? fmt(num("eqp_terms"), "%.0f") : std::to_string(r.m)) << " | " << fmt(num((w + "min").c_str())) << " | "
-       << fmt(num((w + "max").c_str())) << " | " << (eqp ? fmt(num("eqp_fit_residual")) : "-") << " | "
-       << (eqp ? fmt(num("eqp_fit_residual_exact_rows")) : "-") << " | " << fmt(num("hess_min_eig_hr")) << " | "
-       << fmt(num("hess_min_eig_rom")) << " | " << (num("hess_min_eig_hr") < 0.0 && num("hess_min_eig_rom") >= 0.0 ? "yes" : "no")
-       << " |\n";
+       << (eqp ? fmt(num(Metric::EqpTerms), "%.0f") : std::to_string(r.m)) << " | "
+       << fmt(num(eqp ? Metric::EqpWeightMin : Metric::DeimWeightMin)) << " | "
+       << fmt(num(eqp ? Metric::EqpWeightMax : Metric::DeimWeightMax)) << " | "
+       << (eqp ? fmt(num(Metric::EqpFitResidual)) : "-") << " | "
+       << (eqp ? fmt(num(Metric::EqpFitResidualExactRows)) : "-") << " | " << fmt(num(Metric::HessMinEigHr)) << " | "
+       << fmt(num(Metric::HessMinEigRom)) << " | " << (r.metrics.flag(Metric::ConvexityLost) ? "yes" : "no") << " |\n";
   }
   return md.str();
 }
@@ -193,7 +195,7 @@ std::string reportMd(const RunContext& ctx, const FomResult& fom, const RomStage
   for (const auto& r : st.runs) {
     double eRom = NAN, tRom = NAN;
     for (const auto& q : st.runs)
-      if (q.method == "rom" && q.k == r.k) eRom = q.eL2, tRom = q.tOnline;
+      if (q.method == method::kRom && q.k == r.k) eRom = q.eL2, tRom = q.tOnline;
     md << "| " << r.method << " | " << r.k << " | " << (r.m ? std::to_string(r.m) : "-") << " | "
        << r.statusText() << " | " << fmt(r.eL2) << " | " << fmt(r.eL2 / eRom) << " | "
        << fmt(r.tOnline, "%.3f") << " | " << fmt(tRom / r.tOnline, "%.2f") << "x | " << fmt(fomOnline / r.tOnline, "%.2f")
@@ -215,7 +217,7 @@ std::string reportMd(const RunContext& ctx, const FomResult& fom, const RomStage
                  << fmt(best->tOnline, "%.3f") << " |\n";
   }
   bool adaptive = false;
-  for (const auto& r : st.runs) adaptive |= r.method == "gp-adeim";
+  for (const auto& r : st.runs) adaptive |= r.method == method::kGpAdeim;
   if (adaptive) {
     md << "\n## GP-DEIM vs GP-ADEIM: total cost of the hyper-reduction\n\n"
           "t_total = hyper-reduction offline (DEIM basis + pair; GP-ADEIM: the first delta0 full-model steps and "
@@ -224,13 +226,13 @@ std::string reportMd(const RunContext& ctx, const FomResult& fom, const RomStage
           "| method | k | m | status | E_L2 | offline s | online s | total s | updates | mean rank | max local H_hr drift |\n"
           "|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const auto& r : st.runs) {
-      if (r.method != "gp-deim" && r.method != "gp-adeim") continue;
-      const auto num = [&](const char* key) { return r.run.number(key); };
+      if (r.method != method::kGpDeim && r.method != method::kGpAdeim) continue;
+      const auto num = [&](Metric m) { return r.metrics.number(m); };
       md << "| " << r.method << " | " << r.k << " | " << r.m << " | " << r.statusText() << " | "
-         << fmt(r.eL2) << " | " << fmt(num("t_hyper_offline_s"), "%.3f") << " | " << fmt(r.tOnline, "%.3f") << " | "
-         << fmt(num("t_total_s"), "%.3f") << " | " << (r.method == "gp-adeim" ? fmt(num("updates"), "%.0f") : "-")
-         << " | " << (r.method == "gp-adeim" ? fmt(num("update_rank_mean"), "%.1f") : "-") << " | "
-         << fmt(num("H_model_err_max")) << " |\n";
+         << fmt(r.eL2) << " | " << fmt(num(Metric::THyperOfflineS), "%.3f") << " | " << fmt(r.tOnline, "%.3f") << " | "
+         << fmt(num(Metric::TTotalS), "%.3f") << " | " << (r.method == method::kGpAdeim ? fmt(num(Metric::Updates), "%.0f") : "-")
+         << " | " << (r.method == method::kGpAdeim ? fmt(num(Metric::UpdateRankMean), "%.1f") : "-") << " | "
+         << fmt(num(Metric::HModelErrMax)) << " |\n";
     }
     md << "\nPer update (rank, m_s, residuals, the terms of eq:Hambound): adeim_updates.csv and adeim_updates.png; "
           "error vs total time: error_vs_total_time.png.\n";
@@ -252,7 +254,7 @@ std::string spaceTimeData(const RunContext& ctx, const FomResult& fom, const Rom
   std::vector<std::pair<std::string, std::vector<RCP<const Vector>>>> fields;
   std::vector<RCP<const Vector>> f;
   for (size_t j = 0; j < fom.trajectory->getNumVectors(); ++j) f.push_back(fom.trajectory->getVector(j));
-  fields.push_back({"fom", f});
+  fields.push_back({method::kFom, f});
   for (const auto& r : st.runs)
     if (!r.states.empty())
       fields.push_back({r.label() + (r.unboundedAt >= 0 ? " unbounded from step " + std::to_string(r.unboundedAt) : ""),
@@ -298,14 +300,14 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
   }
   const ModelRun* terms = nullptr;  // the GP-DEIM run with the largest k, then m
   for (const auto& r : st.runs)
-    if (r.method == "gp-deim" && r.ok && (!terms || r.k > terms->k || (r.k == terms->k && r.m > terms->m))) terms = &r;
+    if (r.method == method::kGpDeim && r.ok && (!terms || r.k > terms->k || (r.k == terms->k && r.m > terms->m))) terms = &r;
   const double dt = ctx.config.sublist("time").get<double>("dt");
   if (terms) {
     writeHamiltonianTerms(fom, *terms, dt, p.at("hamiltonian_terms.csv"));
     written.push_back("hamiltonian_terms.csv");
   }
   bool adeim = false;
-  for (const auto& r : st.runs) adeim |= r.method == "gp-adeim";
+  for (const auto& r : st.runs) adeim |= r.method == method::kGpAdeim;
   if (adeim) {
     writeAdeimUpdates(fom, st.runs, dt, p.at("adeim_updates.csv"));
     written.push_back("adeim_updates.csv");
@@ -319,18 +321,18 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
       << "set title 'Relative error E_L2 against the number of sampled terms m'\nplot ";
     std::vector<std::pair<std::string, int>> curves;
     for (const auto& r : st.runs)
-      if (r.method != "rom" && std::find(curves.begin(), curves.end(), std::make_pair(r.method, r.k)) == curves.end())
+      if (r.method != method::kRom && std::find(curves.begin(), curves.end(), std::make_pair(r.method, r.k)) == curves.end())
         curves.push_back({r.method, r.k});
     bool first = true;
     for (const auto& [m, k] : curves) {
-      b << (first ? "" : ", ") << "'" << runs << "' every ::1 using ((strcol(1) eq '" << m << "' && $2 == " << k
-        << " && strcol(4) eq 'ok') ? $3 : 1/0):5 with linespoints lw 2 title '" << m << " 2k=" << 2 * k << "'";
+      b << (first ? "" : ", ") << "'" << runs << "' using ((strcol('method') eq '" << m << "' && column('k') == " << k
+        << " && strcol('status') eq 'ok') ? column('m') : 1/0):(column('E_L2')) with linespoints lw 2 title '" << m << " 2k=" << 2 * k << "'";
       first = false;
     }
     for (const auto& r : st.runs)
-      if (r.method == "rom")
+      if (r.method == method::kRom)
         b << (first ? "" : ", ") << r.eL2 << " with lines dt 2 lw 2 title 'rom 2k=" << 2 * r.k << "'", first = false;
-    if (anyUnbounded(st)) b << ", " << unboundedPoints(runs, "$3");
+    if (anyUnbounded(st)) b << ", " << unboundedPoints(runs, "column('m')");
     b << "\n";
     if (!curves.empty() && gnuplot(p.at("error_vs_m.png"), b.str())) written.push_back("error_vs_m.png");
   }
@@ -340,11 +342,11 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
       << "set title 'Error vs online time (pick from the lower-left front)'\nplot ";
     bool first = true;
     for (const auto& m : methodsWith(st, [](const ModelRun& r) { return r.ok; })) {  // every method report.md lists
-      b << (first ? "" : ", ") << "'" << runs << "' every ::1 using ((strcol(1) eq '" << m
-        << "' && strcol(4) eq 'ok') ? $6 : 1/0):5 with points pt 7 ps 1.5 title '" << m << "'";
+      b << (first ? "" : ", ") << "'" << runs << "' using ((strcol('method') eq '" << m
+        << "' && strcol('status') eq 'ok') ? column('t_online_s') : 1/0):(column('E_L2')) with points pt 7 ps 1.5 title '" << m << "'";
       first = false;
     }
-    if (anyUnbounded(st)) b << (first ? "" : ", ") << unboundedPoints(runs, "$6"), first = false;
+    if (anyUnbounded(st)) b << (first ? "" : ", ") << unboundedPoints(runs, "column('t_online_s')"), first = false;
     b << "\n";
     if (!first && gnuplot(p.at("pareto.png"), b.str())) written.push_back("pareto.png");
   }
@@ -353,8 +355,8 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
     const std::string csv = p.at("hamiltonian_terms.csv");
     b << "set logscale y\nset format y '%.0e'\nset xlabel 't'\nset ylabel 'Hamiltonian error'\nset key outside\n"
       << "set title 'Hamiltonian error and the terms that bound it, " << terms->label() << "'\n"
-      << "plot for [c=2:5] '" << csv << "' every ::1 using 1:(column(c) > 0 ? column(c) : 1e-17) with lines lw 2 "
-      << "title columnhead(c)\n";
+      << "plot for [term in 'dH_fom dH_hr_integration dH_deim dH_total'] '" << csv
+      << "' using (column('t')):(column(term) > 0 ? column(term) : 1e-17) with lines lw 2 title term\n";
     if (gnuplot(p.at("hamiltonian_terms.png"), b.str())) written.push_back("hamiltonian_terms.png");
   }
   if (adeim) {
@@ -365,19 +367,24 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
     std::ostringstream residuals, ranks;
     bool first = true;
     for (const auto& r : st.runs) {
-      if (r.method != "gp-adeim" || r.adeimUpdates.empty()) continue;
-      const std::string sel = "'" + csv + "' every ::1 using (strcol(1) eq '" + r.label() + "' ? ";
+      if (r.method != method::kGpAdeim || r.adeimUpdates.empty()) continue;
+      const std::string sel = "'" + csv + "' using (strcol('run') eq '" + r.label() + "' ? ";
       const auto any = [&](auto value) {
         return std::any_of(r.adeimUpdates.begin(), r.adeimUpdates.end(), [&](const AdeimUpdateRecord& u) { return value(u) > 0.0; });
       };
       if (any([](const AdeimUpdateRecord& u) { return u.fullResidual; }))
-        residuals << (residuals.tellp() > 0 ? ", " : "") << sel << "$4 : 1/0):($13 > 0 ? $13 : 1/0) with lines lw 2 title '"
+        residuals << (residuals.tellp() > 0 ? ", " : "") << sel
+                  << "column('update') : 1/0):(column('full_residual') > 0 ? column('full_residual') : 1/0) "
+                     "with lines lw 2 title '"
                   << r.label() << "'";
       if (any([](const AdeimUpdateRecord& u) { return u.sampledAfter; }))
-        residuals << (residuals.tellp() > 0 ? ", " : "") << sel << "$4 : 1/0):($12 > 0 ? $12 : 1/0) with lines dt 2 title 'at S, "
+        residuals << (residuals.tellp() > 0 ? ", " : "") << sel
+                  << "column('update') : 1/0):(column('sampled_residual_after') > 0 ? "
+                     "column('sampled_residual_after') : 1/0) with lines dt 2 title 'at S, "
                   << r.label() << "'";
-      ranks << (first ? "" : ", ") << sel << "$4 : 1/0):7 with lines lw 2 title 'r " << r.label() << "', " << sel
-            << "$4 : 1/0):9 with lines dt 2 title 'm_s " << r.label() << "'";
+      ranks << (first ? "" : ", ") << sel << "column('update') : 1/0):(column('rank')) with lines lw 2 title 'r "
+            << r.label() << "', " << sel << "column('update') : 1/0):(column('m_s')) with lines dt 2 title 'm_s "
+            << r.label() << "'";
       first = false;
     }
     std::ostringstream b;
@@ -392,7 +399,7 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
     t << "set logscale xy\nset format y '%.0e'\nset xlabel 't_total = hyper-reduction offline + online [s]'\n"
       << "set ylabel 'E_L2'\nset key outside\nset title 'Error against total cost (offline hyper-reduction + online)'\nplot ";
     std::vector<int> ks;
-    const auto totalled = methodsWith(st, [](const ModelRun& r) { return std::isfinite(r.run.number("t_total_s")); });
+    const auto totalled = methodsWith(st, [](const ModelRun& r) { return std::isfinite(r.metrics.number(Metric::TTotalS)); });
     for (const auto& r : st.runs)
       if (std::find(totalled.begin(), totalled.end(), r.method) != totalled.end() &&
           std::find(ks.begin(), ks.end(), r.k) == ks.end())
@@ -400,8 +407,8 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
     first = true;
     for (int k : ks)
       for (const auto& m : totalled) {
-        t << (first ? "" : ", ") << "'" << runs << "' every ::1 using ((strcol(1) eq '" << m << "' && $2 == " << k
-          << " && strcol(4) eq 'ok') ? $9 : 1/0):5 with linespoints lw 2 pt 7 title '" << m << " 2k=" << 2 * k << "'";
+        t << (first ? "" : ", ") << "'" << runs << "' using ((strcol('method') eq '" << m << "' && column('k') == " << k
+          << " && strcol('status') eq 'ok') ? column('t_total_s') : 1/0):(column('E_L2')) with linespoints lw 2 pt 7 title '" << m << " 2k=" << 2 * k << "'";
         first = false;
       }
     t << "\n";
@@ -422,7 +429,7 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
       if (line.rfind("# ", 0) == 0)
         b << "set title '" << line.substr(2) << "'\nplot '" << dat << "' index " << idx++ << " matrix with image\n";
     b << "unset multiplot\n";
-    if (gnuplot(p.at("spacetime.png"), b.str())) written.push_back("spacetime.png");
+    if (gnuplot(p.at("spacetime.png"), b.str(), false)) written.push_back("spacetime.png");
     std::remove(dat.c_str());
   }
   return written;

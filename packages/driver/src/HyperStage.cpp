@@ -17,6 +17,7 @@
 #include "gphr/reduction/Deim.hpp"
 #include "gphr/offline/TermWeightFits.hpp"
 #include "gphr/reduction/GalerkinRom.hpp"
+#include "gphr/online/Method.hpp"
 
 namespace gphr {
 
@@ -36,8 +37,8 @@ ModelRun unavailable(const std::string& method, int k, int m, const std::string&
   ModelRun r;
   r.method = method, r.k = k, r.m = m, r.ok = false, r.available = false;
   r.eL2 = r.tOnline = std::numeric_limits<double>::quiet_NaN();  // not run: no error, no time (never 0)
-  r.run.set("method", method).set("k", static_cast<long>(k)).set("m", static_cast<long>(m));
-  r.run.set("status", "unavailable").set("reason", why);
+  r.metrics.set(Metric::Method, method).set(Metric::K, static_cast<long>(k)).set(Metric::M, static_cast<long>(m));
+  r.metrics.set(Metric::Status, "unavailable").set(Metric::Reason, why);
   return r;
 }
 
@@ -59,11 +60,11 @@ ModelRun evaluateTermModel(const RunContext& ctx, const FomResult& fom, const Sc
   model.addHessian(DenseVector(2 * k), 1.0, Hhr);
   const double lminHr = smallestEigenvalue(Hhr);
   ModelRun run = evaluateReducedModel(ctx.comm, evaluationSettingsFrom(ctx.config), fom, *inst.system, A, model, true, method, k, m, keep);
-  run.run.set("hess_min_eig_hr", lminHr)
-      .set("hess_min_eig_rom", lminR)
-      .set("convexity_lost", lminHr < 0.0 && lminR >= 0.0)
-      .set("kernel_rows_per_evaluation", static_cast<long>(model.kernelRowsPerEvaluation()))
-      .set("online_numbers_held", static_cast<long>(model.numbersHeld()));
+  run.metrics.set(Metric::HessMinEigHr, lminHr)
+      .set(Metric::HessMinEigRom, lminR)
+      .set(Metric::ConvexityLost, lminHr < 0.0 && lminR >= 0.0)
+      .set(Metric::KernelRowsPerEvaluation, static_cast<long>(model.kernelRowsPerEvaluation()))
+      .set(Metric::OnlineNumbersHeld, static_cast<long>(model.numbersHeld()));
   return run;
 }
 
@@ -75,7 +76,7 @@ void runGpDeim(const RunContext& ctx, const FomResult& fom, RomStages& st, const
   const std::string indices = ctx.config.sublist("hyper").get<std::string>("indices");
   for (int m : mList(ctx.config)) {
     if (m > static_cast<int>(db.basis.U->getNumVectors())) {
-      st.runs.push_back(unavailable("gp-deim", k, m, "the DEIM basis has " + std::to_string(db.basis.U->getNumVectors()) +
+      st.runs.push_back(unavailable(method::kGpDeim, k, m, "the DEIM basis has " + std::to_string(db.basis.U->getNumVectors()) +
                                                          " vectors (numerical rank of the snapshots or hyper.maxRank)"));
       continue;
     }
@@ -85,21 +86,21 @@ void runGpDeim(const RunContext& ctx, const FomResult& fom, RomStages& st, const
     auto hr = buildGpDeimModel(*inst.system, A, *db.basis.U, m, indices, &w, &linear);
     const double tPair = clock.stop();
     // The space-time comparison of fig:pcolor_n40_n60 uses m = 2k.
-    ModelRun run = evaluateTermModel(ctx, fom, inst, A, *hr, "gp-deim", k, m, lminR, m == 2 * k);
-    run.run.set("cond_PtU", w.conditionNumber)
-        .set("deim_weight_min", *std::min_element(w.weights.begin(), w.weights.end()))
-        .set("deim_weight_max", *std::max_element(w.weights.begin(), w.weights.end()))
-        .set("deim_basis_cached", db.cached)
-        .set("deim_pod_steps_tsqr", static_cast<long>(db.basis.tsqrSteps))  // 0 when cached or randomized
-        .set("deim_pod_steps_stacked", static_cast<long>(db.basis.stackedSteps))
-        .set("deim_pod_steps_replicated", static_cast<long>(db.basis.replicatedSteps))
-        .set("t_deim_basis_s", db.seconds)
-        .set("t_deim_pair_s", tPair)
-        .set("t_offline_s", st.training.seconds + st.basisSeconds + db.seconds + tPair)
-        .set("t_deim_basis_compute_s", db.computeSeconds)
-        .set("t_hyper_offline_s", db.computeSeconds + tPair)
-        .set("t_total_s", db.computeSeconds + tPair + run.tOnline);
-    setBasisKeys(ctx, st, run.run);
+    ModelRun run = evaluateTermModel(ctx, fom, inst, A, *hr, method::kGpDeim, k, m, lminR, m == 2 * k);
+    run.metrics.set(Metric::CondPtU, w.conditionNumber)
+        .set(Metric::DeimWeightMin, *std::min_element(w.weights.begin(), w.weights.end()))
+        .set(Metric::DeimWeightMax, *std::max_element(w.weights.begin(), w.weights.end()))
+        .set(Metric::DeimBasisCached, db.cached)
+        .set(Metric::DeimPodStepsTsqr, static_cast<long>(db.basis.tsqrSteps))  // 0 when cached or randomized
+        .set(Metric::DeimPodStepsStacked, static_cast<long>(db.basis.stackedSteps))
+        .set(Metric::DeimPodStepsReplicated, static_cast<long>(db.basis.replicatedSteps))
+        .set(Metric::TDeimBasisS, db.seconds)
+        .set(Metric::TDeimPairS, tPair)
+        .set(Metric::TOfflineS, st.training.seconds + st.basisSeconds + db.seconds + tPair)
+        .set(Metric::TDeimBasisComputeS, db.computeSeconds)
+        .set(Metric::THyperOfflineS, db.computeSeconds + tPair)
+        .set(Metric::TTotalS, db.computeSeconds + tPair + run.tOnline);
+    setBasisKeys(ctx, st, run.metrics);
     st.runs.push_back(std::move(run));
   }
 }
@@ -143,21 +144,21 @@ void runGpEqp(const RunContext& ctx, const FomResult& fom, RomStages& st, const 
     ModelRun run = evaluateTermModel(ctx, fom, inst, A, *hr, method, k, m, lminR, false);
     const auto [wmin, wmax] = std::minmax_element(c.fit.weights.begin(), c.fit.weights.end());
     const double offline = c.trainingSeconds + c.fitSeconds + tMesh;
-    run.run.set("eqp_terms", static_cast<long>(c.fit.terms.size()))
-        .set("eqp_fit_residual", c.fit.residual)
-        .set("eqp_fit_residual_exact_rows", c.exactResidual)
-        .set("eqp_weight_min", *wmin)
-        .set("eqp_weight_max", *wmax)
-        .set("eqp_stop", c.fit.stop)
-        .set("eqp_selections", static_cast<long>(c.fit.iterations))
-        .set("eqp_cached", c.cached)
-        .set("t_eqp_training_s", c.trainingSeconds)
-        .set("t_eqp_fit_s", c.fitSeconds)
-        .set("t_eqp_mesh_s", tMesh)
-        .set("t_offline_s", st.training.seconds + st.basisSeconds + offline)
-        .set("t_hyper_offline_s", offline)
-        .set("t_total_s", offline + run.tOnline);
-    setBasisKeys(ctx, st, run.run);
+    run.metrics.set(Metric::EqpTerms, static_cast<long>(c.fit.terms.size()))
+        .set(Metric::EqpFitResidual, c.fit.residual)
+        .set(Metric::EqpFitResidualExactRows, c.exactResidual)
+        .set(Metric::EqpWeightMin, *wmin)
+        .set(Metric::EqpWeightMax, *wmax)
+        .set(Metric::EqpStop, c.fit.stop)
+        .set(Metric::EqpSelections, static_cast<long>(c.fit.iterations))
+        .set(Metric::EqpCached, c.cached)
+        .set(Metric::TEqpTrainingS, c.trainingSeconds)
+        .set(Metric::TEqpFitS, c.fitSeconds)
+        .set(Metric::TEqpMeshS, tMesh)
+        .set(Metric::TOfflineS, st.training.seconds + st.basisSeconds + offline)
+        .set(Metric::THyperOfflineS, offline)
+        .set(Metric::TTotalS, offline + run.tOnline);
+    setBasisKeys(ctx, st, run.metrics);
     st.runs.push_back(std::move(run));
   }
 }
@@ -181,21 +182,21 @@ void setAdeimSummary(ModelRun& run, const AdeimOptions& o, double tInitial, doub
   double tUpdates = 0.0, rankSum = 0.0, samples = 0.0;
   for (const auto& u : run.adeimUpdates) tUpdates += u.seconds, rankSum += u.rank, samples += u.numSamples;
   const double n = std::max<size_t>(1, run.adeimUpdates.size());
-  run.run.set("updates", static_cast<long>(run.adeimUpdates.size()))
-      .set("update_rank_mean", rankSum / n)
-      .set("num_samples_mean", samples / n)
-      .set("t_updates_s", tUpdates)
-      .set("initial_basis", o.initialBasis)
-      .set("sampling", o.sampling)
-      .set("delta0", static_cast<long>(o.initialWindow))
-      .set("delta", static_cast<long>(o.updateEvery))
-      .set("window", static_cast<long>(o.window))
-      .set("gamma", static_cast<long>(o.resampleEvery))
-      .set("t_initial_basis_s", tInitial)
-      .set("t_deim_pair_s", tPair)
-      .set("t_hyper_offline_s", tInitial + tPair)
-      .set("t_total_s", tInitial + tPair + run.tOnline);
-  if (run.ok) run.run.set("H_model_err_max", localHamiltonianDrift(run));
+  run.metrics.set(Metric::Updates, static_cast<long>(run.adeimUpdates.size()))
+      .set(Metric::UpdateRankMean, rankSum / n)
+      .set(Metric::NumSamplesMean, samples / n)
+      .set(Metric::TUpdatesS, tUpdates)
+      .set(Metric::InitialBasis, o.initialBasis)
+      .set(Metric::Sampling, o.sampling)
+      .set(Metric::Delta0, static_cast<long>(o.initialWindow))
+      .set(Metric::Delta, static_cast<long>(o.updateEvery))
+      .set(Metric::Window, static_cast<long>(o.window))
+      .set(Metric::Gamma, static_cast<long>(o.resampleEvery))
+      .set(Metric::TInitialBasisS, tInitial)
+      .set(Metric::TDeimPairS, tPair)
+      .set(Metric::THyperOfflineS, tInitial + tPair)
+      .set(Metric::TTotalS, tInitial + tPair + run.tOnline);
+  if (run.ok) run.metrics.set(Metric::HModelErrMax, localHamiltonianDrift(run));
 }
 
 // GP-ADEIM (alg:SP-ADEIM) for every m: (U_0, P_0) from the first delta0 full-model steps at the
@@ -213,13 +214,13 @@ void runGpAdeim(const RunContext& ctx, const FomResult& fom, RomStages& st, cons
       try {  // too few directions in the first delta0 steps for this m: that run is unavailable
         U0 = initialAdeimBasis(inst.system, *inst.y0, *A, ctx.config.sublist("integrator"), dt, o.initialWindow, m);
       } catch (const InputError& e) {
-        st.runs.push_back(unavailable("gp-adeim", k, m, e.what()));
+        st.runs.push_back(unavailable(method::kGpAdeim, k, m, e.what()));
         continue;
       }
     } else {
       U0 = deimBasisFor(ctx, st, *A, *inst.system).basis.U;
       if (m > static_cast<int>(U0->getNumVectors())) {
-        st.runs.push_back(unavailable("gp-adeim", k, m, "the training DEIM basis has " +
+        st.runs.push_back(unavailable(method::kGpAdeim, k, m, "the training DEIM basis has " +
                                                             std::to_string(U0->getNumVectors()) + " vectors"));
         continue;
       }
@@ -232,7 +233,7 @@ void runGpAdeim(const RunContext& ctx, const FomResult& fom, RomStages& st, cons
     // Jacobian approximation like any lagged one, and the lag rule refactors when Newton slows
     // (resetting it at every update cost 600 LU factorisations instead of 143 on the NLS benchmark).
     const StepHook hook = adeimUpdateHook(model);
-    ModelRun run = evaluateReducedModel(ctx.comm, evaluationSettingsFrom(ctx.config), fom, *inst.system, *A, model, true, "gp-adeim", k, m, false, hook);
+    ModelRun run = evaluateReducedModel(ctx.comm, evaluationSettingsFrom(ctx.config), fom, *inst.system, *A, model, true, method::kGpAdeim, k, m, false, hook);
     run.adeimUpdates = model.updates();
     setAdeimSummary(run, o, tInitial, tPair);
     st.runs.push_back(std::move(run));
@@ -251,17 +252,17 @@ void runGradientDeim(const RunContext& ctx, const FomResult& fom, RomStages& st,
     GradientDeimPair pair = makeGradientDeimPair(Ug, m, A);
     // The classic DEIM of full snapshots interpolates grad N - grad N(y0) (gradientDeimBasis):
     // grad N(y0) at the test parameter is added back. SDEIM interpolates grad N itself.
-    if (method == "deim" && kind == GradientSnapshots::Full) pair = withReferenceGradient(std::move(pair), *inst.system, A);
+    if (method == method::kDeim && kind == GradientSnapshots::Full) pair = withReferenceGradient(std::move(pair), *inst.system, A);
     GradientDeimModel model(*inst.system, A, pair, linear);
     const double tPair = clock.stop();
     ModelRun run = evaluateReducedModel(ctx.comm, evaluationSettingsFrom(ctx.config), fom, *inst.system, A, model, false, method, k, m,
-                                        method == "sdeim");
-    run.run.set("kernel_rows_per_evaluation", static_cast<long>(model.kernelRowsPerEvaluation()))
-        .set("t_deim_basis_s", tBasis)
-        .set("t_deim_pair_s", tPair)
-        .set("deim_snapshots", method == "deim" ? snapshots : std::string("-"))
-        .set("cond_PtU", pair.conditionNumber)
-        .set("t_offline_s", st.training.seconds + st.basisSeconds + tBasis + tPair);
+                                        method == method::kSdeim);
+    run.metrics.set(Metric::KernelRowsPerEvaluation, static_cast<long>(model.kernelRowsPerEvaluation()))
+        .set(Metric::TDeimBasisS, tBasis)
+        .set(Metric::TDeimPairS, tPair)
+        .set(Metric::DeimSnapshots, method == method::kDeim ? snapshots : std::string("-"))
+        .set(Metric::CondPtU, pair.conditionNumber)
+        .set(Metric::TOfflineS, st.training.seconds + st.basisSeconds + tBasis + tPair);
     st.runs.push_back(std::move(run));
   };
   if (classic) {
@@ -273,30 +274,30 @@ void runGradientDeim(const RunContext& ctx, const FomResult& fom, RomStages& st,
     const double t = clock.stop();
     for (int m : ms) {
       if (m > static_cast<int>(Ug->getNumVectors())) {
-        st.runs.push_back(unavailable("deim", k, m, "the gradient POD has " + std::to_string(Ug->getNumVectors()) +
+        st.runs.push_back(unavailable(method::kDeim, k, m, "the gradient POD has " + std::to_string(Ug->getNumVectors()) +
                                                         " vectors"));
         continue;
       }
-      evaluate("deim", *Ug, m, t);
+      evaluate(method::kDeim, *Ug, m, t);
     }
   }
-  if (sdeim) evaluate("sdeim", A, 2 * k, 0.0);
+  if (sdeim) evaluate(method::kSdeim, A, 2 * k, 0.0);
 }
 
 }  // namespace
 
 void runHyperReduction(const RunContext& ctx, const FomResult& fom, RomStages& st) {
   const auto methods = pipelineMethods(ctx.config);
-  const bool gp = wants(methods, "gp-deim"), classic = wants(methods, "deim"), sd = wants(methods, "sdeim"),
-             adaptive = wants(methods, "gp-adeim"), eqp = wants(methods, "gp-eqp"), refit = wants(methods, "gp-eqp-refit");
+  const bool gp = wants(methods, method::kGpDeim), classic = wants(methods, method::kDeim), sd = wants(methods, method::kSdeim),
+             adaptive = wants(methods, method::kGpAdeim), eqp = wants(methods, method::kGpEqp), refit = wants(methods, method::kGpEqpRefit);
   if (!gp && !classic && !sd && !adaptive && !eqp && !refit) return;
   auto inst = ctx.scene->instantiate(ctx.comm, ctx.mu, true);
   for (int k : stageK(ctx.config, st.basis)) {
     auto A = leadingBasis(st.basis, k);
     const ReducedLinearPart linear = reduceLinearPart(*inst.system, *A);
     if (gp) runGpDeim(ctx, fom, st, inst, *A, k, linear);
-    if (eqp) runGpEqp(ctx, fom, st, inst, *A, k, linear, "gp-eqp");
-    if (refit) runGpEqp(ctx, fom, st, inst, *A, k, linear, "gp-eqp-refit");
+    if (eqp) runGpEqp(ctx, fom, st, inst, *A, k, linear, method::kGpEqp);
+    if (refit) runGpEqp(ctx, fom, st, inst, *A, k, linear, method::kGpEqpRefit);
     if (adaptive) runGpAdeim(ctx, fom, st, inst, A, k, linear);
     if (classic || sd) runGradientDeim(ctx, fom, st, inst, *A, k, linear, classic, sd);
   }

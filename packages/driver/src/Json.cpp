@@ -66,14 +66,4 @@ std::string JsonObject::str(int indent) const {
   return s + "\n" + pad + "}";
 }
 
-double JsonObject::number(const std::string& key) const {
-  for (const auto& [k, v] : entries_)
-    if (k == key) {
-      char* end = nullptr;
-      const double x = std::strtod(v.c_str(), &end);
-      return end != v.c_str() ? x : std::numeric_limits<double>::quiet_NaN();
-    }
-  return std::numeric_limits<double>::quiet_NaN();
-}
-
 }  // namespace gphr

@@ -137,32 +137,32 @@ ModelRun evaluateReducedModel(const RCP<const Comm>& comm, const EvaluationSetti
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double H0 = fom.hamiltonian.front(), herr = run.ok ? maxDeviation(run.hamiltonian, H0) : nan;
   run.eL2 = run.ok ? lift.relativeL2() : nan;
-  run.run.set("method", method).set("k", static_cast<long>(k)).set("reducedDim", static_cast<long>(2 * k));
-  if (m > 0) run.run.set("m", static_cast<long>(m));
-  run.run.set("steps", steps)
-      .set("E_L2", run.eL2)
-      .set("E_fin", run.ok ? lift.finalError() : nan)
-      .set("H_err_max", herr)
-      .set("H_err_final", run.ok && !run.hamiltonian.empty() ? std::abs(fom.hamiltonian.back() - run.hamiltonian.back()) : nan)
-      .set("H_err_max_rel", H0 != 0.0 ? herr / std::abs(H0) : herr)
-      .set("t_online_s", run.tOnline)
-      .set("t_online_runs_s", times)
-      .set("newton_iters_avg", run.ok ? double(stats.newtonIterations) / steps : nan)
-      .set("newton_matrices", run.ok ? stats.newtonMatrices : -1L)
-      .set("errors_at", "saved steps (every output.saveEvery-th and the last)");
+  run.metrics.set(Metric::Method, method).set(Metric::K, static_cast<long>(k)).set(Metric::ReducedDim, static_cast<long>(2 * k));
+  if (m > 0) run.metrics.set(Metric::M, static_cast<long>(m));
+  run.metrics.set(Metric::Steps, steps)
+      .set(Metric::EL2, run.eL2)
+      .set(Metric::EFin, run.ok ? lift.finalError() : nan)
+      .set(Metric::HErrMax, herr)
+      .set(Metric::HErrFinal, run.ok && !run.hamiltonian.empty() ? std::abs(fom.hamiltonian.back() - run.hamiltonian.back()) : nan)
+      .set(Metric::HErrMaxRel, H0 != 0.0 ? herr / std::abs(H0) : herr)
+      .set(Metric::TOnlineS, run.tOnline)
+      .set(Metric::TOnlineRunsS, times)
+      .set(Metric::NewtonItersAvg, run.ok ? double(stats.newtonIterations) / steps : nan)
+      .set(Metric::NewtonMatrices, run.ok ? stats.newtonMatrices : -1L)
+      .set(Metric::ErrorsAt, "saved steps (every output.saveEvery-th and the last)");
   if (run.ok) {
     const UnboundedStep u = unboundedStepOf(fom, run);
     run.unboundedAt = u.step, run.unboundedReason = u.reason;
   }
   if (run.unboundedAt >= 0) {
-    run.run.set("unbounded_at_step", run.unboundedAt).set("unbounded_reason", run.unboundedReason);
+    run.metrics.set(Metric::UnboundedAtStep, run.unboundedAt).set(Metric::UnboundedReason, run.unboundedReason);
     if (comm->getRank() == 0)
       std::fprintf(stderr, "[gphr] %s unbounded from step %ld: %s\n", run.label().c_str(), run.unboundedAt,
                    run.unboundedReason.c_str());
   }
-  run.run.set("status", run.status());
-  if (hasHamiltonian && run.ok) run.run.set("H_model_err_max", maxDeviation(run.modelHamiltonian, run.modelHamiltonian.front()));
-  if (!run.ok) run.run.set("diverged_at_step", lastStep + 1).set("diverged_reason", why);
+  run.metrics.set(Metric::Status, run.status());
+  if (hasHamiltonian && run.ok) run.metrics.set(Metric::HModelErrMax, maxDeviation(run.modelHamiltonian, run.modelHamiltonian.front()));
+  if (!run.ok) run.metrics.set(Metric::DivergedAtStep, lastStep + 1).set(Metric::DivergedReason, why);
   if (!run.ok && comm->getRank() == 0)
     std::fprintf(stderr, "[gphr] %s diverged at step %ld: %s\n", run.label().c_str(), lastStep + 1, why.c_str());
   return run;

@@ -83,14 +83,14 @@ CachedDeimBasis deimBasisFor(const RunContext& ctx, const RomStages& st, const M
                            cacheKeys(ctx.config).deim);
 }
 
-void setBasisKeys(const RunContext& ctx, const RomStages& st, JsonObject& run) {
-  run.set("t_training_s", st.training.seconds)
-      .set("t_basis_s", st.basisSeconds)
-      .set("t_basis_cpu_s", st.basisCpuSeconds)
-      .set("pod_route", ctx.config.sublist("reduction").get<std::string>("podRoute"))
-      .set("pod_steps_tsqr", static_cast<long>(st.basis.tsqrSteps))
-      .set("pod_steps_replicated", static_cast<long>(st.basis.replicatedSteps))
-      .set("pod_steps_stacked", static_cast<long>(st.basis.stackedSteps));
+void setBasisKeys(const RunContext& ctx, const RomStages& st, RunMetrics& run) {
+  run.set(Metric::TTrainingS, st.training.seconds)
+      .set(Metric::TBasisS, st.basisSeconds)
+      .set(Metric::TBasisCpuS, st.basisCpuSeconds)
+      .set(Metric::PodRoute, ctx.config.sublist("reduction").get<std::string>("podRoute"))
+      .set(Metric::PodStepsTsqr, static_cast<long>(st.basis.tsqrSteps))
+      .set(Metric::PodStepsReplicated, static_cast<long>(st.basis.replicatedSteps))
+      .set(Metric::PodStepsStacked, static_cast<long>(st.basis.stackedSteps));
 }
 
 }  // namespace gphr

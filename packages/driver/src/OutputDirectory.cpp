@@ -11,7 +11,7 @@
 #include <functional>
 
 #include "gphr/core/Error.hpp"
-#include "gphr/driver/Commands.hpp"
+#include "gphr/driver/OutputDirectory.hpp"
 
 namespace gphr {
 

@@ -10,7 +10,7 @@
 #include <ctime>
 
 #include "gphr/core/Error.hpp"
-#include "gphr/driver/Commands.hpp"
+#include "gphr/driver/OutputDirectory.hpp"
 
 namespace gphr {
 

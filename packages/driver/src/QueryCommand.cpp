@@ -14,8 +14,10 @@
 #include <map>
 #include <sstream>
 
+#include "gphr/core/Provenance.hpp"
 #include "gphr/core/Error.hpp"
-#include "gphr/driver/Commands.hpp"
+#include "gphr/driver/QueryCommand.hpp"
+#include "gphr/driver/OutputDirectory.hpp"
 #include "gphr/driver/Json.hpp"
 #include "gphr/driver/OutputLock.hpp"
 #include "gphr/driver/QueryList.hpp"

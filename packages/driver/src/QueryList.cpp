@@ -1,3 +1,4 @@
+#include "gphr/core/Provenance.hpp"
 #include "gphr/driver/QueryList.hpp"
 
 #include <Teuchos_YamlParameterListCoreHelpers.hpp>
@@ -7,7 +8,7 @@
 #include <set>
 
 #include "gphr/core/Error.hpp"
-#include "gphr/driver/Commands.hpp"
+#include "gphr/driver/OutputDirectory.hpp"
 #include "gphr/driver/InputFile.hpp"
 
 namespace gphr {

@@ -16,10 +16,11 @@
 #include <thread>
 
 #include "gphr/core/Error.hpp"
-#include "gphr/driver/Commands.hpp"
+#include "gphr/driver/OutputDirectory.hpp"
 #include "gphr/driver/Config.hpp"
 #include "gphr/driver/HyperReport.hpp"
 #include "gphr/io/Hdf5File.hpp"
+#include "gphr/online/Method.hpp"
 
 namespace gphr {
 
@@ -166,10 +167,13 @@ bool plotHamiltonian(const std::string& csv, const std::string& romCsv, const st
   {
     std::ofstream gp(script);
     gp << "set terminal pngcairo size 900,500 noenhanced\nset output '" << png << "'\n"
-       << "set datafile separator ','\nset key top left\nset logscale y\nset format y '%.0e'\n"
+       << "set datafile separator ','\nset datafile columnheaders\nset key top left\nset logscale y\nset format y '%.0e'\n"
        << "set xlabel 't'\nset ylabel '|H(y^j) - H(y^0)|'\nset title 'Hamiltonian error of the full model'\n"
-       << "plot '" << csv << "' every ::1 using 2:($4 > 0 ? $4 : 1e-17) with lines lw 2 title 'fom'";
-    if (!romCsv.empty()) gp << ", '" << romCsv << "' every ::1 using 2:($4 > 0 ? $4 : 1e-17) with lines lw 2 title 'rom'";
+       << "plot '" << csv << "' using (column('t')):(column('H_err') > 0 ? column('H_err') : 1e-17) with lines lw 2 "
+       << "title 'fom'";
+    if (!romCsv.empty())
+      gp << ", '" << romCsv << "' using (column('t')):(column('H_err') > 0 ? column('H_err') : 1e-17) with lines lw 2 "
+         << "title 'rom'";
     gp << "\n";
   }
   const int rc = std::system(("gnuplot '" + script + "' > /dev/null 2>&1").c_str());
@@ -190,12 +194,14 @@ void writeSingularValues(const std::vector<double>& s, const std::string& csv, c
   if (!plot || std::system("command -v gnuplot > /dev/null 2>&1") != 0) return;
   const std::string script = png + ".gp";
   std::ofstream(script) << "set terminal pngcairo size 900,500 noenhanced\nset output '" << png << "'\n"
-                        << "set datafile separator ','\nset logscale y\nset format y '%.0e'\nset xlabel 'index j'\n"
+                        << "set datafile separator ','\nset datafile columnheaders\nset logscale y\nset format y '%.0e'\n"
+                        << "set xlabel 'index j'\n"
                         << "set ylabel 'sigma_j / sigma_1'\nset title 'Singular values of the snapshots'\n"
-                        << "plot '" << csv << "' every ::1 using 1:3 with lines lw 2 title 'snapshots (basis A)'"
+                        << "plot '" << csv << "' using (column('index')):(column('sigma_rel')) with lines lw 2 "
+                        << "title 'snapshots (basis A)'"
                         << (deimCsv.empty() ? std::string()
-                                            : ", '" + deimCsv + "' every ::1 using 1:3 with lines lw 2 title "
-                                                                "'reduced Jacobians (DEIM basis U)'")
+                                            : ", '" + deimCsv + "' using (column('index')):(column('sigma_rel')) "
+                                                                "with lines lw 2 title 'reduced Jacobians (DEIM basis U)'")
                         << "\n";
   (void)std::system(("gnuplot '" + script + "' > /dev/null 2>&1").c_str());
   std::remove(script.c_str());
@@ -221,13 +227,13 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
                inPlace ? Hdf5File::Mode::ReadWrite : Hdf5File::Mode::Create);
     writeArtifacts(ctx, fom, rom, f);
   }
-  std::vector<JsonObject> runs{fom.run};
+  std::vector<JsonObject> runs{fom.metrics.json()};
   if (rom)
-    for (const auto& r : rom->runs) runs.push_back(r.run);
+    for (const auto& r : rom->runs) runs.push_back(r.metrics.json());
   const ModelRun* firstRom = nullptr;
   if (rom)
     for (const auto& r : rom->runs)
-      if (r.method == "rom" && !firstRom) firstRom = &r;
+      if (r.method == method::kRom && !firstRom) firstRom = &r;
   JsonObject summary;
   summary.set("scene", ctx.scene->name())
       .set("integrator", ctx.config.sublist("integrator").get<std::string>("scheme"))

@@ -2,6 +2,7 @@
 
 #include "gphr/driver/ModelEvaluation.hpp"
 #include "gphr/reduction/GalerkinRom.hpp"
+#include "gphr/online/Method.hpp"
 
 namespace gphr {
 
@@ -11,14 +12,14 @@ void runRom(const RunContext& ctx, const FomResult& fom, RomStages& st) {
     auto A = leadingBasis(st.basis, k);
     GalerkinRom rom(inst.system, A);
     ModelRun run = evaluateReducedModel(ctx.comm, evaluationSettingsFrom(ctx.config), fom, *inst.system, *A, rom, true,
-                                        "rom", k, 0);
-    run.run.set("basis", st.basis.method)
-        .set("energy_captured", st.basis.energyCaptured)
-        .set("training_parameters", static_cast<long>(st.training.parameters.size()))
-        .set("training_reused", st.training.reused)
-        .set("basis_cached", st.basisCached)
-        .set("t_offline_s", st.training.seconds + st.basisSeconds);
-    setBasisKeys(ctx, st, run.run);
+                                        method::kRom, k, 0);
+    run.metrics.set(Metric::Basis, st.basis.method)
+        .set(Metric::EnergyCaptured, st.basis.energyCaptured)
+        .set(Metric::TrainingParameters, static_cast<long>(st.training.parameters.size()))
+        .set(Metric::TrainingReused, st.training.reused)
+        .set(Metric::BasisCached, st.basisCached)
+        .set(Metric::TOfflineS, st.training.seconds + st.basisSeconds);
+    setBasisKeys(ctx, st, run.metrics);
     st.runs.push_back(std::move(run));
   }
 }

@@ -15,7 +15,8 @@
 #include <sstream>
 
 #include "gphr/core/Error.hpp"
-#include "gphr/driver/Commands.hpp"
+#include "gphr/driver/ValidateCommand.hpp"
+#include "gphr/driver/OutputDirectory.hpp"
 #include "gphr/driver/Config.hpp"
 #include "gphr/driver/ModelEvaluation.hpp"
 #include "gphr/driver/OutputLock.hpp"
@@ -108,7 +109,7 @@ std::vector<ValidationRecord> evaluatePoint(RunContext& ctx, const ReducedModel&
   for (const auto& b : d.bases) {
     const RCP<const MultiVector> A = readReducedModelBasis(rm.path(), b.k, inst.system->space());
     GalerkinRom rom(inst.system, A);
-    out.push_back(recordOf(evaluateReducedModel(ctx.comm, settings, fom, *inst.system, *A, rom, true, "rom", b.k, 0), q, 0.0, outside));
+    out.push_back(recordOf(evaluateReducedModel(ctx.comm, settings, fom, *inst.system, *A, rom, true, method::kRom, b.k, 0), q, 0.0, outside));
     for (const auto& sm : d.models) {
       if (sm.k != b.k) continue;
       if (methodInfo(sm.method).needsFullResidual) {  // gp-adeim: on the full system, adapting as it runs

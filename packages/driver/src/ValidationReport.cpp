@@ -1,3 +1,4 @@
+#include "gphr/core/Provenance.hpp"
 #include "gphr/driver/ValidationReport.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
@@ -11,7 +12,7 @@
 #include <sstream>
 
 #include "gphr/core/Error.hpp"
-#include "gphr/driver/Commands.hpp"
+#include "gphr/driver/OutputDirectory.hpp"
 #include "gphr/driver/Json.hpp"
 #include "gphr/online/ReducedModel.hpp"
 

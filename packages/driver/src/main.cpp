@@ -23,6 +23,7 @@
 #include "gphr/driver/Report.hpp"
 #include "gphr/driver/RomStage.hpp"
 #include "gphr/models/SceneFactory.hpp"
+#include "gphr/online/Method.hpp"
 
 namespace {
 
@@ -108,7 +109,7 @@ int runMain(const Args& args, const gphr::RCP<const gphr::Comm>& comm) {
   const auto methods = pipelineMethods(ctx.config);
   if (!methods.empty()) rom = std::make_unique<RomStages>(runOfflineStages(ctx));
   const FomResult fom = runFullModel(evaluationSettingsFrom(ctx.config), *ctx.scene, ctx.mu, comm);
-  if (rom && std::find(methods.begin(), methods.end(), "rom") != methods.end()) runRom(ctx, fom, *rom);
+  if (rom && std::find(methods.begin(), methods.end(), method::kRom) != methods.end()) runRom(ctx, fom, *rom);
   if (rom) runHyperReduction(ctx, fom, *rom);
   writeReport(ctx, fom, rom.get());
   if (root) std::cout << runTable(ctx, fom, rom.get());

@@ -45,7 +45,7 @@ void addAdeimModels(const BuildState& b, int k, std::vector<StoredHyperModel>& o
   section.setName("adeim");
   for (int m : o.ms) {
     StoredHyperModel sm;
-    sm.method = "gp-adeim", sm.k = k, sm.m = m;
+    sm.method = method::kGpAdeim, sm.k = k, sm.m = m;
     adeimOptionsFrom(section, m);  // the constraints that involve m, checked now
     sm.adeimConfig = toYaml(section);
     out.push_back(sm);
@@ -66,9 +66,9 @@ std::vector<StoredHyperModel> modelsOfK(const BuildState& b, const MultiVector& 
   RCP<const MultiVector> U;  // the DEIM basis, computed on first need
   auto deimBasis = [&] { return U.is_null() ? (U = deimBasisOf(b, A)) : U; };
   for (const auto& method : o.methods) {
-    if (method == "gp-adeim") {
+    if (method == method::kGpAdeim) {
       addAdeimModels(b, k, out);
-    } else if (method == "gp-deim") {
+    } else if (method == method::kGpDeim) {
       auto deim = gpDeimModels(b.instance, A, k, *deimBasis(), o.ms, o.file.indices);
       std::move(deim.begin(), deim.end(), std::back_inserter(out));
     } else {

@@ -13,6 +13,7 @@
 #include "gphr/core/Provenance.hpp"
 #include "gphr/hyper/SampleMesh.hpp"
 #include "gphr/reduction/Deim.hpp"
+#include "gphr/online/Method.hpp"
 
 namespace gphr {
 
@@ -127,7 +128,7 @@ std::vector<StoredHyperModel> gpDeimModels(const SceneInstance& inst, const Mult
                  " vectors (numerical rank of the snapshots or hyper.maxRank); allowed: 1 <= m <= that");
     const auto idx = selectDeimIndices(U, m, indices);
     const auto w = computeDeimWeights(U, idx, *inst.system->nonlinearTerm().weights());
-    out.push_back(termModel(inst, A, "gp-deim", k, m, idx, w.weights));
+    out.push_back(termModel(inst, A, method::kGpDeim, k, m, idx, w.weights));
     out.back().conditionNumber = w.conditionNumber;
   }
   return out;

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/online/Method.hpp"
 
 namespace gphr {
 
@@ -19,7 +20,7 @@ TermWeightFits::TermWeightFits(const Scene& scene, RCP<const Comm> comm, const T
 }
 
 CachedFit TermWeightFits::get(const std::string& method, int m) {
-  const bool refit = method == "gp-eqp-refit";
+  const bool refit = method == method::kGpEqpRefit;
   CachedFit out;
   if (read(method, m, out)) return out;
   if (refit) {
@@ -63,7 +64,7 @@ std::string TermWeightFits::name(const std::string& method, int m) const {
 
 // The revision: 2, the budgets' fits along one greedy path (the same fits, times along the path).
 std::string TermWeightFits::key(const std::string& method, int m) const {
-  return (method == "gp-eqp-refit" ? refitKey_ : nnlsKey_) + "eqp revision 2, k = " + std::to_string(k_) +
+  return (method == method::kGpEqpRefit ? refitKey_ : nnlsKey_) + "eqp revision 2, k = " + std::to_string(k_) +
          ", m = " + std::to_string(m);
 }
 

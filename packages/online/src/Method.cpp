@@ -6,18 +6,18 @@ namespace gphr {
 
 const std::vector<MethodInfo>& methodRegistry() {
   static const std::vector<MethodInfo> registry = {
-      {"fom", "the full model", false, false, false, false, ""},
-      {"rom", "the symplectic Galerkin reduced model (all d terms)", false, false, false, false, ""},
-      {"gp-deim", "gradient-preserving DEIM: DEIM weights on m sampled terms (sec:GP-DEIM)", true, true, false, true,
+      {method::kFom, "the full model", false, false, false, false, ""},
+      {method::kRom, "the symplectic Galerkin reduced model (all d terms)", false, false, false, false, ""},
+      {method::kGpDeim, "gradient-preserving DEIM: DEIM weights on m sampled terms (sec:GP-DEIM)", true, true, false, true,
        "its sample mesh and DEIM weights"},
-      {"gp-adeim", "GP-DEIM with online low-rank updates of the DEIM basis (alg:SP-ADEIM)", true, true, true, false,
+      {method::kGpAdeim, "GP-DEIM with online low-rank updates of the DEIM basis (alg:SP-ADEIM)", true, true, true, false,
        "its options; the basis A (build.withBasis)"},
-      {"deim", "the classic DEIM of the reduced gradient (a baseline; not Hamiltonian)", true, false, false, false, ""},
-      {"sdeim", "the structure-preserving DEIM of the gradient with U = A (a baseline; m = 2k)", false, false, false,
+      {method::kDeim, "the classic DEIM of the reduced gradient (a baseline; not Hamiltonian)", true, false, false, false, ""},
+      {method::kSdeim, "the structure-preserving DEIM of the gradient with U = A (a baseline; m = 2k)", false, false, false,
        false, ""},
-      {"gp-eqp", "non-negative term weights by NNLS on the reduced gradients (m: the term budget)", true, true, false,
+      {method::kGpEqp, "non-negative term weights by NNLS on the reduced gradients (m: the term budget)", true, true, false,
        true, "its sample mesh and term weights"},
-      {"gp-eqp-refit", "GP-DEIM's terms with weights refit by least squares", true, true, false, true,
+      {method::kGpEqpRefit, "GP-DEIM's terms with weights refit by least squares", true, true, false, true,
        "its sample mesh and term weights"},
   };
   return registry;

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "gphr/driver/Json.hpp"
+#include "gphr/driver/RunMetrics.hpp"
 #include "gphr/models/Scene.hpp"
 #include "gphr/online/TimeLoop.hpp"
 
@@ -18,7 +18,7 @@ struct FomResult {
   std::vector<double> savedTimes;  ///< Times of the saved states.
   std::vector<double> hamiltonian;  ///< H(y^j), j = 0..steps
   double tOnline = 0.0;             ///< wall seconds of the time loop (observer excluded)
-  JsonObject run;                   ///< the "runs" entry of summary.json
+  RunMetrics metrics;               ///< the figures of its "runs" entry of summary.json
 };
 
 /// The steps whose states are kept (every saveEvery-th and the last), and the largest

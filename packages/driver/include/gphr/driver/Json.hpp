@@ -24,8 +24,6 @@ class JsonObject {
   JsonObject& set(const std::string& key, const std::vector<JsonObject>& values);
   JsonObject& set(const std::string& key, const std::vector<double>& values);  ///< an array of numbers
   std::string str(int indent = 0) const;  ///< The object as JSON text, indented by `indent` spaces.
-  /// Read back a number set earlier (the report's tables): NaN when absent, null or not a number.
-  double number(const std::string& key) const;
 
  private:
   JsonObject& raw(const std::string& key, std::string json);

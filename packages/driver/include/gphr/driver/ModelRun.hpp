@@ -1,12 +1,12 @@
 #pragma once
 /// @file
 /// One evaluated reduced or hyper-reduced model of `gphr run` and `gphr validate`: its method and
-/// sizes, its histories, its status (RunStatus.hpp) and its summary.json entry.
+/// sizes, its histories, its status (RunStatus.hpp) and its metrics (RunMetrics.hpp).
 #include <string>
 #include <vector>
 
 #include "gphr/core/Types.hpp"
-#include "gphr/driver/Json.hpp"
+#include "gphr/driver/RunMetrics.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/online/RunStatus.hpp"
 
@@ -33,7 +33,7 @@ struct ModelRun {
   bool available = true;  ///< false: not run, the offline data cannot support this (k, m)
   long unboundedAt = -1;  ///< >= 0: ran to the end, but its lift left the full model's range at this step
   std::string unboundedReason;  ///< which bound it passed, with the figures
-  JsonObject run;  ///< The "runs" entry of summary.json.
+  RunMetrics metrics;  ///< The figures of its "runs" entry of summary.json.
   std::string label() const;  ///< Method with k and m, as the report names the run.
   /// ok | unbounded | diverged | unavailable (RunStatus.hpp)
   const char* status() const { return runStatus(ok, available, unboundedAt); }

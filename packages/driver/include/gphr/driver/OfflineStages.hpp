@@ -42,6 +42,6 @@ CachedDeimBasis deimBasisFor(const RunContext& ctx, const RomStages& st, const M
                              const HamiltonianSystem& test);
 /// The training and basis keys of a rom / gp-deim entry: t_training_s, t_basis_s, t_basis_cpu_s,
 /// pod_route and the basis's POD steps by route.
-void setBasisKeys(const RunContext& ctx, const RomStages& stages, JsonObject& run);
+void setBasisKeys(const RunContext& ctx, const RomStages& stages, RunMetrics& run);
 
 }  // namespace gphr

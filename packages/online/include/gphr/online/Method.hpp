@@ -19,6 +19,18 @@ struct MethodInfo {
   const char* fromFile;    ///< what a query reads of it from the model file ("" if not storable)
 };
 
+/// The methods' names, for code that picks one (the registry below says what each is).
+namespace method {
+inline constexpr char kFom[] = "fom";                  ///< the full model
+inline constexpr char kRom[] = "rom";                  ///< the Galerkin reduced model
+inline constexpr char kGpDeim[] = "gp-deim";           ///< gradient-preserving DEIM
+inline constexpr char kGpAdeim[] = "gp-adeim";         ///< adaptive GP-DEIM
+inline constexpr char kDeim[] = "deim";                ///< the classic DEIM (baseline)
+inline constexpr char kSdeim[] = "sdeim";              ///< the structure-preserving DEIM (baseline)
+inline constexpr char kGpEqp[] = "gp-eqp";             ///< non-negative term weights (NNLS)
+inline constexpr char kGpEqpRefit[] = "gp-eqp-refit";  ///< GP-DEIM's terms, weights refit
+}  // namespace method
+
 /// Every method, in the order of the reports.
 const std::vector<MethodInfo>& methodRegistry();
 /// The method of this name; InputError naming it and the known names if there is none.

@@ -1,0 +1,14 @@
+#pragma once
+/// @file
+/// `gphr build` (BuildCommand.cpp).
+#include <string>
+
+#include "gphr/core/Types.hpp"
+
+namespace gphr {
+
+/// `gphr build`: the offline stages of the config at `configPath` -> the reduced-model file `modelPath`.
+int runBuild(const std::string& configPath, const std::string& modelPath, const std::string& artifactsDir,
+             const RCP<const Comm>& comm);
+
+}  // namespace gphr
