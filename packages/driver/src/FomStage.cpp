@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "gphr/driver/Config.hpp"
+#include "gphr/driver/FieldModels.hpp"
 #include "gphr/core/Error.hpp"
 #include "gphr/online/TimeLoop.hpp"
 #include "gphr/timeint/FullModelIntegrator.hpp"
@@ -53,6 +54,8 @@ EvaluationSettings evaluationSettingsFrom(const Teuchos::ParameterList& cfg) {
   s.onlineRepeats = cfg.sublist("pipeline").get<int>("onlineRepeats");
   s.onlineRepeatSeconds = cfg.sublist("pipeline").get<double>("onlineRepeatSeconds");
   s.shift = cfg.sublist("scene").get<bool>("shift");
+  if (cfg.sublist("output").get<bool>("plots") || cfg.sublist("output").get<bool>("xdmf"))
+    s.fieldModels = fieldModelNames(cfg);
   return s;
 }
 

@@ -8,6 +8,7 @@
 
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/Config.hpp"
+#include "gphr/driver/FieldModels.hpp"
 #include "gphr/online/Lift.hpp"
 
 namespace gphr {
@@ -123,7 +124,7 @@ ModelRun evaluateReducedModel(const RCP<const Comm>& comm, const EvaluationSetti
   SimulationSettings settings = evaluation.time;
   settings.polynomialDegree = sys.nonlinearTerm().polynomialDegree();
   DenseVector z;
-  DeferredLift lift(A, sys, fom, steps, saveEvery, keepStates, run);
+  DeferredLift lift(A, sys, fom, steps, saveEvery, keepStates || keepsFieldStates(evaluation.fieldModels, method), run);
   const SimulationStats sim = simulate(model, settings, z, [&](long j, double, const DenseVector& zj) {
     if (hasHamiltonian) run.modelHamiltonian.push_back(model.hamiltonian(zj));  // the model at this step
     lift.add(j, zj);

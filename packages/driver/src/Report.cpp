@@ -18,6 +18,7 @@
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/Commands.hpp"
 #include "gphr/driver/Config.hpp"
+#include "gphr/driver/FieldOutput.hpp"
 #include "gphr/driver/HyperReport.hpp"
 #include "gphr/io/Hdf5File.hpp"
 
@@ -108,7 +109,8 @@ JsonObject parametersJson(const Scene& scene, const std::vector<double>& mu) {
   return p;
 }
 
-void writeArtifacts(const RunContext& ctx, const FomResult& fom, const RomStages* rom, Hdf5File& f) {
+void writeArtifacts(const RunContext& ctx, const FomResult& fom, const RomStages* rom, const FieldOutput* fields,
+                    Hdf5File& f) {
   PhaseSpace ps(fom.trajectory->getGlobalLength() / 2, ctx.comm);
   f.setAttribute("/", "scene", ctx.scene->name());
   f.setAttribute("/", "integrator", ctx.config.sublist("integrator").get<std::string>("scheme"));
@@ -136,6 +138,7 @@ void writeArtifacts(const RunContext& ctx, const FomResult& fom, const RomStages
     f.writeArray(g + "/errors", r.errors, r.errors.size(), 1);
     f.setAttribute(g + "/errors", "layout", std::string("||y - (y0 + A z)|| at /fom/times"));
   }
+  if (fields) writeFieldStates(f, fom, *fields);  // what fields.xdmf shows
 }
 
 void writeHistoryCsv(const std::vector<double>& H, double H0, const std::vector<double>* errors, long saveEvery,
@@ -214,12 +217,15 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
   // artifacts.h5: written in place when it already holds the training cache, else written to a
   // temporary name and renamed.
   const bool inPlace = std::filesystem::exists(ctx.artifactsPath());
+  const FieldOutput fields = fieldOutputOf(ctx, fom, rom);
+  const bool xdmf = ctx.config.sublist("output").get<bool>("xdmf") && fields.grid;
+  RenameOnCommit xdmfFile(ctx.outputDir + "/fields.xdmf", ctx.comm);
   ctx.comm->barrier();
   RenameOnCommit h5(ctx.artifactsPath(), ctx.comm);
   {
     Hdf5File f(inPlace ? ctx.artifactsPath() : h5.tempPath(), ctx.comm,
                inPlace ? Hdf5File::Mode::ReadWrite : Hdf5File::Mode::Create);
-    writeArtifacts(ctx, fom, rom, f);
+    writeArtifacts(ctx, fom, rom, xdmf ? &fields : nullptr, f);
   }
   std::vector<JsonObject> runs{fom.run};
   if (rom)
@@ -264,6 +270,8 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
     if (!plotted && !why.empty()) std::fprintf(stderr, "[gphr] no plots: %s\n", why.c_str());
     writeTextFile(json.tempPath(), summary.str() + "\n");
     writeTextFile(configFile.tempPath(), configYaml(ctx.config));
+    for (const auto& note : fields.notes) std::fprintf(stderr, "[gphr] %s\n", note.c_str());
+    if (xdmf) writeTextFile(xdmfFile.tempPath(), fieldsXdmf(fom, fields));
   });
   int plottedAll = plotted;
   Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(plottedAll));
@@ -289,6 +297,7 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
   Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(svPlotted));
   commitOrDrop(svPng, svPlotted);
   commitOrDrop(png, plottedAll);
+  commitOrDrop(xdmfFile, xdmf);
   for (auto& [name, file] : hyper) {
     int done = root && std::find(hyperFiles.begin(), hyperFiles.end(), name) != hyperFiles.end();
     Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(done));

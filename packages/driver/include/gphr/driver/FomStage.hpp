@@ -39,6 +39,9 @@ struct EvaluationSettings {
   double onlineRepeatSeconds = 60.0; ///< their total time at most (pipeline.onlineRepeatSeconds)
   double progressSeconds = 2.0;      ///< between the full model's progress lines (0: none)
   bool shift = true;                 ///< integrate the shifted system (scene.shift)
+  /// output.fieldModels when the run draws or writes fields (output.plots or output.xdmf): the
+  /// runs these names can pick keep their lifted states (FieldModels.hpp); empty: none
+  std::vector<std::string> fieldModels;
 };
 
 /// The evaluation settings of a validated `gphr run` configuration.
