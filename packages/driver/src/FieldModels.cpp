@@ -8,11 +8,15 @@
 
 namespace gphr {
 
+namespace {
+bool notFom(const MethodInfo& m) { return std::string(m.name) != "fom"; }  // the full model is always shown
+}  // namespace
+
 std::vector<std::string> fieldModelNames(const Teuchos::ParameterList& cfg) {
   std::vector<std::string> out;
   for (const auto& name : cfg.sublist("output").get<Teuchos::Array<std::string>>("fieldModels")) {
     GPHR_REQUIRE(name == "best" || (isMethod(name) && name != "fom"), InputError, "key 'output.fieldModels' has entry '",
-                 name, "'; allowed: best or one of ", methodNames(), " except fom (always shown)");
+                 name, "'; allowed: best or one of ", methodNames(notFom));
     if (std::find(out.begin(), out.end(), name) == out.end()) out.push_back(name);
   }
   return out;

@@ -19,6 +19,7 @@
 #include "gphr/driver/Commands.hpp"
 #include "gphr/driver/Config.hpp"
 #include "gphr/driver/FieldOutput.hpp"
+#include "gphr/driver/FieldPictures.hpp"
 #include "gphr/driver/HyperReport.hpp"
 #include "gphr/io/Hdf5File.hpp"
 
@@ -248,19 +249,22 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
   std::map<std::string, std::unique_ptr<RenameOnCommit>> hyper;
   std::map<std::string, std::string> hyperPaths;
   for (const char* name : {"runs.csv", "report.md", "error_vs_m.png", "pareto.png", "hamiltonian_terms.png",
-                           "hamiltonian_terms.csv", "deim_singular_values.csv", "spacetime.png", "adeim_updates.csv",
+                           "hamiltonian_terms.csv", "deim_singular_values.csv", "adeim_updates.csv",
                            "adeim_updates.png", "error_vs_total_time.png"}) {
     hyper[name] = std::make_unique<RenameOnCommit>(ctx.outputDir + "/" + name, ctx.comm);
     hyperPaths[name] = hyper[name]->tempPath();
   }
-  const std::string spaceTime = rom ? spaceTimeData(ctx, fom, *rom) : "";
+  const FieldPicture picture = ctx.config.sublist("output").get<bool>("plots") ? fieldPicture(ctx.config, fom, fields)
+                                                                               : FieldPicture{};
+  RenameOnCommit fieldsPng(ctx.outputDir + "/fields.png", ctx.comm), spaceTimePng(ctx.outputDir + "/spacetime.png", ctx.comm);
+  int pictured = 0;
   std::vector<std::string> hyperFiles;
   // rank 0 writes the report; its failure (a full disk, say) ends every rank
   onRootAgreed(ctx.comm, "gphr run: the report", [&] {
     const double H0 = fom.hamiltonian.front();
     writeHistoryCsv(fom.hamiltonian, H0, nullptr, saveEvery, dt, csv.tempPath());
     if (firstRom) writeHistoryCsv(firstRom->hamiltonian, H0, &firstRom->errors, saveEvery, dt, romCsv.tempPath());
-    if (rom) hyperFiles = writeHyperReport(ctx, fom, *rom, spaceTime, hyperPaths, ctx.config.sublist("output").get<bool>("plots"));
+    if (rom) hyperFiles = writeHyperReport(ctx, fom, *rom, hyperPaths, ctx.config.sublist("output").get<bool>("plots"));
     const bool deimSv = std::find(hyperFiles.begin(), hyperFiles.end(), "deim_singular_values.csv") != hyperFiles.end();
     if (rom) writeSingularValues(rom->basis.singularValues, svCsv.tempPath(), svPng.tempPath(),
                                  ctx.config.sublist("output").get<bool>("plots"),
@@ -272,6 +276,8 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
     writeTextFile(configFile.tempPath(), configYaml(ctx.config));
     for (const auto& note : fields.notes) std::fprintf(stderr, "[gphr] %s\n", note.c_str());
     if (xdmf) writeTextFile(xdmfFile.tempPath(), fieldsXdmf(fom, fields));
+    if (!picture.file.empty())
+      pictured = drawFieldPicture(picture, (picture.file == "fields.png" ? fieldsPng : spaceTimePng).tempPath());
   });
   int plottedAll = plotted;
   Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(plottedAll));
@@ -298,6 +304,9 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
   commitOrDrop(svPng, svPlotted);
   commitOrDrop(png, plottedAll);
   commitOrDrop(xdmfFile, xdmf);
+  Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(pictured));
+  commitOrDrop(fieldsPng, pictured && picture.file == "fields.png");
+  commitOrDrop(spaceTimePng, pictured && picture.file == "spacetime.png");
   for (auto& [name, file] : hyper) {
     int done = root && std::find(hyperFiles.begin(), hyperFiles.end(), name) != hyperFiles.end();
     Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(done));

@@ -1,0 +1,42 @@
+#pragma once
+/// @file
+/// The field pictures of `gphr run` (gnuplot): fields.png for a 2-D grid, the picked field (first
+/// component, or a complex field's modulus) of the full model and of each picked run at a few times
+/// (output.fieldTimes) on one colour scale, each run's pointwise difference to the full model on a
+/// symmetric one; spacetime.png for a 1-D grid, the field over x and t, the same panels. Only
+/// these pictures gather whole states onto rank 0, one at a time.
+#include <string>
+#include <vector>
+
+#include "gphr/driver/FieldOutput.hpp"
+
+namespace gphr {
+
+/// One panel: a field on a uniform grid of `cols` x `rows` values (x fastest).
+struct FieldPanel {
+  std::string title;          ///< the model, and the time in fields.png
+  std::vector<double> values; ///< rows x cols, row-major
+  bool difference = false;    ///< a difference to the full model (its own scale)
+  bool blank = false;         ///< an empty cell of the layout
+};
+
+/// The panels of a run's field picture, laid out in `layoutRows` rows of `layoutCols`, with
+/// the axes' origin and spacing (y: the second direction, or t for a 1-D grid).
+struct FieldPicture {
+  std::string file;  ///< fields.png, spacetime.png, or empty: no picture (a grid of 3 directions)
+  std::vector<FieldPanel> panels;
+  int layoutRows = 0, layoutCols = 0;
+  long cols = 0, rows = 0;
+  double x0 = 0, dx = 1, y0 = 0, dy = 1;
+  std::string yLabel = "y";  ///< y, or t for a 1-D grid (space-time)
+  std::string field;         ///< the pictured field's name (chi; u for a complex field)
+  bool modulus = false;      ///< the values are |field| and the differences |field - field_fom|
+};
+
+/// Collective: the picture's panels, gathered onto rank 0 (the other ranks get the layout only).
+FieldPicture fieldPicture(const Teuchos::ParameterList& cfg, const FomResult& fom, const FieldOutput& out);
+
+/// Rank 0: draws the picture into `png` with gnuplot; false when gnuplot fails.
+bool drawFieldPicture(const FieldPicture& picture, const std::string& png);
+
+}  // namespace gphr
