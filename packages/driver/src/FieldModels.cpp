@@ -34,7 +34,8 @@ std::vector<double> fieldTimes(const Teuchos::ParameterList& cfg) {
 
 bool keepsFieldStates(const std::vector<std::string>& names, const std::string& method) {
   return std::any_of(names.begin(), names.end(), [&](const std::string& name) {
-    return name == method || (name == "best" && isMethod(method) && methodInfo(method).hyperReduced);
+    // every method but the full and the Galerkin model is a hyper-reduction (sdeim too, whose m is fixed)
+    return name == method || (name == "best" && method != "rom" && method != "fom");
   });
 }
 

@@ -1,0 +1,72 @@
+// Which runs the field outputs show, and what a scene without a grid gets: a message naming it,
+// not a file.
+#include <gtest/gtest.h>
+
+#include "gphr/core/Error.hpp"
+#include "gphr/driver/FieldModels.hpp"
+#include "gphr/driver/XdmfWriter.hpp"
+#include "gphr/models/Scene.hpp"
+
+using namespace gphr;
+
+namespace {
+
+ModelRun run(const std::string& method, int m, double eL2, size_t states, bool ok = true) {
+  ModelRun r;
+  r.method = method, r.k = 4, r.m = m, r.eL2 = eL2, r.ok = ok;
+  r.states.resize(states);
+  return r;
+}
+
+TEST(FieldModels, EachNamePicksItsMostAccurateCompleteRun) {
+  const std::vector<ModelRun> runs{run("rom", 0, 1e-3, 5),        run("gp-deim", 8, 1e-2, 5),
+                                   run("gp-deim", 16, 2e-3, 5),   run("gp-eqp", 16, 1e-4, 4),  // states cut short
+                                   run("deim", 16, 1e-5, 5, false),                           // diverged
+                                   run("sdeim", 8, 5e-3, 5)};
+  FieldRuns picked = pickFieldRuns({"rom", "best"}, runs, 5);
+  ASSERT_EQ(picked.runs.size(), 2u);
+  EXPECT_EQ(picked.runs[0], &runs[0]);
+  EXPECT_EQ(picked.runs[1], &runs[2]);  // gp-deim m=16: gp-eqp kept too few states, deim diverged
+  EXPECT_TRUE(picked.notes.empty());
+  picked = pickFieldRuns({"gp-deim", "best", "gp-adeim"}, runs, 5);
+  ASSERT_EQ(picked.runs.size(), 1u);  // best is gp-deim m=16 again: shown once
+  ASSERT_EQ(picked.notes.size(), 1u);
+  EXPECT_NE(picked.notes[0].find("'gp-adeim'"), std::string::npos) << picked.notes[0];
+  EXPECT_TRUE(keepsFieldStates({"best"}, "sdeim"));
+  EXPECT_FALSE(keepsFieldStates({"best"}, "rom"));
+  EXPECT_FALSE(keepsFieldStates({}, "gp-deim"));
+}
+
+TEST(FieldModels, NearestSavedTime) {
+  const std::vector<size_t> got = nearestSaved({0.0, 0.1, 0.2, 0.25}, {0.0, 0.14, 0.16, 1.0});
+  EXPECT_EQ(got, (std::vector<size_t>{0, 1, 2, 3}));
+}
+
+// A user's scene that declares no grid (Scene::grid's default).
+class NoGrid final : public Scene {
+ public:
+  std::string name() const override { return "my-scene"; }
+  const ParameterBox& parameterBox() const override { return box_; }
+  std::pair<RCP<HamiltonianSystem>, RCP<Vector>> build(const RCP<const Comm>&, const std::vector<double>&) const override {
+    return {};
+  }
+  RCP<const RowEvaluator> rowKernel(const std::vector<double>&) const override { return Teuchos::null; }
+
+ private:
+  ParameterBox box_;
+};
+
+TEST(FieldModels, ASceneWithoutAGridIsToldSo) {
+  try {
+    fieldGrid(NoGrid(), 8);
+    FAIL() << "no InputError for a scene without a grid";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("scene 'my-scene' declares no grid"), std::string::npos) << msg;
+  }
+  EXPECT_THROW(fieldGrid(Swe2d(6), 2 * 36 + 1), InputError);  // a grid that does not fit the states
+  EXPECT_EQ(fieldGrid(Swe2d(6), 2 * 36).numPoints(), 36);
+  EXPECT_EQ(fieldName("gp-deim k=10 m=20"), "gp-deim_k10_m20");
+}
+
+}  // namespace
