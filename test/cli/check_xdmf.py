@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Checks an XDMF file of gphr against the HDF5 file it names, as a reader would open it.
 
-usage: check_xdmf.py FILE.xdmf TIMES_DATASET [--fields a,b,...] [--initial swe2d:BETA | nls1d]
+usage: check_xdmf.py FILE.xdmf TIMES_DATASET [--fields a,b,...] [--initial swe2d:BETA | nls1d [--of MODEL]]
 
 - the file parses as XML: Xdmf > Domain > one temporal collection of uniform grids, each with a
   Time, a 3DCoRectMesh topology, an ORIGIN_DXDYDZ geometry and node-centred scalar attributes;
@@ -9,7 +9,7 @@ usage: check_xdmf.py FILE.xdmf TIMES_DATASET [--fields a,b,...] [--initial swe2d
   file with the stated shape, lies inside it and holds exactly one value per grid point;
 - the Time values are those of TIMES_DATASET in that file, in order;
 - each field named X_minus_fom equals X minus the full model's field of its component;
-- --fields: these fields exist at every time; --initial: the full model's first field at the
+- --fields: these fields exist at every time; --initial: the first fields of MODEL (fom) at the
   grid's coordinates is the scene's known initial state (SWE chi0 = 1 + exp(-beta r^2) / 2, NLS
   |u0| = sqrt(2) / cosh x), which only a right origin, spacing and point order give.
 """
@@ -108,12 +108,12 @@ def main():
         t, dims, origin, spacing, fields = steps[0]
         nz, ny, nx = dims
         z, y, x = np.meshgrid(*(origin[d] + spacing[d] * np.arange(dims[d]) for d in range(3)), indexing="ij")
-        scene = opts["--initial"]
+        scene, of = opts["--initial"], "_" + opts.get("--of", "fom")
         if scene.startswith("swe2d:"):
             beta = float(scene.split(":")[1])
-            want, have = 1 + 0.5 * np.exp(-beta * (x ** 2 + y ** 2)), fields["chi_fom"]
+            want, have = 1 + 0.5 * np.exp(-beta * (x ** 2 + y ** 2)), fields["chi" + of]
         else:
-            want, have = math.sqrt(2) / np.cosh(x), np.hypot(fields["re_u_fom"], fields["im_u_fom"])
+            want, have = math.sqrt(2) / np.cosh(x), np.hypot(fields["re_u" + of], fields["im_u" + of])
         err = np.max(np.abs(have - want.ravel()))
         if err > 1e-12:
             fail(f"the first state at the grid's coordinates is off the initial state by {err}")
