@@ -6,7 +6,8 @@ usage: check_xdmf.py FILE.xdmf TIMES_DATASET [--fields a,b,...] [--initial swe2d
 - the file parses as XML: Xdmf > Domain > one temporal collection of uniform grids, each with a
   Time, a 3DCoRectMesh topology, an ORIGIN_DXDYDZ geometry and node-centred scalar attributes;
 - every attribute is a hyperslab (start, stride, count) of an HDF5 dataset that exists in the named
-  file with the stated shape, lies inside it and holds exactly one value per grid point;
+  file with the stated shape, lies inside it and holds exactly one value per grid point, shaped as
+  the grid (ParaView's XDMF Reader reads a hyperslab shaped otherwise short);
 - the Time values are those of TIMES_DATASET in that file, in order;
 - each field named X_minus_fom equals X minus the full model's field of its component;
 - --fields: these fields exist at every time; --initial: the first fields of MODEL (fom) at the
@@ -31,7 +32,7 @@ def numbers(item, kind=float):
     return [kind(x) for x in item.text.split()]
 
 
-def read_attribute(attr, here, files, points):
+def read_attribute(attr, here, files, dims):
     name = attr.get("Name")
     if attr.get("Center") != "Node" or attr.get("AttributeType") != "Scalar":
         fail(f"{name}: not a node-centred scalar")
@@ -56,8 +57,8 @@ def read_attribute(attr, here, files, points):
         fail(f"{name}: {dataset} has shape {f[dataset].shape}, the XDMF says {(rows, width)}")
     if any(start < 0) or list(stride) != [1, 1] or any(start + count > [rows, width]):
         fail(f"{name}: hyperslab {start} {count} outside {(rows, width)}")
-    if int(np.prod(count)) != points or [int(x) for x in slab.get("Dimensions").split()] != list(count):
-        fail(f"{name}: {count} values for {points} grid points")
+    if int(np.prod(count)) != int(np.prod(dims)) or [int(x) for x in slab.get("Dimensions").split()] != dims:
+        fail(f"{name}: {count} values shaped {slab.get('Dimensions')} for a grid of {dims} points")
     return f[dataset][start[0], start[1]:start[1] + count[1]]
 
 
@@ -81,7 +82,7 @@ def main():
         if geo.get("GeometryType") != "ORIGIN_DXDYDZ":
             fail("geometry " + geo.get("GeometryType"))
         origin, spacing = (numbers(d) for d in geo.findall("DataItem"))
-        fields = {a.get("Name"): read_attribute(a, here, files, int(np.prod(dims))) for a in grid.findall("Attribute")}
+        fields = {a.get("Name"): read_attribute(a, here, files, dims) for a in grid.findall("Attribute")}
         steps.append((float(grid.find("Time").get("Value")), dims, origin, spacing, fields))
     if not steps:
         fail("no time in the series")

@@ -54,10 +54,12 @@ void timeGrid(std::ostream& os, const SceneGrid& grid, const std::string& h5, si
      << "        </Geometry>\n";
   for (const auto& s : states)
     for (size_t c = 0; c < grid.components.size(); ++c) {
-      // start (j, c n), stride (1, 1), count (1, n) of the (rows, width) dataset
+      // start (j, c n), stride (1, 1), count (1, n) of the (rows, width) dataset, shaped as the
+      // grid: ParaView's XDMF Reader takes the first nx values of a hyperslab shaped (1, n)
       os << "        <Attribute Name=\"" << xmlEscaped(grid.components[c] + "_" + s.name)
          << "\" AttributeType=\"Scalar\" Center=\"Node\">\n"
-         << "          <DataItem ItemType=\"HyperSlab\" Dimensions=\"1 " << n << "\" Type=\"HyperSlab\">\n"
+         << "          <DataItem ItemType=\"HyperSlab\" Dimensions=\"" << g.points[0] << " " << g.points[1] << " "
+         << g.points[2] << "\" Type=\"HyperSlab\">\n"
          << "            <DataItem Dimensions=\"3 2\" NumberType=\"Int\" Format=\"XML\">" << j << " " << c * n
          << " 1 1 1 " << n << "</DataItem>\n"
          << "            <DataItem Dimensions=\"" << rows << " " << width
