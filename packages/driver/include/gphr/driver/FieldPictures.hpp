@@ -24,10 +24,15 @@ struct FieldPanel {
 /// the axes' origin and spacing (y: the second direction, or t for a 1-D grid).
 struct FieldPicture {
   std::string file;  ///< fields.png, spacetime.png, or empty: no picture (a grid of 3 directions)
-  std::vector<FieldPanel> panels;
-  int layoutRows = 0, layoutCols = 0;
-  long cols = 0, rows = 0;
-  double x0 = 0, dx = 1, y0 = 0, dy = 1;
+  std::vector<FieldPanel> panels;  ///< row by row of the layout
+  int layoutRows = 0;  ///< rows of panels
+  int layoutCols = 0;  ///< panels per row
+  long cols = 0;       ///< values per row of a panel (x)
+  long rows = 0;       ///< rows of a panel (y, or t)
+  double x0 = 0;       ///< x of the first column
+  double dx = 1;       ///< x spacing
+  double y0 = 0;       ///< y (or t) of the first row
+  double dy = 1;       ///< y (or t) spacing
   std::string yLabel = "y";  ///< y, or t for a 1-D grid (space-time)
   std::string field;         ///< the pictured field's name (chi; u for a complex field)
   bool modulus = false;      ///< the values are |field| and the differences |field - field_fom|
