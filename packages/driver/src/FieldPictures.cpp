@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "gphr/core/Error.hpp"
 #include "gphr/driver/FieldModels.hpp"
 #include "gphr/driver/XdmfWriter.hpp"
 
@@ -136,7 +137,13 @@ void colourRanges(const FieldPicture& p, double range[2], double& diffMax) {
 }  // namespace
 
 FieldPicture fieldPicture(const Teuchos::ParameterList& cfg, const FomResult& fom, const FieldOutput& out) {
-  if (!out.grid || out.grid->points.size() > 2) return {};
+  if (!out.grid) return {};
+  FieldPicture none;
+  if (out.grid->points.size() > 2) none.note = "no field picture: fields.png draws 1-D and 2-D grids";
+  else if (out.grid->numPoints() > kMaxPicturePoints)
+    none.note = detail::concat("no fields.png: a grid of ", out.grid->numPoints(), " points is more than the ",
+                               kMaxPicturePoints, " drawn (rank 0 gathers the states it draws); fields.xdmf shows it");
+  if (!none.note.empty()) return none;
   FieldPicture p = out.grid->points.size() == 2 ? surfacePicture(cfg, fom, out) : spaceTimePicture(fom, out);
   // a complex field is named by its first component's name after "re_" (re_u: u)
   const std::string& first = out.grid->components[0];

@@ -276,6 +276,7 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
     writeTextFile(configFile.tempPath(), configYaml(ctx.config));
     for (const auto& note : fields.notes) std::fprintf(stderr, "[gphr] %s\n", note.c_str());
     if (xdmf) writeTextFile(xdmfFile.tempPath(), fieldsXdmf(fom, fields));
+    if (!picture.note.empty()) std::fprintf(stderr, "[gphr] %s\n", picture.note.c_str());
     if (!picture.file.empty())
       pictured = drawFieldPicture(picture, (picture.file == "fields.png" ? fieldsPng : spaceTimePng).tempPath());
   });

@@ -4,6 +4,7 @@
 
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/FieldModels.hpp"
+#include "gphr/driver/FieldPictures.hpp"
 #include "gphr/driver/XdmfWriter.hpp"
 #include "gphr/models/Scene.hpp"
 
@@ -67,6 +68,20 @@ TEST(FieldModels, ASceneWithoutAGridIsToldSo) {
   EXPECT_THROW(fieldGrid(Swe2d(6), 2 * 36 + 1), InputError);  // a grid that does not fit the states
   EXPECT_EQ(fieldGrid(Swe2d(6), 2 * 36).numPoints(), 36);
   EXPECT_EQ(fieldName("gp-deim k=10 m=20"), "gp-deim_k10_m20");
+}
+
+// Rank 0 gathers what fields.png draws: a grid over 512^2 points is not drawn, nor a 3-D one, and
+// each gets a line saying why (before any state is touched: the full model here has none).
+TEST(FieldPictures, LargeAndThreeDimensionalGridsAreNotDrawn) {
+  FieldOutput out;
+  out.grid = SceneGrid{{513, 512}, {0.0, 0.0}, {1.0, 1.0}, {"h", "p"}, false};
+  const FieldPicture big = fieldPicture(Teuchos::ParameterList(), FomResult(), out);
+  EXPECT_TRUE(big.file.empty());
+  EXPECT_NE(big.note.find("a grid of 262656 points is more than the 262144 drawn"), std::string::npos) << big.note;
+  out.grid = SceneGrid{{4, 4, 4}, {0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, {"h", "p"}, false};
+  const FieldPicture cube = fieldPicture(Teuchos::ParameterList(), FomResult(), out);
+  EXPECT_TRUE(cube.file.empty());
+  EXPECT_NE(cube.note.find("1-D and 2-D grids"), std::string::npos) << cube.note;
 }
 
 }  // namespace

@@ -4,13 +4,18 @@
 /// component, or a complex field's modulus) of the full model and of each picked run at a few times
 /// (output.fieldTimes) on one colour scale, each run's pointwise difference to the full model on a
 /// symmetric one; spacetime.png for a 1-D grid, the field over x and t, the same panels. Only
-/// these pictures gather whole states onto rank 0, one at a time.
+/// these pictures gather whole states onto rank 0, one at a time, and only for grids of at most
+/// kMaxPicturePoints points.
 #include <string>
 #include <vector>
 
 #include "gphr/driver/FieldOutput.hpp"
 
 namespace gphr {
+
+/// The largest grid drawn: rank 0 holds (1 + 2 picked runs) x (output.fieldTimes) fields of this
+/// many points and gnuplot their text (512^2: 2 MB a field).
+constexpr GO kMaxPicturePoints = 512 * 512;
 
 /// One panel: a field on a uniform grid of `cols` x `rows` values (x fastest).
 struct FieldPanel {
@@ -23,7 +28,8 @@ struct FieldPanel {
 /// The panels of a run's field picture, laid out in `layoutRows` rows of `layoutCols`, with
 /// the axes' origin and spacing (y: the second direction, or t for a 1-D grid).
 struct FieldPicture {
-  std::string file;  ///< fields.png, spacetime.png, or empty: no picture (a grid of 3 directions)
+  std::string file;  ///< fields.png, spacetime.png, or empty: no picture (`note` says why, if anything)
+  std::string note;  ///< a line for stderr when the grid cannot be drawn
   std::vector<FieldPanel> panels;  ///< row by row of the layout
   int layoutRows = 0;  ///< rows of panels
   int layoutCols = 0;  ///< panels per row
