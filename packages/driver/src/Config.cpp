@@ -115,7 +115,7 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
   setDoubleParameter(out, "progressSeconds", 2.0, 0.0, 1e9, "seconds between progress lines on stderr (0: none)");
   out.set("plots", true, "draw PNG plots with gnuplot (skipped with a note if gnuplot is missing)");
   out.set("xdmf", false,
-          "write fields.xdmf (XDMF 2, opened by ParaView and VisIt) over artifacts.h5: the full model's saved states "
+          "write fields.xdmf (XDMF 2, for ParaView's XDMF Reader) over artifacts.h5: the full model's saved states "
           "and those of the output.fieldModels models, one field per physical component and per model, their "
           "pointwise difference to the full model, at the saved times");
   out.set("fieldModels", Teuchos::Array<std::string>(Teuchos::tuple<std::string>("rom", "best")),

@@ -48,6 +48,11 @@ std::vector<double> pictured(const SceneGrid& grid, const std::vector<double>& y
   return out;
 }
 
+// A run as a panel names it: its label, and the step from which it left the full model's range.
+std::string runTitle(const ModelRun& r) {
+  return r.label() + (r.unboundedAt >= 0 ? ", unbounded from step " + std::to_string(r.unboundedAt) : "");
+}
+
 std::string timeText(double t) {
   char b[64];
   std::snprintf(b, sizeof b, "t = %.4g", t);
@@ -74,7 +79,7 @@ FieldPicture surfacePicture(const Teuchos::ParameterList& cfg, const FomResult& 
     p.panels[c] = {"fom" + when, pictured(g, y, nullptr)};
     for (size_t r = 0; r < out.runs.size(); ++r) {
       const auto yr = gather(*out.runs[r]->states[j]);
-      const std::string label = out.runs[r]->label();
+      const std::string label = runTitle(*out.runs[r]);
       p.panels[(1 + 2 * r) * steps.size() + c] = {label + when, pictured(g, yr, nullptr)};
       p.panels[(2 + 2 * r) * steps.size() + c] = {label + when, pictured(g, yr, &y), true};
     }
@@ -102,8 +107,7 @@ FieldPicture spaceTimePicture(const FomResult& fom, const FieldOutput& out) {
   p.panels.resize(static_cast<size_t>(p.layoutRows * p.layoutCols));
   p.panels[0].title = "fom";
   for (size_t r = 0; r < runs; ++r) {
-    p.panels[1 + r].title = out.runs[r]->label();
-    p.panels[2 + runs + r].title = out.runs[r]->label();
+    p.panels[1 + r].title = p.panels[2 + runs + r].title = runTitle(*out.runs[r]);
     p.panels[2 + runs + r].difference = true;
   }
   if (runs > 0) p.panels[1 + runs].blank = true;  // under the full model
