@@ -39,19 +39,29 @@ bool keepsFieldStates(const std::vector<std::string>& names, const std::string& 
   });
 }
 
-FieldRuns pickFieldRuns(const std::vector<std::string>& names, const std::vector<ModelRun>& runs, size_t savedStates) {
-  FieldRuns out;
-  for (const auto& name : names) {
-    const ModelRun* best = nullptr;
-    for (const auto& r : runs)
-      if (r.ok && r.states.size() == savedStates && std::isfinite(r.eL2) && keepsFieldStates({name}, r.method) &&
-          (!best || r.eL2 < best->eL2))
-        best = &r;
-    if (!best)
-      out.notes.push_back("output.fieldModels: no run of '" + name + "' ran to the end; its fields are not shown");
-    else if (std::find(out.runs.begin(), out.runs.end(), best) == out.runs.end())
-      out.runs.push_back(best);
-  }
+FieldStates::FieldStates(std::vector<std::string> names, size_t savedStates)
+    : names_(std::move(names)), saved_(savedStates), best_(names_.size()) {}
+
+void FieldStates::offer(ModelRun& run) {
+  auto kept = std::make_shared<Kept>();
+  kept->label = run.label(), kept->eL2 = run.eL2;
+  kept->states.swap(run.states);
+  if (!run.ok || kept->states.size() != saved_ || !std::isfinite(run.eL2)) return;  // stopped early: dropped
+  for (size_t i = 0; i < names_.size(); ++i)
+    if (keepsFieldStates({names_[i]}, run.method) && (!best_[i] || run.eL2 < best_[i]->eL2)) best_[i] = kept;
+}
+
+std::vector<std::shared_ptr<const FieldStates::Kept>> FieldStates::picked() const {
+  std::vector<std::shared_ptr<const Kept>> out;
+  for (const auto& b : best_)
+    if (b && std::find(out.begin(), out.end(), b) == out.end()) out.push_back(b);
+  return out;
+}
+
+std::vector<std::string> FieldStates::notes() const {
+  std::vector<std::string> out;
+  for (size_t i = 0; i < names_.size(); ++i)
+    if (!best_[i]) out.push_back("output.fieldModels: no run of '" + names_[i] + "' ran to the end; its fields are not shown");
   return out;
 }
 

@@ -16,21 +16,24 @@ FieldOutput fieldOutputOf(const RunContext& ctx, const FomResult& fom, const Rom
     out.notes.push_back(std::string("no fields.png, spacetime.png or fields.xdmf: ") + e.what());
     return out;
   }
-  if (!rom) return out;
-  FieldRuns picked = pickFieldRuns(fieldModelNames(ctx.config), rom->runs, fom.trajectory->getNumVectors());
-  out.runs = picked.runs;
-  out.notes = picked.notes;
-  for (const ModelRun* r : out.runs) out.groups.push_back(static_cast<size_t>(r - rom->runs.data()));
+  if (!rom || !fom.fieldStates) return out;
+  out.notes = fom.fieldStates->notes();
+  for (const auto& kept : fom.fieldStates->picked())
+    for (size_t i = 0; i < rom->runs.size(); ++i)
+      if (rom->runs[i].label() == kept->label) {
+        out.runs.push_back({&rom->runs[i], i, kept});
+        break;
+      }
   return out;
 }
 
 void writeFieldStates(Hdf5File& f, const FomResult& fom, const FieldOutput& out) {
   const PhaseSpace ps(fom.trajectory->getGlobalLength() / 2, fom.trajectory->getMap()->getComm());
-  for (size_t i = 0; i < out.runs.size(); ++i) {
-    const ModelRun& r = *out.runs[i];
-    const std::string g = "/runs/" + std::to_string(out.groups[i]);
-    MultiVector states(fom.trajectory->getMap(), r.states.size());
-    for (size_t j = 0; j < r.states.size(); ++j) states.getVectorNonConst(j)->assign(*r.states[j]);
+  for (const FieldRun& r : out.runs) {
+    const std::string g = "/runs/" + std::to_string(r.group);
+    const auto& kept = r.kept->states;
+    MultiVector states(fom.trajectory->getMap(), kept.size());
+    for (size_t j = 0; j < kept.size(); ++j) states.getVectorNonConst(j)->assign(*kept[j]);
     f.writeStates(g + "/states", states, ps);
     f.setAttribute(g + "/states", "layout", std::string("rows are the lifted states y0 + A z at /fom/times"));
     states.update(-1.0, *fom.trajectory, 1.0);
@@ -41,8 +44,8 @@ void writeFieldStates(Hdf5File& f, const FomResult& fom, const FieldOutput& out)
 
 std::string fieldsXdmf(const FomResult& fom, const FieldOutput& out) {
   std::vector<XdmfStates> states{{"fom", "/fom/trajectory"}};
-  for (size_t i = 0; i < out.runs.size(); ++i) {
-    const std::string g = "/runs/" + std::to_string(out.groups[i]), name = fieldName(out.runs[i]->label());
+  for (const FieldRun& r : out.runs) {
+    const std::string g = "/runs/" + std::to_string(r.group), name = fieldName(r.run->label());
     states.push_back({name, g + "/states"});
     states.push_back({name + "_minus_fom", g + "/difference"});
   }

@@ -78,8 +78,8 @@ FieldPicture surfacePicture(const Teuchos::ParameterList& cfg, const FomResult& 
     const auto y = gather(*fom.trajectory->getVector(j));
     p.panels[c] = {"fom" + when, pictured(g, y, nullptr)};
     for (size_t r = 0; r < out.runs.size(); ++r) {
-      const auto yr = gather(*out.runs[r]->states[j]);
-      const std::string label = runTitle(*out.runs[r]);
+      const auto yr = gather(*out.runs[r].kept->states[j]);
+      const std::string label = runTitle(*out.runs[r].run);
       p.panels[(1 + 2 * r) * steps.size() + c] = {label + when, pictured(g, yr, nullptr)};
       p.panels[(2 + 2 * r) * steps.size() + c] = {label + when, pictured(g, yr, &y), true};
     }
@@ -107,7 +107,7 @@ FieldPicture spaceTimePicture(const FomResult& fom, const FieldOutput& out) {
   p.panels.resize(static_cast<size_t>(p.layoutRows * p.layoutCols));
   p.panels[0].title = "fom";
   for (size_t r = 0; r < runs; ++r) {
-    p.panels[1 + r].title = p.panels[2 + runs + r].title = runTitle(*out.runs[r]);
+    p.panels[1 + r].title = p.panels[2 + runs + r].title = runTitle(*out.runs[r].run);
     p.panels[2 + runs + r].difference = true;
   }
   if (runs > 0) p.panels[1 + runs].blank = true;  // under the full model
@@ -117,7 +117,7 @@ FieldPicture spaceTimePicture(const FomResult& fom, const FieldOutput& out) {
     const auto y = gather(*fom.trajectory->getVector(j));
     append(p.panels[0], pictured(g, y, nullptr));
     for (size_t r = 0; r < runs; ++r) {
-      const auto yr = gather(*out.runs[r]->states[j]);
+      const auto yr = gather(*out.runs[r].kept->states[j]);
       append(p.panels[1 + r], pictured(g, yr, nullptr));
       append(p.panels[2 + runs + r], pictured(g, yr, &y));
     }

@@ -107,6 +107,8 @@ FomResult runFullModel(const EvaluationSettings& settings, const Scene& scene, c
       .set("H_err_max", herr)
       .set("H_err_max_rel", H0 != 0.0 ? herr / std::abs(H0) : herr)
       .set("status", "ok");
+  if (!settings.fieldModels.empty())
+    res.fieldStates = std::make_shared<FieldStates>(settings.fieldModels, res.trajectory->getNumVectors());
   return res;
 }
 

@@ -124,7 +124,8 @@ ModelRun evaluateReducedModel(const RCP<const Comm>& comm, const EvaluationSetti
   SimulationSettings settings = evaluation.time;
   settings.polynomialDegree = sys.nonlinearTerm().polynomialDegree();
   DenseVector z;
-  DeferredLift lift(A, sys, fom, steps, saveEvery, keepStates || keepsFieldStates(evaluation.fieldModels, method), run);
+  const bool fieldStates = fom.fieldStates && fom.fieldStates->wants(method);
+  DeferredLift lift(A, sys, fom, steps, saveEvery, keepStates || fieldStates, run);
   const SimulationStats sim = simulate(model, settings, z, [&](long j, double, const DenseVector& zj) {
     if (hasHamiltonian) run.modelHamiltonian.push_back(model.hamiltonian(zj));  // the model at this step
     lift.add(j, zj);
@@ -181,6 +182,10 @@ ModelRun evaluateReducedModel(const RCP<const Comm>& comm, const EvaluationSetti
   if (!run.ok) run.run.set("diverged_at_step", lastStep + 1).set("diverged_reason", why);
   if (!run.ok && comm->getRank() == 0)
     std::fprintf(stderr, "[gphr] %s diverged at step %ld: %s\n", run.label().c_str(), lastStep + 1, why.c_str());
+  // The states go to the field outputs, which keep them only while this run is the most accurate
+  // of a name of output.fieldModels; nothing else reads them.
+  if (fieldStates) fom.fieldStates->offer(run);
+  run.states.clear();
   return run;
 }
 

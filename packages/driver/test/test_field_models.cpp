@@ -12,30 +12,40 @@ using namespace gphr;
 
 namespace {
 
+// A finished run with `states` lifted states (null vectors: FieldStates only counts and keeps them).
 ModelRun run(const std::string& method, int m, double eL2, size_t states, bool ok = true) {
   ModelRun r;
   r.method = method, r.k = 4, r.m = m, r.eL2 = eL2, r.ok = ok;
-  r.states.resize(states);
+  r.states.assign(states, Teuchos::null);
   return r;
 }
 
-TEST(FieldModels, EachNamePicksItsMostAccurateCompleteRun) {
-  const std::vector<ModelRun> runs{run("rom", 0, 1e-3, 5),        run("gp-deim", 8, 1e-2, 5),
-                                   run("gp-deim", 16, 2e-3, 5),   run("gp-eqp", 16, 1e-4, 4),  // states cut short
-                                   run("deim", 16, 1e-5, 5, false),                           // diverged
-                                   run("sdeim", 8, 5e-3, 5)};
-  FieldRuns picked = pickFieldRuns({"rom", "best"}, runs, 5);
-  ASSERT_EQ(picked.runs.size(), 2u);
-  EXPECT_EQ(picked.runs[0], &runs[0]);
-  EXPECT_EQ(picked.runs[1], &runs[2]);  // gp-deim m=16: gp-eqp kept too few states, deim diverged
-  EXPECT_TRUE(picked.notes.empty());
-  picked = pickFieldRuns({"gp-deim", "best", "gp-adeim"}, runs, 5);
-  ASSERT_EQ(picked.runs.size(), 1u);  // best is gp-deim m=16 again: shown once
-  ASSERT_EQ(picked.notes.size(), 1u);
-  EXPECT_NE(picked.notes[0].find("'gp-adeim'"), std::string::npos) << picked.notes[0];
-  EXPECT_TRUE(keepsFieldStates({"best"}, "sdeim"));
-  EXPECT_FALSE(keepsFieldStates({"best"}, "rom"));
-  EXPECT_FALSE(keepsFieldStates({}, "gp-deim"));
+// Runs offered in the order the pipeline evaluates them: each name keeps its most accurate
+// complete run so far, and a superseded run's states are released (their use count drops to 0).
+TEST(FieldModels, EachNameKeepsItsMostAccurateCompleteRun) {
+  FieldStates fields({"rom", "best", "gp-adeim"}, 5);
+  EXPECT_TRUE(fields.wants("rom") && fields.wants("sdeim") && fields.wants("gp-deim"));
+  EXPECT_FALSE(FieldStates({"gp-deim"}, 5).wants("rom"));
+  ModelRun rom = run("rom", 0, 1e-3, 5), coarse = run("gp-deim", 8, 1e-2, 5), fine = run("gp-deim", 16, 2e-3, 5),
+           cut = run("gp-eqp", 16, 1e-4, 4), diverged = run("deim", 16, 1e-5, 5, false), sdeim = run("sdeim", 8, 5e-3, 5);
+  fields.offer(rom);
+  fields.offer(coarse);
+  const std::weak_ptr<const FieldStates::Kept> first = fields.picked().back();
+  ASSERT_EQ(first.lock()->label, "gp-deim k=4 m=8");
+  for (ModelRun* r : {&fine, &cut, &diverged, &sdeim}) fields.offer(*r);
+  EXPECT_TRUE(first.expired());  // gp-deim m=8's states went when m=16 beat it
+  const auto picked = fields.picked();
+  ASSERT_EQ(picked.size(), 2u);
+  EXPECT_EQ(picked[0]->label, "rom k=4");
+  EXPECT_EQ(picked[1]->label, "gp-deim k=4 m=16");  // gp-eqp kept too few states, deim diverged
+  EXPECT_EQ(picked[1]->states.size(), 5u);
+  EXPECT_TRUE(fine.states.empty() && sdeim.states.empty());  // taken or dropped, never left with the run
+  ASSERT_EQ(fields.notes().size(), 1u);
+  EXPECT_NE(fields.notes()[0].find("'gp-adeim'"), std::string::npos) << fields.notes()[0];
+  FieldStates same({"gp-deim", "best"}, 5);
+  ModelRun again = run("gp-deim", 16, 2e-3, 5);
+  same.offer(again);
+  EXPECT_EQ(same.picked().size(), 1u);  // one run picked by two names is shown once
 }
 
 TEST(FieldModels, NearestSavedTime) {

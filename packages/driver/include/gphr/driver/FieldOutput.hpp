@@ -16,12 +16,18 @@ namespace gphr {
 
 class Hdf5File;
 
+/// A run the field outputs show.
+struct FieldRun {
+  const ModelRun* run = nullptr;  ///< its summary (label, status)
+  size_t group = 0;               ///< its index i in artifacts.h5's /runs/i
+  std::shared_ptr<const FieldStates::Kept> kept;  ///< its lifted states, one per saved step
+};
+
 /// What the field outputs of a run show; the same on every rank.
 struct FieldOutput {
-  std::optional<SceneGrid> grid;      ///< the scene's grid; none: no field output (`note` says why)
-  std::vector<const ModelRun*> runs;  ///< the picked runs, each with a state per saved step
-  std::vector<size_t> groups;         ///< per picked run, its index i in artifacts.h5's /runs/i
-  std::vector<std::string> notes;     ///< lines for stderr: a scene without a grid, a name that picks no run
+  std::optional<SceneGrid> grid;   ///< the scene's grid; none: no field output (`notes` say why)
+  std::vector<FieldRun> runs;      ///< the picked runs, in output.fieldModels' order
+  std::vector<std::string> notes;  ///< lines for stderr: a scene without a grid, a name that picks no run
 };
 
 /// The field output of a finished run: empty unless output.plots or output.xdmf asks for fields.
