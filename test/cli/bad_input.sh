@@ -23,6 +23,8 @@ case $case in
   wrong_type)      printf '%s\n  integrator:\n    scheme: rk4\n' "$base" > "$cfg"; expect="integrator.scheme' has value rk4; allowed: one of 'imr' 'avf'" ;;
   missing_file)    cfg=$work/nope.yaml; expect="cannot read config file" ;;
   eqp_floor)       printf '%s\n  eqp:\n    columnFloor: 1.5\n' "$base" > "$cfg"; expect="eqp.columnFloor' has value 1.5" ;;
+  field_models)    printf '%s\n  output:\n    fieldModels: [rom, gp-dim]\n' "$base" > "$cfg"; expect="output.fieldModels' has entry 'gp-dim'; allowed: best or one of" ;;
+  field_times)     printf '%s\n  output:\n    fieldTimes: [0.05, 0.2]\n' "$base" > "$cfg"; expect="output.fieldTimes' has entry 0.2; allowed: times in [0, 0.1]" ;;
   # the full model's Newton cannot meet 1e-15 in one iteration: a solver failure (exit 3), not a status
   fom_newton)      printf '%s\n  integrator:\n    newtonTolerance: 1.0e-15\n    maxNewtonIterations: 1\n' "$base" > "$cfg"
                    expect="solver failure: Newton did not converge at step 1"; want_rc=3; after_start=1 ;;

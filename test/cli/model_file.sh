@@ -10,6 +10,7 @@
 # usage: model_file.sh GPHR MPIEXEC
 set -u
 gphr=$1; mpi=$2
+here=$(cd "$(dirname "$0")" && pwd)
 export OPENBLAS_NUM_THREADS=1 OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 work=$(mktemp -d); pid=0
 trap '[ $pid -gt 0 ] && kill -9 $pid 2>/dev/null; rm -rf "$work"' EXIT
@@ -103,6 +104,9 @@ for j in range(rows):
         assert abs(s - q) <= 1e-13 * (1 + abs(q)), (j, g, s, q)
 print("states agree with the probes at", rows, "saved steps")
 PY
+# ... and queries/s.xdmf shows them in ParaView: at t = 0 the lift is y0 (z = 0), NLS' u0.
+/usr/bin/python3 "$here/check_xdmf.py" s/queries/s.xdmf /saved_times --fields re_u_gp-deim_k6_m10,im_u_gp-deim_k6_m10 \
+  --initial nls1d --of gp-deim_k6_m10 || fail "queries/s.xdmf"
 
 # GP-ADEIM is stored as its options (it needs the full system online): its queries run on every rank
 # together. 1 and 2 ranks agree to 1e-9 relative per entry (the distributed full residual sums in

@@ -9,6 +9,7 @@
 
 #include "gphr/core/Error.hpp"
 #include "gphr/core/ParameterValidation.hpp"
+#include "gphr/driver/FieldModels.hpp"
 #include "gphr/driver/InputFile.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/models/SceneFactory.hpp"
@@ -114,6 +115,16 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
   setIntParameter(out, "saveEvery", 10, 1, 1000000000, "keep every N-th state of the trajectory in artifacts.h5");
   setDoubleParameter(out, "progressSeconds", 2.0, 0.0, 1e9, "seconds between progress lines on stderr (0: none)");
   out.set("plots", true, "draw PNG plots with gnuplot (skipped with a note if gnuplot is missing)");
+  out.set("xdmf", false,
+          "write fields.xdmf (XDMF 2, for ParaView's XDMF Reader) over artifacts.h5: the full model's saved states "
+          "and those of the output.fieldModels models, one field per physical component and per model, their "
+          "pointwise difference to the full model, at the saved times");
+  out.set("fieldModels", Teuchos::Array<std::string>(Teuchos::tuple<std::string>("rom", "best")),
+          "models whose lifted states fields.png / spacetime.png and fields.xdmf show beside the full model: a "
+          "method name (its most accurate run), or best (the most accurate run of any hyper-reduced method)");
+  out.set("fieldTimes", Teuchos::Array<double>(),
+          "times of the columns of fields.png (2-D scenes), each in [0, time.T]; the nearest saved state is shown; "
+          "empty: the start, the middle and the end");
   return pl;
 }
 
@@ -132,6 +143,8 @@ Teuchos::ParameterList validateConfig(Teuchos::ParameterList cfg) {
   numSteps(cfg);
   trainingParameters(cfg);  // checks the training set against the box
   pipelineMethods(cfg);     // checks the method, k and m lists
+  fieldModelNames(cfg);     // checks output.fieldModels
+  fieldTimes(cfg);          // and output.fieldTimes against [0, T]
   return cfg;
 }
 

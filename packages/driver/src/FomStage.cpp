@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "gphr/driver/Config.hpp"
+#include "gphr/driver/FieldModels.hpp"
 #include "gphr/core/Error.hpp"
 #include "gphr/online/TimeLoop.hpp"
 #include "gphr/timeint/FullModelIntegrator.hpp"
@@ -54,6 +55,8 @@ EvaluationSettings evaluationSettingsFrom(const Teuchos::ParameterList& cfg) {
   s.onlineRepeats = cfg.sublist("pipeline").get<int>("onlineRepeats");
   s.onlineRepeatSeconds = cfg.sublist("pipeline").get<double>("onlineRepeatSeconds");
   s.shift = cfg.sublist("scene").get<bool>("shift");
+  if (cfg.sublist("output").get<bool>("plots") || cfg.sublist("output").get<bool>("xdmf"))
+    s.fieldModels = fieldModelNames(cfg);
   return s;
 }
 
@@ -105,6 +108,8 @@ FomResult runFullModel(const EvaluationSettings& settings, const Scene& scene, c
       .set(Metric::HErrMax, herr)
       .set(Metric::HErrMaxRel, H0 != 0.0 ? herr / std::abs(H0) : herr)
       .set(Metric::Status, "ok");
+  if (!settings.fieldModels.empty())
+    res.fieldStates = std::make_shared<FieldStates>(settings.fieldModels, res.trajectory->getNumVectors());
   return res;
 }
 

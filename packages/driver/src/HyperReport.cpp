@@ -242,47 +242,14 @@ std::string reportMd(const RunContext& ctx, const FomResult& fom, const RomStage
   md << "\nDiagnostics of each GP-DEIM run (cond(P^T U), the smallest eigenvalue of Hess H_hr(z0) next to "
         "the reduced model's, and whether convexity was lost) are in summary.json; a (k, m) with "
         "`convexity_lost: true` can run away while H_hr is conserved.\n";
-  md << "\nFigures: error_vs_m.png, pareto.png, hamiltonian_terms.png, singular_values.png, spacetime.png (NLS).\n";
+  md << "\nFigures: error_vs_m.png, pareto.png, hamiltonian_terms.png, singular_values.png; the fields: fields.png (2-D scenes) or spacetime.png (1-D).\n";
   return md.str();
 }
 
 }  // namespace
 
-std::string spaceTimeData(const RunContext& ctx, const FomResult& fom, const RomStages& st) {
-  if (ctx.scene->name() != "nls1d") return "";
-  // |u| = sqrt(q^2 + p^2) at the saved steps, for FOM and the runs that kept their states.
-  std::vector<std::pair<std::string, std::vector<RCP<const Vector>>>> fields;
-  std::vector<RCP<const Vector>> f;
-  for (size_t j = 0; j < fom.trajectory->getNumVectors(); ++j) f.push_back(fom.trajectory->getVector(j));
-  fields.push_back({method::kFom, f});
-  for (const auto& r : st.runs)
-    if (!r.states.empty())
-      fields.push_back({r.label() + (r.unboundedAt >= 0 ? " unbounded from step " + std::to_string(r.unboundedAt) : ""),
-                        {r.states.begin(), r.states.end()}});
-  // Gathered on rank 0 by one Import per state (offline). Blocks are separated by two blank lines,
-  // as gnuplot's `index` wants; the "# name" lines are gnuplot comments naming them.
-  const RCP<const Map> map = fom.trajectory->getMap();
-  const GO N = static_cast<GO>(map->getGlobalNumElements()), n = N / 2;
-  const auto root = rcp(new Map(N, ctx.comm->getRank() == 0 ? N : 0, 0, ctx.comm));
-  const Import toRoot(map, root);
-  Vector g(root);
-  std::ostringstream os;
-  os.precision(6);
-  for (const auto& [name, states] : fields) {
-    os << (os.tellp() > 0 ? "\n\n" : "") << "# " << name << "\n";
-    for (const auto& state : states) {
-      g.doImport(*state, toRoot, Tpetra::INSERT);
-      if (ctx.comm->getRank() != 0) continue;
-      auto v = g.getLocalViewHost(Tpetra::Access::ReadOnly);
-      for (GO i = 0; i < n; ++i) os << (i ? "," : "") << std::sqrt(v(i, 0) * v(i, 0) + v(n + i, 0) * v(n + i, 0));
-      os << "\n";
-    }
-  }
-  return os.str();
-}
-
 std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult& fom, const RomStages& st,
-                                          const std::string& spaceTime, const std::map<std::string, std::string>& p,
+                                          const std::map<std::string, std::string>& p,
                                           bool plots) {
   std::vector<std::string> written;
   writeRunsCsv(st, fom.tOnline, p.at("runs.csv"));
@@ -413,24 +380,6 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
       }
     t << "\n";
     if (gnuplot(p.at("error_vs_total_time.png"), t.str())) written.push_back("error_vs_total_time.png");
-  }
-  if (!spaceTime.empty()) {
-    const std::string dat = p.at("spacetime.png") + ".dat";
-    std::ofstream(dat) << spaceTime;
-    int blocks = 0;
-    for (size_t pos = 0; (pos = spaceTime.find("# ", pos)) != std::string::npos; ++pos) ++blocks;
-    std::ostringstream b;
-    b << "set datafile separator ','\nset multiplot layout 1," << blocks << "\nunset key\nset xlabel 'x index'\n"
-      << "set ylabel 'saved step'\nset cbrange [0:*]\n";
-    std::istringstream in(spaceTime);
-    std::string line;
-    int idx = 0;
-    while (std::getline(in, line))
-      if (line.rfind("# ", 0) == 0)
-        b << "set title '" << line.substr(2) << "'\nplot '" << dat << "' index " << idx++ << " matrix with image\n";
-    b << "unset multiplot\n";
-    if (gnuplot(p.at("spacetime.png"), b.str(), false)) written.push_back("spacetime.png");
-    std::remove(dat.c_str());
   }
   return written;
 }

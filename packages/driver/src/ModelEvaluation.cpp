@@ -8,6 +8,7 @@
 
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/Config.hpp"
+#include "gphr/driver/FieldModels.hpp"
 #include "gphr/online/Lift.hpp"
 
 namespace gphr {
@@ -108,7 +109,8 @@ ModelRun evaluateReducedModel(const RCP<const Comm>& comm, const EvaluationSetti
   SimulationSettings settings = evaluation.time;
   settings.polynomialDegree = sys.nonlinearTerm().polynomialDegree();
   DenseVector z;
-  DeferredLift lift(A, sys, fom, steps, saveEvery, keepStates, run);
+  const bool fieldStates = fom.fieldStates && fom.fieldStates->wants(method);
+  DeferredLift lift(A, sys, fom, steps, saveEvery, keepStates || fieldStates, run);
   const SimulationStats sim = simulate(model, settings, z, [&](long j, double, const DenseVector& zj) {
     if (hasHamiltonian) run.modelHamiltonian.push_back(model.hamiltonian(zj));  // the model at this step
     lift.add(j, zj);
@@ -165,6 +167,10 @@ ModelRun evaluateReducedModel(const RCP<const Comm>& comm, const EvaluationSetti
   if (!run.ok) run.metrics.set(Metric::DivergedAtStep, lastStep + 1).set(Metric::DivergedReason, why);
   if (!run.ok && comm->getRank() == 0)
     std::fprintf(stderr, "[gphr] %s diverged at step %ld: %s\n", run.label().c_str(), lastStep + 1, why.c_str());
+  // The states go to the field outputs, which keep them only while this run is the most accurate
+  // of a name of output.fieldModels; nothing else reads them.
+  if (fieldStates) fom.fieldStates->offer(run);
+  run.states.clear();
   return run;
 }
 

@@ -21,6 +21,7 @@
 #include "gphr/driver/Json.hpp"
 #include "gphr/driver/OutputLock.hpp"
 #include "gphr/driver/QueryList.hpp"
+#include "gphr/driver/XdmfWriter.hpp"
 #include "gphr/online/ReducedModel.hpp"
 #include "gphr/online/Method.hpp"
 #include "gphr/io/Hdf5File.hpp"
@@ -72,13 +73,31 @@ struct Recorder {
 };
 
 // The physical states y0(mu) + A z at the saved steps (O(n k) each: asked for with states: true).
-void writeStates(Hdf5File& f, const ReducedModel& model, const Query& q, const std::vector<double>& z, size_t saved) {
+GO writeStates(Hdf5File& f, const ReducedModel& model, const Query& q, const std::vector<double>& z, size_t saved) {
   const auto inst = model.scene().instantiate(selfComm(), q.mu, true);
   const auto A = readReducedModelBasis(model.path(), q.k, inst.system->space());
   const auto Z = liftWorkspace(*A, static_cast<int>(saved));
   MultiVector Y(inst.system->map(), saved);
   liftStates(*A, inst.system->reference().get(), z.data(), static_cast<int>(saved), *Z, Y);
   f.writeStates("/states", Y, inst.system->space());
+  return static_cast<GO>(Y.getGlobalLength());
+}
+
+// queries/<name>.xdmf beside the query's file: its lifted states in ParaView (XdmfWriter.hpp), one
+// field per component named after the model; a scene without a grid gets a line saying so instead.
+void writeStatesXdmf(const std::string& h5Path, const ReducedModel& model, const Query& q,
+                     const std::vector<double>& times, GO fullDim) {
+  SceneGrid grid;
+  try {
+    grid = fieldGrid(model.scene(), fullDim);
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "[gphr] query %s: no XDMF file: %s\n", q.name.c_str(), e.what());
+    return;
+  }
+  const std::string label = fieldName(q.method + " k=" + std::to_string(q.k) + (q.m > 0 ? " m=" + std::to_string(q.m) : ""));
+  RenameOnCommit xdmf(h5Path.substr(0, h5Path.size() - 3) + ".xdmf", selfComm());
+  writeTextFile(xdmf.tempPath(), xdmfText(grid, q.name + ".h5", times, {{label, "/states"}}));
+  xdmf.commit();
 }
 
 // The observer that records a query's outputs: H_hr at every step, z and the probes at the saved ones.
@@ -113,6 +132,7 @@ QueryOutcome outcomeOf(const Query& q, const SimulationStats& stats, const Recor
 void writeQuery(const std::string& path, const ReducedModel& model, const Query& q, const Recorder& rec,
                 const QueryOutcome& out) {
   RenameOnCommit commit(path, selfComm());
+  GO fullDim = 0;  // of the states written, if any
   {
     Hdf5File f(commit.tempPath(), selfComm(), Hdf5File::Mode::Create);
     f.writeArray("/hamiltonian", rec.H.empty() ? std::vector<double>{NAN} : rec.H, std::max<size_t>(1, rec.H.size()), 1);
@@ -121,7 +141,7 @@ void writeQuery(const std::string& path, const ReducedModel& model, const Query&
       f.writeArray("/saved_times", rec.times, saved, 1);
       f.writeArray("/z", rec.z, saved, r);
       if (rec.probeCount) f.writeArray("/probes", rec.probes, saved, rec.probeCount);
-      if (q.states) writeStates(f, model, q, rec.z, saved);
+      if (q.states) fullDim = writeStates(f, model, q, rec.z, saved);
     }
     f.setAttribute("/", "parameter", q.mu);
     f.setAttribute("/", "status", out.status);
@@ -131,6 +151,8 @@ void writeQuery(const std::string& path, const ReducedModel& model, const Query&
     f.flush();
     f.setAttribute("/", "key", resultKey(q, model.data()));  // last: marks the file complete
   }
+  // before the query's file is final: a run killed in between redoes the query, and so the XDMF file
+  if (fullDim > 0) writeStatesXdmf(path, model, q, rec.times, fullDim);
   commit.commit();
 }
 

@@ -18,6 +18,8 @@
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/OutputDirectory.hpp"
 #include "gphr/driver/Config.hpp"
+#include "gphr/driver/FieldOutput.hpp"
+#include "gphr/driver/FieldPictures.hpp"
 #include "gphr/driver/HyperReport.hpp"
 #include "gphr/io/Hdf5File.hpp"
 #include "gphr/online/Method.hpp"
@@ -109,7 +111,8 @@ JsonObject parametersJson(const Scene& scene, const std::vector<double>& mu) {
   return p;
 }
 
-void writeArtifacts(const RunContext& ctx, const FomResult& fom, const RomStages* rom, Hdf5File& f) {
+void writeArtifacts(const RunContext& ctx, const FomResult& fom, const RomStages* rom, const FieldOutput* fields,
+                    Hdf5File& f) {
   PhaseSpace ps(fom.trajectory->getGlobalLength() / 2, ctx.comm);
   f.setAttribute("/", "scene", ctx.scene->name());
   f.setAttribute("/", "integrator", ctx.config.sublist("integrator").get<std::string>("scheme"));
@@ -137,6 +140,7 @@ void writeArtifacts(const RunContext& ctx, const FomResult& fom, const RomStages
     f.writeArray(g + "/errors", r.errors, r.errors.size(), 1);
     f.setAttribute(g + "/errors", "layout", std::string("||y - (y0 + A z)|| at /fom/times"));
   }
+  if (fields) writeFieldStates(f, fom, *fields);  // what fields.xdmf shows
 }
 
 void writeHistoryCsv(const std::vector<double>& H, double H0, const std::vector<double>* errors, long saveEvery,
@@ -220,12 +224,15 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
   // artifacts.h5: written in place when it already holds the training cache, else written to a
   // temporary name and renamed.
   const bool inPlace = std::filesystem::exists(ctx.artifactsPath());
+  const FieldOutput fields = fieldOutputOf(ctx, fom, rom);
+  const bool xdmf = ctx.config.sublist("output").get<bool>("xdmf") && fields.grid;
+  RenameOnCommit xdmfFile(ctx.outputDir + "/fields.xdmf", ctx.comm);
   ctx.comm->barrier();
   RenameOnCommit h5(ctx.artifactsPath(), ctx.comm);
   {
     Hdf5File f(inPlace ? ctx.artifactsPath() : h5.tempPath(), ctx.comm,
                inPlace ? Hdf5File::Mode::ReadWrite : Hdf5File::Mode::Create);
-    writeArtifacts(ctx, fom, rom, f);
+    writeArtifacts(ctx, fom, rom, xdmf ? &fields : nullptr, f);
   }
   std::vector<JsonObject> runs{fom.metrics.json()};
   if (rom)
@@ -248,19 +255,22 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
   std::map<std::string, std::unique_ptr<RenameOnCommit>> hyper;
   std::map<std::string, std::string> hyperPaths;
   for (const char* name : {"runs.csv", "report.md", "error_vs_m.png", "pareto.png", "hamiltonian_terms.png",
-                           "hamiltonian_terms.csv", "deim_singular_values.csv", "spacetime.png", "adeim_updates.csv",
+                           "hamiltonian_terms.csv", "deim_singular_values.csv", "adeim_updates.csv",
                            "adeim_updates.png", "error_vs_total_time.png"}) {
     hyper[name] = std::make_unique<RenameOnCommit>(ctx.outputDir + "/" + name, ctx.comm);
     hyperPaths[name] = hyper[name]->tempPath();
   }
-  const std::string spaceTime = rom ? spaceTimeData(ctx, fom, *rom) : "";
+  const FieldPicture picture = ctx.config.sublist("output").get<bool>("plots") ? fieldPicture(ctx.config, fom, fields)
+                                                                               : FieldPicture{};
+  RenameOnCommit fieldsPng(ctx.outputDir + "/fields.png", ctx.comm), spaceTimePng(ctx.outputDir + "/spacetime.png", ctx.comm);
+  int pictured = 0;
   std::vector<std::string> hyperFiles;
   // rank 0 writes the report; its failure (a full disk, say) ends every rank
   onRootAgreed(ctx.comm, "gphr run: the report", [&] {
     const double H0 = fom.hamiltonian.front();
     writeHistoryCsv(fom.hamiltonian, H0, nullptr, saveEvery, dt, csv.tempPath());
     if (firstRom) writeHistoryCsv(firstRom->hamiltonian, H0, &firstRom->errors, saveEvery, dt, romCsv.tempPath());
-    if (rom) hyperFiles = writeHyperReport(ctx, fom, *rom, spaceTime, hyperPaths, ctx.config.sublist("output").get<bool>("plots"));
+    if (rom) hyperFiles = writeHyperReport(ctx, fom, *rom, hyperPaths, ctx.config.sublist("output").get<bool>("plots"));
     const bool deimSv = std::find(hyperFiles.begin(), hyperFiles.end(), "deim_singular_values.csv") != hyperFiles.end();
     if (rom) writeSingularValues(rom->basis.singularValues, svCsv.tempPath(), svPng.tempPath(),
                                  ctx.config.sublist("output").get<bool>("plots"),
@@ -270,6 +280,11 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
     if (!plotted && !why.empty()) std::fprintf(stderr, "[gphr] no plots: %s\n", why.c_str());
     writeTextFile(json.tempPath(), summary.str() + "\n");
     writeTextFile(configFile.tempPath(), configYaml(ctx.config));
+    for (const auto& note : fields.notes) std::fprintf(stderr, "[gphr] %s\n", note.c_str());
+    if (xdmf) writeTextFile(xdmfFile.tempPath(), fieldsXdmf(fom, fields));
+    if (!picture.note.empty()) std::fprintf(stderr, "[gphr] %s\n", picture.note.c_str());
+    if (!picture.file.empty())
+      pictured = drawFieldPicture(picture, (picture.file == "fields.png" ? fieldsPng : spaceTimePng).tempPath());
   });
   int plottedAll = plotted;
   Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(plottedAll));
@@ -295,6 +310,10 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
   Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(svPlotted));
   commitOrDrop(svPng, svPlotted);
   commitOrDrop(png, plottedAll);
+  commitOrDrop(xdmfFile, xdmf);
+  Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(pictured));
+  commitOrDrop(fieldsPng, pictured && picture.file == "fields.png");
+  commitOrDrop(spaceTimePng, pictured && picture.file == "spacetime.png");
   for (auto& [name, file] : hyper) {
     int done = root && std::find(hyperFiles.begin(), hyperFiles.end(), name) != hyperFiles.end();
     Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(done));

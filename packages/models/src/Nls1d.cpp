@@ -34,6 +34,11 @@ Nls1d::Nls1d(GO n, double halfLength) : n_(n), L_(halfLength) {
   box_.enters = {EntersRowKernel};
 }
 
+std::optional<SceneGrid> Nls1d::grid() const {
+  const double dx = 2 * L_ / n_;  // as in build(): x_i = -L + i dx, periodic (x = L is x = -L)
+  return SceneGrid{{n_}, {-L_}, {dx}, {"re_u", "im_u"}, true};
+}
+
 RCP<const RowEvaluator> Nls1d::rowKernel(const std::vector<double>& mu) const {
   GPHR_REQUIRE(mu.size() == 1, InputError, "nls1d takes one parameter (eps), got ", mu.size());
   return makeRowEvaluator(NlsKernel{mu[0]}, 4, 2);  // stencil (q_i, p_i)

@@ -13,6 +13,25 @@ void ParameterBox::check(const std::vector<double>& mu) const {
                  bounds[i].second, "]");
 }
 
+GO SceneGrid::numPoints() const {
+  GO count = 1;
+  for (GO p : points) count *= p;
+  return count;
+}
+
+void SceneGrid::check(GO fullDim, const std::string& scene) const {
+  GPHR_REQUIRE(!points.empty() && points.size() <= 3 && origin.size() == points.size() &&
+                   spacing.size() == points.size(),
+               InputError, "scene '", scene, "' declares a grid of ", points.size(), " directions with ", origin.size(),
+               " origin and ", spacing.size(), " spacing values; allowed: 1 to 3 directions, one of each per direction");
+  for (size_t d = 0; d < points.size(); ++d)
+    GPHR_REQUIRE(points[d] >= 1 && spacing[d] > 0.0, InputError, "scene '", scene, "' declares direction ", d,
+                 " with ", points[d], " points and spacing ", spacing[d], "; allowed: >= 1 point, spacing > 0");
+  GPHR_REQUIRE(!components.empty() && numPoints() * static_cast<GO>(components.size()) == fullDim, InputError,
+               "scene '", scene, "' declares a grid of ", numPoints(), " points and ", components.size(),
+               " components for a state of size ", fullDim, "; allowed: points x components = the state's size");
+}
+
 SceneInstance Scene::instantiate(const RCP<const Comm>& comm, const std::vector<double>& mu,
                                  bool shift) const {
   auto [system, y0] = build(comm, mu);

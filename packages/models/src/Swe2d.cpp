@@ -47,6 +47,11 @@ Swe2d::Swe2d(GO nx, double halfLength) : nx_(nx), L_(halfLength) {
   box_.enters = {EntersInitialState, EntersRowKernel | EntersLinearPart};
 }
 
+std::optional<SceneGrid> Swe2d::grid() const {
+  const double dx = 2 * L_ / nx_;  // as in build(): point a + nx b at (-L + a dx, -L + b dx), periodic
+  return SceneGrid{{nx_, nx_}, {-L_, -L_}, {dx, dx}, {"chi", "Phi"}, false};
+}
+
 RCP<const RowEvaluator> Swe2d::rowKernel(const std::vector<double>& mu) const {
   GPHR_REQUIRE(mu.size() == 2, InputError, "swe2d takes two parameters (beta, gamma), got ", mu.size());
   const double dx = 2 * L_ / nx_;  // as in build(): the same h to the last bit

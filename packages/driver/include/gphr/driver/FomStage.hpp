@@ -3,6 +3,7 @@
 /// The full-order-model stage of `gphr run`: integrate the scene's full model at the test
 /// parameter, keep every saveEvery-th (physical) state and the Hamiltonian at every step.
 #include <Teuchos_ParameterList.hpp>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,8 @@
 
 namespace gphr {
 
+class FieldStates;
+
 /// The full model's results at the test parameter: saved states, Hamiltonian history, online time.
 struct FomResult {
   RCP<MultiVector> trajectory;  ///< physical states y = y_s + y0, every saveEvery-th step and the last
@@ -19,6 +22,9 @@ struct FomResult {
   std::vector<double> hamiltonian;  ///< H(y^j), j = 0..steps
   double tOnline = 0.0;             ///< wall seconds of the time loop (observer excluded)
   RunMetrics metrics;               ///< the figures of its "runs" entry of summary.json
+  /// The reduced runs' lifted states the field outputs show, collected as the runs are evaluated
+  /// against this full model (FieldModels.hpp); null when no field output is asked for.
+  std::shared_ptr<FieldStates> fieldStates;
 };
 
 /// The steps whose states are kept (every saveEvery-th and the last), and the largest
@@ -39,6 +45,9 @@ struct EvaluationSettings {
   double onlineRepeatSeconds = 60.0; ///< their total time at most (pipeline.onlineRepeatSeconds)
   double progressSeconds = 2.0;      ///< between the full model's progress lines (0: none)
   bool shift = true;                 ///< integrate the shifted system (scene.shift)
+  /// output.fieldModels when the run draws or writes fields (output.plots or output.xdmf): the
+  /// full model's result then collects the field states (FomResult::fieldStates); empty: none
+  std::vector<std::string> fieldModels;
 };
 
 /// The evaluation settings of a validated `gphr run` configuration.

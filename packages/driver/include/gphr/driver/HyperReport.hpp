@@ -4,8 +4,8 @@
 /// report.md (tables, speed-ups measured in this run, the cheapest (k, m) per error level) and the
 /// gnuplot figures of the paper: error vs m with the ROM's error as a line
 /// (fig:2dsw_errors_avf_imr), error vs online time (the Pareto front), the Hamiltonian error terms
-/// over time (fig:2dsw_hamcons), singular values of both PODs (fig:singvalues) and space-time
-/// |u| of FOM / GP-DEIM / SDEIM for the NLS (fig:pcolor_n40_n60). All written on rank 0 to the
+/// over time (fig:2dsw_hamcons) and singular values of both PODs (fig:singvalues); the fields are
+/// FieldPictures.hpp's. All written on rank 0 to the
 /// given (temporary) paths; a missing gnuplot skips the figures only.
 #include <map>
 #include <string>
@@ -16,14 +16,11 @@
 
 namespace gphr {
 
-/// Collective part (gathers lifted states for the space-time data); call on every rank.
-std::string spaceTimeData(const RunContext& ctx, const FomResult& fom, const RomStages& st);
-
 /// Root only. paths: "runs.csv", "report.md", "error_vs_m.png", "pareto.png",
-/// "hamiltonian_terms.png", "deim_singular_values.csv", "spacetime.png" -> temporary file names.
+/// "hamiltonian_terms.png", "deim_singular_values.csv" -> temporary file names.
 /// Returns the names of the files written.
 std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult& fom, const RomStages& st,
-                                          const std::string& spaceTime, const std::map<std::string, std::string>& paths,
+                                          const std::map<std::string, std::string>& paths,
                                           bool plots);
 
 }  // namespace gphr

@@ -23,7 +23,7 @@ struct ModelRun {
   std::vector<double> modelHamiltonian;  ///< the model's own H_r / H_hr per step (empty without one)
   std::vector<double> errors;            ///< ||y^j - (y0 + A z^j)|| at the saved steps
   std::vector<double> stateNorms;        ///< ||y0 + A z^j|| per step
-  std::vector<RCP<Vector>> states;       ///< lifted physical states at the saved steps (space-time plots)
+  std::vector<RCP<Vector>> states;       ///< lifted physical states at the saved steps, until FieldStates takes them
   std::vector<AdeimUpdateRecord> adeimUpdates;  ///< gp-adeim: one record per adaptation
   /// The error E_L2 (paper eq:errNR) and the online wall seconds.
   /// @{

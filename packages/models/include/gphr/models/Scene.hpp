@@ -4,6 +4,7 @@
 /// box, nothing else. Everything derived (gradients, Jacobians, Hessians, the shift, time
 /// integration) comes from packages/core and packages/timeint.
 #include <Teuchos_ParameterList.hpp>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -27,6 +28,22 @@ struct ParameterBox {
   void check(const std::vector<double>& mu) const;
 };
 
+/// The grid a scene's state lives on, for the field pictures and the ParaView output: a uniform
+/// grid of points, the first direction fastest (point index i = i_x + points[0] (i_y + ...)). The
+/// state y = (q, p) holds one block of numPoints() values per component, in `components` order.
+struct SceneGrid {
+  std::vector<GO> points;          ///< points per direction, x first (1 to 3 directions)
+  std::vector<double> origin;      ///< coordinates of point 0, per direction
+  std::vector<double> spacing;     ///< distance between neighbouring points, per direction
+  std::vector<std::string> components;  ///< physical names of the state's blocks, in state order
+  /// The components are the real and imaginary parts of one complex field (NLS' u = q + i p):
+  /// pictures show its modulus, the quantity a reader of the paper knows.
+  bool complexField = false;
+  GO numPoints() const;  ///< the product of `points`
+  /// Throws InputError unless the grid is well formed and numPoints() * components equals fullDim.
+  void check(GO fullDim, const std::string& scene) const;
+};
+
 /// A scene instantiated at one parameter value.
 struct SceneInstance {
   RCP<HamiltonianSystem> system;  ///< shifted when asked (then y0 = 0 and system->reference() holds it)
@@ -48,6 +65,9 @@ class Scene {
   /// the kernel of build(comm, mu)'s nonlinear term: what an online model loaded from a
   /// reduced-model file evaluates.
   virtual RCP<const RowEvaluator> rowKernel(const std::vector<double>& mu) const = 0;
+  /// The grid of the state, for pictures and ParaView; a scene without one (the default) gets
+  /// neither, with a message saying so.
+  virtual std::optional<SceneGrid> grid() const { return std::nullopt; }
   /// build() then, if shift is set, the shifted system of paper eq:shiftH with y0 = 0.
   SceneInstance instantiate(const RCP<const Comm>& comm, const std::vector<double>& mu, bool shift) const;
 };
@@ -63,6 +83,7 @@ class Nls1d final : public Scene {
   std::pair<RCP<HamiltonianSystem>, RCP<Vector>> build(const RCP<const Comm>& comm,
                                                       const std::vector<double>& mu) const override;
   RCP<const RowEvaluator> rowKernel(const std::vector<double>& mu) const override;
+  std::optional<SceneGrid> grid() const override;  ///< the periodic grid of x (and y)
   GO n() const { return n_; }  ///< n, the number of grid points.
 
  private:
@@ -82,6 +103,7 @@ class Swe2d final : public Scene {
   std::pair<RCP<HamiltonianSystem>, RCP<Vector>> build(const RCP<const Comm>& comm,
                                                       const std::vector<double>& mu) const override;
   RCP<const RowEvaluator> rowKernel(const std::vector<double>& mu) const override;
+  std::optional<SceneGrid> grid() const override;  ///< the periodic grid of x (and y)
   GO nx() const { return nx_; }  ///< nx, grid points per direction.
 
  private:
