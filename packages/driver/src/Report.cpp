@@ -211,36 +211,18 @@ void writeSingularValues(const std::vector<double>& s, const std::string& csv, c
   std::remove(script.c_str());
 }
 
-}  // namespace
+// The first rom run: its history is rom_history.csv.
+const ModelRun* firstRomRun(const RomStages* rom) {
+  if (rom)
+    for (const auto& r : rom->runs)
+      if (r.method == method::kRom) return &r;
+  return nullptr;
+}
 
-std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomStages* rom) {
-  const bool root = ctx.comm->getRank() == 0;
-  const double dt = ctx.config.sublist("time").get<double>("dt");
-  const long saveEvery = ctx.config.sublist("output").get<int>("saveEvery");
-  RenameOnCommit json(ctx.outputDir + "/summary.json", ctx.comm), csv(ctx.outputDir + "/fom_history.csv", ctx.comm),
-      romCsv(ctx.outputDir + "/rom_history.csv", ctx.comm), png(ctx.outputDir + "/hamiltonian.png", ctx.comm),
-      svCsv(ctx.outputDir + "/singular_values.csv", ctx.comm), svPng(ctx.outputDir + "/singular_values.png", ctx.comm),
-      configFile(ctx.outputDir + "/config.yaml", ctx.comm);
-  // artifacts.h5: written in place when it already holds the training cache, else written to a
-  // temporary name and renamed.
-  const bool inPlace = std::filesystem::exists(ctx.artifactsPath());
-  const FieldOutput fields = fieldOutputOf(ctx, fom, rom);
-  const bool xdmf = ctx.config.sublist("output").get<bool>("xdmf") && fields.grid;
-  RenameOnCommit xdmfFile(ctx.outputDir + "/fields.xdmf", ctx.comm);
-  ctx.comm->barrier();
-  RenameOnCommit h5(ctx.artifactsPath(), ctx.comm);
-  {
-    Hdf5File f(inPlace ? ctx.artifactsPath() : h5.tempPath(), ctx.comm,
-               inPlace ? Hdf5File::Mode::ReadWrite : Hdf5File::Mode::Create);
-    writeArtifacts(ctx, fom, rom, xdmf ? &fields : nullptr, f);
-  }
+JsonObject summaryOf(const RunContext& ctx, const FomResult& fom, const RomStages* rom) {
   std::vector<JsonObject> runs{fom.metrics.json()};
   if (rom)
     for (const auto& r : rom->runs) runs.push_back(r.metrics.json());
-  const ModelRun* firstRom = nullptr;
-  if (rom)
-    for (const auto& r : rom->runs)
-      if (r.method == method::kRom && !firstRom) firstRom = &r;
   JsonObject summary;
   summary.set("scene", ctx.scene->name())
       .set("integrator", ctx.config.sublist("integrator").get<std::string>("scheme"))
@@ -249,49 +231,79 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
       .set("gphr_version", gphrVersion())
       .set("provenance", provenance(ctx.config))
       .set("runs", runs);
-  bool plotted = false;
-  std::string why;
-  // The speed-accuracy report (HyperReport.hpp): temporary names, committed when written.
+  return summary;
+}
+
+// Every file of the report under its temporary name (RenameOnCommit), committed or dropped at the end.
+struct ReportFiles {
+  explicit ReportFiles(const RunContext& ctx)
+      : json(path(ctx, "summary.json"), ctx.comm), csv(path(ctx, "fom_history.csv"), ctx.comm),
+        romCsv(path(ctx, "rom_history.csv"), ctx.comm), png(path(ctx, "hamiltonian.png"), ctx.comm),
+        svCsv(path(ctx, "singular_values.csv"), ctx.comm), svPng(path(ctx, "singular_values.png"), ctx.comm),
+        configFile(path(ctx, "config.yaml"), ctx.comm), xdmf(path(ctx, "fields.xdmf"), ctx.comm),
+        fieldsPng(path(ctx, "fields.png"), ctx.comm), spaceTimePng(path(ctx, "spacetime.png"), ctx.comm) {
+    // The speed-accuracy report (HyperReport.hpp).
+    for (const char* name : {"runs.csv", "report.md", "error_vs_m.png", "pareto.png", "hamiltonian_terms.png",
+                             "hamiltonian_terms.csv", "deim_singular_values.csv", "adeim_updates.csv",
+                             "adeim_updates.png", "error_vs_total_time.png"}) {
+      hyper[name] = std::make_unique<RenameOnCommit>(path(ctx, name), ctx.comm);
+      hyperPaths[name] = hyper[name]->tempPath();
+    }
+  }
+  static std::string path(const RunContext& ctx, const std::string& name) { return ctx.outputDir + "/" + name; }
+  RenameOnCommit json, csv, romCsv, png, svCsv, svPng, configFile, xdmf, fieldsPng, spaceTimePng;
   std::map<std::string, std::unique_ptr<RenameOnCommit>> hyper;
   std::map<std::string, std::string> hyperPaths;
-  for (const char* name : {"runs.csv", "report.md", "error_vs_m.png", "pareto.png", "hamiltonian_terms.png",
-                           "hamiltonian_terms.csv", "deim_singular_values.csv", "adeim_updates.csv",
-                           "adeim_updates.png", "error_vs_total_time.png"}) {
-    hyper[name] = std::make_unique<RenameOnCommit>(ctx.outputDir + "/" + name, ctx.comm);
-    hyperPaths[name] = hyper[name]->tempPath();
-  }
-  const FieldPicture picture = ctx.config.sublist("output").get<bool>("plots") ? fieldPicture(ctx.config, fom, fields)
-                                                                               : FieldPicture{};
-  RenameOnCommit fieldsPng(ctx.outputDir + "/fields.png", ctx.comm), spaceTimePng(ctx.outputDir + "/spacetime.png", ctx.comm);
-  int pictured = 0;
-  std::vector<std::string> hyperFiles;
-  // rank 0 writes the report; its failure (a full disk, say) ends every rank
-  onRootAgreed(ctx.comm, "gphr run: the report", [&] {
-    const double H0 = fom.hamiltonian.front();
-    writeHistoryCsv(fom.hamiltonian, H0, nullptr, saveEvery, dt, csv.tempPath());
-    if (firstRom) writeHistoryCsv(firstRom->hamiltonian, H0, &firstRom->errors, saveEvery, dt, romCsv.tempPath());
-    if (rom) hyperFiles = writeHyperReport(ctx, fom, *rom, hyperPaths, ctx.config.sublist("output").get<bool>("plots"));
-    const bool deimSv = std::find(hyperFiles.begin(), hyperFiles.end(), "deim_singular_values.csv") != hyperFiles.end();
-    if (rom) writeSingularValues(rom->basis.singularValues, svCsv.tempPath(), svPng.tempPath(),
-                                 ctx.config.sublist("output").get<bool>("plots"),
-                                 deimSv ? hyperPaths.at("deim_singular_values.csv") : "");
-    if (ctx.config.sublist("output").get<bool>("plots"))
-      plotted = plotHamiltonian(csv.tempPath(), firstRom ? romCsv.tempPath() : "", png.tempPath(), why);
-    if (!plotted && !why.empty()) std::fprintf(stderr, "[gphr] no plots: %s\n", why.c_str());
-    writeTextFile(json.tempPath(), summary.str() + "\n");
-    writeTextFile(configFile.tempPath(), configYaml(ctx.config));
-    for (const auto& note : fields.notes) std::fprintf(stderr, "[gphr] %s\n", note.c_str());
-    if (xdmf) writeTextFile(xdmfFile.tempPath(), fieldsXdmf(fom, fields));
-    if (!picture.note.empty()) std::fprintf(stderr, "[gphr] %s\n", picture.note.c_str());
-    if (!picture.file.empty())
-      pictured = drawFieldPicture(picture, (picture.file == "fields.png" ? fieldsPng : spaceTimePng).tempPath());
-  });
-  int plottedAll = plotted;
-  Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(plottedAll));
-  // In the directory of an earlier run, a report file this run does not write is that run's and
-  // is removed, so the directory does not mix two runs (RunContext::replacesEarlierRun; a
-  // directory without an earlier summary.json is left as it is).
-  auto commitOrDrop = [&](RenameOnCommit& f, bool written) {
+};
+
+// What rank 0 wrote besides the files every run has.
+struct ReportWritten {
+  int plotted = 0;                       // hamiltonian.png
+  int pictured = 0;                      // fields.png or spacetime.png
+  std::vector<std::string> hyperFiles;   // of ReportFiles::hyper
+};
+
+// Rank 0's part: the histories, the speed-accuracy report, the plots, summary.json, config.yaml
+// and the field outputs, all under their temporary names.
+ReportWritten writeOnRoot(const RunContext& ctx, const FomResult& fom, const RomStages* rom, ReportFiles& files,
+                          const std::string& summary, const FieldOutput& fields, const FieldPicture& picture,
+                          bool xdmf) {
+  ReportWritten w;
+  const auto& out = ctx.config.sublist("output");
+  const bool plots = out.get<bool>("plots");
+  const double dt = ctx.config.sublist("time").get<double>("dt"), H0 = fom.hamiltonian.front();
+  const long saveEvery = out.get<int>("saveEvery");
+  const ModelRun* firstRom = firstRomRun(rom);
+  writeHistoryCsv(fom.hamiltonian, H0, nullptr, saveEvery, dt, files.csv.tempPath());
+  if (firstRom) writeHistoryCsv(firstRom->hamiltonian, H0, &firstRom->errors, saveEvery, dt, files.romCsv.tempPath());
+  if (rom) w.hyperFiles = writeHyperReport(ctx, fom, *rom, files.hyperPaths, plots);
+  const bool deimSv = std::find(w.hyperFiles.begin(), w.hyperFiles.end(), "deim_singular_values.csv") != w.hyperFiles.end();
+  if (rom)
+    writeSingularValues(rom->basis.singularValues, files.svCsv.tempPath(), files.svPng.tempPath(), plots,
+                        deimSv ? files.hyperPaths.at("deim_singular_values.csv") : "");
+  std::string why;
+  if (plots) w.plotted = plotHamiltonian(files.csv.tempPath(), firstRom ? files.romCsv.tempPath() : "",
+                                         files.png.tempPath(), why);
+  if (!w.plotted && !why.empty()) std::fprintf(stderr, "[gphr] no plots: %s\n", why.c_str());
+  writeTextFile(files.json.tempPath(), summary + "\n");
+  writeTextFile(files.configFile.tempPath(), configYaml(ctx.config));
+  for (const auto& note : fields.notes) std::fprintf(stderr, "[gphr] %s\n", note.c_str());
+  if (xdmf) writeTextFile(files.xdmf.tempPath(), fieldsXdmf(fom, fields));
+  if (!picture.note.empty()) std::fprintf(stderr, "[gphr] %s\n", picture.note.c_str());
+  if (!picture.file.empty())
+    w.pictured = drawFieldPicture(picture, (picture.file == "fields.png" ? files.fieldsPng : files.spaceTimePng).tempPath());
+  return w;
+}
+
+// Commits what was written and drops the rest. In the directory of an earlier run, a report file
+// this run does not write is that run's and is removed, so the directory does not mix two runs
+// (RunContext::replacesEarlierRun; a directory without an earlier summary.json is left as it is).
+// Collective: rank 0's verdicts are broadcast. summary.json last: its presence means the run is complete.
+void commitReport(const RunContext& ctx, const RomStages* rom, ReportFiles& files, ReportWritten w,
+                  const FieldPicture& picture, bool xdmf) {
+  const bool root = ctx.comm->getRank() == 0;
+  auto commitOrDrop = [&](RenameOnCommit& f, int written) {
+    Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(written));
     if (written) {
       f.commit();
     } else if (root && ctx.replacesEarlierRun) {
@@ -301,26 +313,46 @@ std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomSt
                            ec.message().c_str());
     }
   };
-  if (!inPlace) h5.commit();
-  csv.commit();
-  configFile.commit();
-  commitOrDrop(romCsv, firstRom != nullptr);
-  commitOrDrop(svCsv, rom != nullptr);
-  int svPlotted = root && std::filesystem::exists(svPng.tempPath());
-  Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(svPlotted));
-  commitOrDrop(svPng, svPlotted);
-  commitOrDrop(png, plottedAll);
-  commitOrDrop(xdmfFile, xdmf);
-  Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(pictured));
-  commitOrDrop(fieldsPng, pictured && picture.file == "fields.png");
-  commitOrDrop(spaceTimePng, pictured && picture.file == "spacetime.png");
-  for (auto& [name, file] : hyper) {
-    int done = root && std::find(hyperFiles.begin(), hyperFiles.end(), name) != hyperFiles.end();
-    Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(done));
-    commitOrDrop(*file, done);
+  files.csv.commit();
+  files.configFile.commit();
+  commitOrDrop(files.romCsv, firstRomRun(rom) != nullptr);
+  commitOrDrop(files.svCsv, rom != nullptr);
+  commitOrDrop(files.svPng, root && std::filesystem::exists(files.svPng.tempPath()));
+  commitOrDrop(files.png, w.plotted);
+  commitOrDrop(files.xdmf, xdmf);
+  commitOrDrop(files.fieldsPng, w.pictured && picture.file == "fields.png");
+  commitOrDrop(files.spaceTimePng, w.pictured && picture.file == "spacetime.png");
+  for (auto& [name, file] : files.hyper)
+    commitOrDrop(*file, root && std::find(w.hyperFiles.begin(), w.hyperFiles.end(), name) != w.hyperFiles.end());
+  files.json.commit();
+}
+
+}  // namespace
+
+std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomStages* rom) {
+  ReportFiles files(ctx);
+  // artifacts.h5: written in place when it already holds the training cache, else written to a
+  // temporary name and renamed.
+  const bool inPlace = std::filesystem::exists(ctx.artifactsPath());
+  const FieldOutput fields = fieldOutputOf(ctx, fom, rom);
+  const bool xdmf = ctx.config.sublist("output").get<bool>("xdmf") && fields.grid;
+  ctx.comm->barrier();
+  RenameOnCommit h5(ctx.artifactsPath(), ctx.comm);
+  {
+    Hdf5File f(inPlace ? ctx.artifactsPath() : h5.tempPath(), ctx.comm,
+               inPlace ? Hdf5File::Mode::ReadWrite : Hdf5File::Mode::Create);
+    writeArtifacts(ctx, fom, rom, xdmf ? &fields : nullptr, f);
   }
-  json.commit();  // last: summary.json present means the run is complete
-  return summary.str();
+  const std::string summary = summaryOf(ctx, fom, rom).str();
+  const FieldPicture picture = ctx.config.sublist("output").get<bool>("plots") ? fieldPicture(ctx.config, fom, fields)
+                                                                               : FieldPicture{};
+  ReportWritten written;
+  // rank 0 writes the report; its failure (a full disk, say) ends every rank
+  onRootAgreed(ctx.comm, "gphr run: the report",
+               [&] { written = writeOnRoot(ctx, fom, rom, files, summary, fields, picture, xdmf); });
+  if (!inPlace) h5.commit();
+  commitReport(ctx, rom, files, written, picture, xdmf);
+  return summary;
 }
 
 }  // namespace gphr

@@ -20,7 +20,7 @@ namespace gphr {
 namespace {
 
 void checkInputs(const std::vector<RCP<const HamiltonianSystem>>& systems,
-                 const std::vector<RCP<const MultiVector>>& states, const DeimBasisOptions& opt) {
+                 const SnapshotSet& states, const DeimBasisOptions& opt) {
   GPHR_REQUIRE(!systems.empty() && systems.size() == states.size(), InputError, "DEIM basis: ", systems.size(),
                " systems for ", states.size(), " snapshot sets (need one per training parameter)");
   GPHR_REQUIRE(opt.snapshotEvery >= 1, InputError, "DEIM basis: snapshotEvery = ", opt.snapshotEvery,
@@ -107,7 +107,7 @@ Projection qrProjection(int cols, int r, int maxRank, Each&& each) {
 // d x (2k states) is held. A power pass and the Gram matrix each square sigma: values below ~1e-7
 // sigma_1 are then not resolved, far below the DEIM sizes worth using for a training basis.
 DeimBasis randomizedDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& systems,
-                              const std::vector<RCP<const MultiVector>>& states, const MultiVector& A,
+                              const SnapshotSet& states, const MultiVector& A,
                               const DeimBasisOptions& opt, int maxRank) {
   const RCP<const Map> rowMap = systems[0]->nonlinearTerm().rowMap();
   const auto& comm = *rowMap->getComm();
@@ -201,7 +201,7 @@ DeimBasis randomizedDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& s
 }  // namespace
 
 DeimBasis computeDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& systems,
-                           const std::vector<RCP<const MultiVector>>& states, const MultiVector& A,
+                           const SnapshotSet& states, const MultiVector& A,
                            const DeimBasisOptions& opt) {
   checkInputs(systems, states, opt);
   const RCP<const Map> rowMap = systems[0]->nonlinearTerm().rowMap();

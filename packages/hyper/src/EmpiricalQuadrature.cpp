@@ -19,14 +19,14 @@ namespace {
 // Rows of C per training state: the 2k entries of A^T grad G_e, and the energy row if asked for.
 int rowsPerState(int r, const QuadratureOptions& o) { return r + (o.energyWeight > 0.0 ? 1 : 0); }
 
-long countStates(const std::vector<RCP<const MultiVector>>& states, int every) {
+long countStates(const SnapshotSet& states, int every) {
   long n = 0;
-  for (const auto& s : states) n += (static_cast<long>(s->getNumVectors()) + every - 1) / every;
+  for (size_t j = 0; j < states.size(); ++j) n += (static_cast<long>(states.numColumns(j)) + every - 1) / every;
   return n;
 }
 
 void checkOptions(const std::vector<RCP<const HamiltonianSystem>>& systems,
-                  const std::vector<RCP<const MultiVector>>& states, const QuadratureOptions& o) {
+                  const SnapshotSet& states, const QuadratureOptions& o) {
   GPHR_REQUIRE(!systems.empty() && systems.size() == states.size(), InputError, "empirical quadrature: ",
                systems.size(), " systems for ", states.size(), " snapshot sets (need one per training parameter)");
   GPHR_REQUIRE(o.snapshotEvery >= 1, InputError, "eqp.snapshotEvery = ", o.snapshotEvery, " (allowed: >= 1)");
@@ -185,7 +185,7 @@ void requireTarget(const QuadratureTraining& t) {
 }  // namespace
 
 QuadratureTraining buildQuadratureTraining(const std::vector<RCP<const HamiltonianSystem>>& systems,
-                                           const std::vector<RCP<const MultiVector>>& states, const MultiVector& A,
+                                           const SnapshotSet& states, const MultiVector& A,
                                            const QuadratureOptions& o) {
   checkOptions(systems, states, o);
   const NonlinearTerm& term = systems[0]->nonlinearTerm();
@@ -342,7 +342,7 @@ QuadratureFit refitQuadrature(const QuadratureTraining& t, const std::vector<GO>
 }
 
 double exactRowsResidual(const std::vector<RCP<const HamiltonianSystem>>& systems,
-                         const std::vector<RCP<const MultiVector>>& states, const MultiVector& A,
+                         const SnapshotSet& states, const MultiVector& A,
                          const QuadratureOptions& o, const QuadratureFit& fit) {
   checkOptions(systems, states, o);
   const NonlinearTerm& term = systems[0]->nonlinearTerm();

@@ -75,7 +75,7 @@ GradientDeimPair withReferenceGradient(GradientDeimPair pair, const HamiltonianS
 }
 
 RCP<MultiVector> gradientDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& systems,
-                                   const std::vector<RCP<const MultiVector>>& states, const MultiVector& A,
+                                   const SnapshotSet& states, const MultiVector& A,
                                    int maxRank, int snapshotEvery, GradientSnapshots kind,
                                    std::vector<double>* singularValues) {
   GPHR_REQUIRE(snapshotEvery >= 1, InputError, "gradient DEIM: snapshotEvery = ", snapshotEvery, " (need >= 1)");
@@ -85,7 +85,7 @@ RCP<MultiVector> gradientDeimBasis(const std::vector<RCP<const HamiltonianSystem
   Vector zero(map), g0(map);
   for (size_t j = 0; j < systems.size(); ++j) {
     std::vector<size_t> cols;
-    for (size_t c = 0; c < states[j]->getNumVectors(); c += snapshotEvery) cols.push_back(c);
+    for (size_t c = 0; c < states.numColumns(j); c += snapshotEvery) cols.push_back(c);
     auto Y = states[j]->subCopy(Teuchos::ArrayView<const size_t>(cols));
     if (projected) Y = projectOnto(A, *Y);
     MultiVector G(map, cols.size());

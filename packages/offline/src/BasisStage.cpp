@@ -43,15 +43,18 @@ BasisStageResult runBasisStage(const TrainingResult& training, const PhaseSpace&
   clock.start();
   const std::clock_t cpu0 = std::clock();
   BasisStageResult out;
-  std::unique_ptr<Hdf5File> f = cache ? cache->open() : nullptr;
-  if (f && ArtifactsCache::holds(*f, "/basis", key)) {
-    out.basis = readBasis(*f, space);
-    out.cached = true;
-    GPHR_REQUIRE(options.k == 0 || options.k == out.basis.k, InputError, "basis in '", cache->path(), "' has k = ",
-                 out.basis.k, " but the config asks for k = ", options.k);
-  } else {
+  if (cache) {  // the file is closed while the basis is computed: the snapshots stream from it
+    const auto f = cache->open();
+    if (ArtifactsCache::holds(*f, "/basis", key)) {
+      out.basis = readBasis(*f, space);
+      out.cached = true;
+      GPHR_REQUIRE(options.k == 0 || options.k == out.basis.k, InputError, "basis in '", cache->path(), "' has k = ",
+                   out.basis.k, " but the config asks for k = ", options.k);
+    }
+  }
+  if (!out.cached) {
     out.basis = computeSymplecticBasis(training.snapshots, space, options);
-    if (f) writeBasis(*f, out.basis, space, sceneName, training, key);
+    if (cache) writeBasis(*cache->open(), out.basis, space, sceneName, training, key);
   }
   out.seconds = clock.stop();
   out.cpuSeconds = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;

@@ -42,15 +42,15 @@ CachedDeimBasis runDeimBasisStage(const Scene& scene, const RCP<const Comm>& com
   Teuchos::Time clock("deim basis");
   clock.start();
   CachedDeimBasis out;
-  std::unique_ptr<Hdf5File> f = cache ? cache->open() : nullptr;
-  if (!f || !readDeimBasis(*f, name, fullKey, reference, out)) {
+  if (cache) readDeimBasis(*cache->open(), name, fullKey, reference, out);  // closed again: the snapshots stream from it
+  if (!out.cached) {
     try {
       out.basis = computeDeimBasis(trainingSystems(scene, comm, training), training.snapshots, A, options);
     } catch (const InputError& e) {  // e.g. podRoute 'tsqr' on too few rows per rank: name the section
       throw InputError(detail::concat(section, ": ", e.what()));
     }
     out.computeSeconds = clock.totalElapsedTime(true);
-    if (f) writeDeimBasis(*f, name, fullKey, out);
+    if (cache) writeDeimBasis(*cache->open(), name, fullKey, out);
   }
   out.seconds = clock.stop();
   if (comm->getRank() == 0)

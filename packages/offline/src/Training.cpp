@@ -122,13 +122,15 @@ TrainingResult runTraining(const Scene& scene, const RCP<const Comm>& comm, cons
   const PhaseSpace& ps = probe.system->space();
   if (cache) startCache(*cache, key);
   Progress progress(o.progress && comm->getRank() == 0);
+  std::vector<RCP<const MultiVector>> held;  // without a cache
+  std::vector<size_t> columns;
   size_t computed = 0;
   for (size_t j = 0; j < o.parameters.size(); ++j) {
     const auto& mu = o.parameters[j];
     if (cache) {
       auto f = cache->open();
       if (ArtifactsCache::holds(*f, datasetName(j), key)) {
-        res.snapshots.push_back(f->readStates(datasetName(j), ps));
+        columns.push_back(static_cast<size_t>(o.steps / o.snapshotEvery + 1));
         res.reused++;
         progress.done(j, o.parameters.size(), computed, mu, true);
         continue;
@@ -136,6 +138,7 @@ TrainingResult runTraining(const Scene& scene, const RCP<const Comm>& comm, cons
       f->remove(datasetName(j));  // half-written by a killed run: redo
     }
     auto snaps = integrate(scene, comm, o, mu);
+    columns.push_back(snaps->getNumVectors());
     if (cache) {
       // Written when the parameter has finished, the file closed between parameters: a kill
       // during the next one leaves this one intact.
@@ -143,10 +146,21 @@ TrainingResult runTraining(const Scene& scene, const RCP<const Comm>& comm, cons
       f->writeStates(datasetName(j), *snaps, ps);
       f->setAttribute(datasetName(j), "parameters", mu);
       ArtifactsCache::seal(*f, datasetName(j), key);
+    } else {
+      held.push_back(snaps);
     }
-    res.snapshots.push_back(snaps);
     ++computed;
     progress.done(j, o.parameters.size(), computed, mu, false);
+  }
+  if (cache) {
+    const std::string path = cache->path();
+    const RCP<const HamiltonianSystem> system = probe.system;  // keeps the phase space of the blocks
+    res.snapshots = SnapshotSet(columns, [path, comm, system](size_t j) -> RCP<const MultiVector> {
+      Hdf5File f(path, comm, Hdf5File::Mode::ReadOnly);
+      return f.readStates(datasetName(j), system->space());
+    });
+  } else {
+    res.snapshots = SnapshotSet(held);
   }
   res.seconds = clock.stop();
   return res;

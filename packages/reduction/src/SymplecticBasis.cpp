@@ -113,7 +113,7 @@ void normalizePhase(const PhaseSpace& ps, MultiVector& E, int k, bool cotangent)
 
 }  // namespace
 
-ReducedBasis computeSymplecticBasis(const std::vector<RCP<const MultiVector>>& snapshots, const PhaseSpace& space,
+ReducedBasis computeSymplecticBasis(const SnapshotSet& snapshots, const PhaseSpace& space,
                                     const BasisOptions& opt) {
   GPHR_REQUIRE(opt.method == "psd" || opt.method == "cotangent", InputError, "basis method '", opt.method,
                "' is not one of 'psd', 'cotangent'");

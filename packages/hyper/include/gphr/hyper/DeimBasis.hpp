@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "gphr/core/HamiltonianSystem.hpp"
+#include "gphr/core/SnapshotSet.hpp"
 
 namespace gphr {
 
@@ -52,7 +53,7 @@ struct DeimBasis {
 /// systems[j]: the (shifted) system at training parameter j; states[j]: its stored states in the
 /// system's own coordinates. A: the reduced basis (2n x 2k). Collective.
 DeimBasis computeDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& systems,
-                           const std::vector<RCP<const MultiVector>>& states, const MultiVector& A,
+                           const SnapshotSet& states, const MultiVector& A,
                            const DeimBasisOptions& options);
 
 }  // namespace gphr

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/core/SnapshotSet.hpp"
 #include "gphr/core/HamiltonianSystem.hpp"
 #include "gphr/reduction/ReducedRowKernel.hpp"
 
@@ -19,7 +20,7 @@ namespace gphr {
 /// 2k). Returns the number of snapshots used. Collective.
 template <class Fn>
 long forEachJacobianSnapshot(const std::vector<RCP<const HamiltonianSystem>>& systems,
-                             const std::vector<RCP<const MultiVector>>& states, const MultiVector& A, int every,
+                             const SnapshotSet& states, const MultiVector& A, int every,
                              std::vector<Scalar>& jac, Fn&& fn) {
   const RCP<const Map> rowMap = systems[0]->nonlinearTerm().rowMap();
   const int r = static_cast<int>(A.getNumVectors());
@@ -30,11 +31,11 @@ long forEachJacobianSnapshot(const std::vector<RCP<const HamiltonianSystem>>& sy
     GPHR_REQUIRE(sys.nonlinearTerm().rowMap()->isSameAs(*rowMap), InputError, "training system ", j,
                  " has another row map of G");
     ReducedRowKernel kernel(sys.nonlinearTermPtr(), ownedRowSample(sys, A), sys.space().comm());
-    MultiVector Z(local, states[j]->getNumVectors());
-    Z.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, A, *states[j], 0.0);  // z = A^T y_s
+    MultiVector Z(local, states.numColumns(j));
+    Z.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, A, *states[j], 0.0);  // z = A^T y_s (the block read once)
     auto zv = Z.getLocalViewHost(Tpetra::Access::ReadOnly);
     Teuchos::SerialDenseVector<int, double> z(r);
-    for (size_t c = 0; c < states[j]->getNumVectors(); c += every) {
+    for (size_t c = 0; c < states.numColumns(j); c += every) {
       for (int i = 0; i < r; ++i) z(i) = zv(i, c);
       kernel.evaluate(z, true, false);
       kernel.reducedJacobian(jac.data());

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "gphr/core/SnapshotSet.hpp"
 #include "gphr/models/Scene.hpp"
 #include "gphr/offline/ArtifactsCache.hpp"
 
@@ -33,15 +34,19 @@ std::vector<std::vector<double>> trainingGrid(const ParameterBox& box, const std
 
 /// The training stage's results: the training parameters and their shifted snapshots.
 struct TrainingResult {
-  std::vector<std::vector<double>> parameters;    ///< The training parameters mu.
-  std::vector<RCP<const MultiVector>> snapshots;  ///< shifted states per training parameter
+  std::vector<std::vector<double>> parameters;  ///< The training parameters mu.
+  /// Shifted states per training parameter: streamed from the artifacts cache when there is one
+  /// (a block read per access, so the stages after training hold one parameter's states at a
+  /// time), else held in memory.
+  SnapshotSet snapshots;
   long reused = 0;                                ///< parameters taken from the cache
   double seconds = 0.0;                           ///< Wall seconds of the stage.
 };
 
-/// Integrates the scene at every training parameter. With `cache`, a parameter whose dataset is
-/// complete for `key` is read back, one without its mark (killed mid-write) is redone, and a
-/// cache trained with another key is trained again. Collective over `comm`.
+/// Integrates the scene at every training parameter. With `cache`, each parameter's snapshots are
+/// written as it finishes and released: the result streams them from the file. A parameter whose
+/// dataset is complete for `key` is not integrated again, one without its mark (killed
+/// mid-write) is redone, and a cache trained with another key is trained again. Collective over `comm`.
 TrainingResult runTraining(const Scene& scene, const RCP<const Comm>& comm, const TrainingOptions& options,
                            const ArtifactsCache* cache = nullptr, const std::string& key = "");
 

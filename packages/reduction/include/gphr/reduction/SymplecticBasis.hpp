@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "gphr/core/PhaseSpace.hpp"
+#include "gphr/core/SnapshotSet.hpp"
 
 namespace gphr {
 
@@ -44,7 +45,7 @@ struct ReducedBasis {
 
 /// Snapshots: columns of each MultiVector are states y on space.map() (shifted states when the
 /// model is shifted). Collective.
-ReducedBasis computeSymplecticBasis(const std::vector<RCP<const MultiVector>>& snapshots,
+ReducedBasis computeSymplecticBasis(const SnapshotSet& snapshots,
                                     const PhaseSpace& space, const BasisOptions& options);
 
 /// The options of a `reduction` configuration section (validated: every key present) for a basis

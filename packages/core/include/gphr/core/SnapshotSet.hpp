@@ -1,0 +1,70 @@
+#pragma once
+/// @file
+/// The training snapshots of the offline stages: one block of states (a MultiVector, a column per
+/// state) per training parameter, either held in memory or streamed, each block read when a stage
+/// asks for it and released when the stage moves on. Streamed, a stage that visits the blocks one
+/// after another holds one parameter's states at a time, however many parameters were trained:
+/// the basis, the DEIM basis and the term-weight fits read the snapshots this way.
+#include <functional>
+#include <initializer_list>
+#include <utility>
+#include <vector>
+
+#include "gphr/core/Types.hpp"
+
+namespace gphr {
+
+/// The snapshot blocks of the training parameters (see the file's description).
+class SnapshotSet {
+ public:
+  /// Reads block j (collective over the blocks' communicator when it reads a file).
+  using Loader = std::function<RCP<const MultiVector>(size_t j)>;
+  SnapshotSet() = default;
+  /// Blocks held in memory (implicit: every stage also takes a plain vector of blocks).
+  SnapshotSet(std::vector<RCP<const MultiVector>> blocks) : blocks_(std::move(blocks)) {  // NOLINT
+    for (const auto& b : blocks_) columns_.push_back(b->getNumVectors());
+  }
+  /// Blocks held in memory, listed: {Y1, Y2, ...}.
+  SnapshotSet(std::initializer_list<RCP<const MultiVector>> blocks)
+      : SnapshotSet(std::vector<RCP<const MultiVector>>(blocks)) {}
+  /// Streamed blocks: columns[j] states in block j, read by load(j) on each access.
+  SnapshotSet(std::vector<size_t> columns, Loader load) : columns_(std::move(columns)), load_(std::move(load)) {}
+  size_t size() const { return columns_.size(); }  ///< The number of blocks (training parameters).
+  bool empty() const { return columns_.empty(); }  ///< Whether there is no block.
+  bool streamed() const { return static_cast<bool>(load_); }  ///< Whether blocks are read on access.
+  /// The number of states in block j, without reading it.
+  size_t numColumns(size_t j) const { return columns_.at(j); }
+  /// The total number of states.
+  size_t totalColumns() const {
+    size_t n = 0;
+    for (size_t c : columns_) n += c;
+    return n;
+  }
+  /// Block j: held, or read now (a streamed block lives as long as the caller keeps it).
+  RCP<const MultiVector> operator[](size_t j) const { return load_ ? load_(j) : blocks_.at(j); }
+
+  /// Visits the blocks in order, each read once (streamed: one in memory at a time).
+  class Iterator {
+   public:
+    Iterator(const SnapshotSet* set, size_t j) : set_(set), j_(j) {}  ///< At block j of `set`.
+    RCP<const MultiVector> operator*() const { return (*set_)[j_]; }  ///< The block (read now).
+    Iterator& operator++() {  ///< The next block.
+      ++j_;
+      return *this;
+    }
+    bool operator!=(const Iterator& o) const { return j_ != o.j_; }  ///< For range-for.
+
+   private:
+    const SnapshotSet* set_;
+    size_t j_;
+  };
+  Iterator begin() const { return Iterator(this, 0); }       ///< The first block.
+  Iterator end() const { return Iterator(this, size()); }    ///< Past the last block.
+
+ private:
+  std::vector<size_t> columns_;
+  std::vector<RCP<const MultiVector>> blocks_;
+  Loader load_;
+};
+
+}  // namespace gphr
