@@ -246,12 +246,124 @@ std::string reportMd(const RunContext& ctx, const FomResult& fom, const RomStage
   return md.str();
 }
 
-}  // namespace
+bool hasMethod(const RomStages& st, const char* name) {
+  return std::any_of(st.runs.begin(), st.runs.end(), [&](const ModelRun& r) { return r.method == name; });
+}
 
-std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult& fom, const RomStages& st,
-                                          const std::map<std::string, std::string>& p,
-                                          bool plots) {
-  std::vector<std::string> written;
+// error_vs_m.png: E_L2 against m, one curve per (method, k), the ROM's error as a line per k.
+bool plotErrorVsM(const RomStages& st, const std::string& runs, const std::string& png) {
+  std::ostringstream b;
+  b << "set logscale y\nset format y '%.0e'\nset xlabel 'm (DEIM size)'\nset ylabel 'E_L2'\nset key outside\n"
+    << "set title 'Relative error E_L2 against the number of sampled terms m'\nplot ";
+  std::vector<std::pair<std::string, int>> curves;
+  for (const auto& r : st.runs)
+    if (r.method != method::kRom && std::find(curves.begin(), curves.end(), std::make_pair(r.method, r.k)) == curves.end())
+      curves.push_back({r.method, r.k});
+  bool first = true;
+  for (const auto& [m, k] : curves) {
+    b << (first ? "" : ", ") << "'" << runs << "' using ((strcol('method') eq '" << m << "' && column('k') == " << k
+      << " && strcol('status') eq 'ok') ? column('m') : 1/0):(column('E_L2')) with linespoints lw 2 title '" << m << " 2k=" << 2 * k << "'";
+    first = false;
+  }
+  for (const auto& r : st.runs)
+    if (r.method == method::kRom)
+      b << (first ? "" : ", ") << r.eL2 << " with lines dt 2 lw 2 title 'rom 2k=" << 2 * r.k << "'", first = false;
+  if (anyUnbounded(st)) b << ", " << unboundedPoints(runs, "column('m')");
+  b << "\n";
+  return !curves.empty() && gnuplot(png, b.str());
+}
+
+// pareto.png: error against online time, every method report.md lists.
+bool plotPareto(const RomStages& st, const std::string& runs, const std::string& png) {
+  std::ostringstream b;
+  b << "set logscale xy\nset format y '%.0e'\nset xlabel 'online time [s]'\nset ylabel 'E_L2'\nset key outside\n"
+    << "set title 'Error vs online time (pick from the lower-left front)'\nplot ";
+  bool first = true;
+  for (const auto& m : methodsWith(st, [](const ModelRun& r) { return r.ok; })) {  // every method report.md lists
+    b << (first ? "" : ", ") << "'" << runs << "' using ((strcol('method') eq '" << m
+      << "' && strcol('status') eq 'ok') ? column('t_online_s') : 1/0):(column('E_L2')) with points pt 7 ps 1.5 title '" << m << "'";
+    first = false;
+  }
+  if (anyUnbounded(st)) b << (first ? "" : ", ") << unboundedPoints(runs, "column('t_online_s')"), first = false;
+  b << "\n";
+  return !first && gnuplot(png, b.str());
+}
+
+// hamiltonian_terms.png: the Hamiltonian error of one GP-DEIM run and the terms of eq:ham_cons_bound.
+bool plotHamiltonianTerms(const ModelRun& run, const std::map<std::string, std::string>& p) {
+  std::ostringstream b;
+  const std::string csv = p.at("hamiltonian_terms.csv");
+  b << "set logscale y\nset format y '%.0e'\nset xlabel 't'\nset ylabel 'Hamiltonian error'\nset key outside\n"
+    << "set title 'Hamiltonian error and the terms that bound it, " << run.label() << "'\n"
+    << "plot for [term in 'dH_fom dH_hr_integration dH_deim dH_total'] '" << csv
+    << "' using (column('t')):(column(term) > 0 ? column(term) : 1e-17) with lines lw 2 title term\n";
+  return gnuplot(p.at("hamiltonian_terms.png"), b.str());
+}
+
+// adeim_updates.png: per GP-ADEIM update, the residual after it and the rank and sampled rows.
+bool plotAdeimUpdates(const RomStages& st, const std::map<std::string, std::string>& p) {
+  const std::string csv = p.at("adeim_updates.csv");
+  // Left: ||U_{j+1} C_j - F_j||_F over all rows where adeim.monitorResidual recorded it, and its
+  // part at the sampling rows; right: r_j and m_s. A curve without a positive point is left out
+  // (gnuplot drops the whole figure when a log-scale panel has none: m = d, monitor off).
+  std::ostringstream residuals, ranks;
+  bool first = true;
+  for (const auto& r : st.runs) {
+    if (r.method != method::kGpAdeim || r.adeimUpdates.empty()) continue;
+    const std::string sel = "'" + csv + "' using (strcol('run') eq '" + r.label() + "' ? ";
+    const auto any = [&](auto value) {
+      return std::any_of(r.adeimUpdates.begin(), r.adeimUpdates.end(), [&](const AdeimUpdateRecord& u) { return value(u) > 0.0; });
+    };
+    if (any([](const AdeimUpdateRecord& u) { return u.fullResidual; }))
+      residuals << (residuals.tellp() > 0 ? ", " : "") << sel
+                << "column('update') : 1/0):(column('full_residual') > 0 ? column('full_residual') : 1/0) "
+                   "with lines lw 2 title '"
+                << r.label() << "'";
+    if (any([](const AdeimUpdateRecord& u) { return u.sampledAfter; }))
+      residuals << (residuals.tellp() > 0 ? ", " : "") << sel
+                << "column('update') : 1/0):(column('sampled_residual_after') > 0 ? "
+                   "column('sampled_residual_after') : 1/0) with lines dt 2 title 'at S, "
+                << r.label() << "'";
+    ranks << (first ? "" : ", ") << sel << "column('update') : 1/0):(column('rank')) with lines lw 2 title 'r "
+          << r.label() << "', " << sel << "column('update') : 1/0):(column('m_s')) with lines dt 2 title 'm_s "
+          << r.label() << "'";
+    first = false;
+  }
+  std::ostringstream b;
+  b << "set multiplot layout 1," << (residuals.tellp() > 0 ? 2 : 1) << "\nset key below\nset xlabel 'update j'\n";
+  if (residuals.tellp() > 0)
+    b << "set logscale y\nset format y '%.0e'\nset title 'GP-ADEIM: residual after each update'\nplot "
+      << residuals.str() << "\nunset logscale y\n";
+  b << "set format y '%g'\nset title 'GP-ADEIM: rank r, sampled rows m_s'\nplot " << ranks.str()
+    << "\nunset multiplot\n";
+  return !first && gnuplot(p.at("adeim_updates.png"), b.str());
+}
+
+// error_vs_total_time.png: error against the hyper-reduction's offline + online time.
+bool plotErrorVsTotalTime(const RomStages& st, const std::string& runs, const std::string& png) {
+  std::ostringstream t;  // error vs total hyper-reduction time (doc/paper-map.md: the paper's figure)
+  t << "set logscale xy\nset format y '%.0e'\nset xlabel 't_total = hyper-reduction offline + online [s]'\n"
+    << "set ylabel 'E_L2'\nset key outside\nset title 'Error against total cost (offline hyper-reduction + online)'\nplot ";
+  std::vector<int> ks;
+  const auto totalled = methodsWith(st, [](const ModelRun& r) { return std::isfinite(r.metrics.number(Metric::TTotalS)); });
+  for (const auto& r : st.runs)
+    if (std::find(totalled.begin(), totalled.end(), r.method) != totalled.end() &&
+        std::find(ks.begin(), ks.end(), r.k) == ks.end())
+      ks.push_back(r.k);
+  bool first = true;
+  for (int k : ks)
+    for (const auto& m : totalled) {
+      t << (first ? "" : ", ") << "'" << runs << "' using ((strcol('method') eq '" << m << "' && column('k') == " << k
+        << " && strcol('status') eq 'ok') ? column('t_total_s') : 1/0):(column('E_L2')) with linespoints lw 2 pt 7 title '" << m << " 2k=" << 2 * k << "'";
+      first = false;
+    }
+  t << "\n";
+  return gnuplot(png, t.str());
+}
+
+// The data files and report.md; the names written go to `written`.
+void writeHyperData(const RunContext& ctx, const FomResult& fom, const RomStages& st, const ModelRun* terms,
+                    const std::map<std::string, std::string>& p, std::vector<std::string>& written) {
   writeRunsCsv(st, fom.tOnline, p.at("runs.csv"));
   written.push_back("runs.csv");
   writeTextFile(p.at("report.md"), reportMd(ctx, fom, st));
@@ -265,121 +377,37 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
     finishText(os, p.at("deim_singular_values.csv"));
     written.push_back("deim_singular_values.csv");
   }
-  const ModelRun* terms = nullptr;  // the GP-DEIM run with the largest k, then m
-  for (const auto& r : st.runs)
-    if (r.method == method::kGpDeim && r.ok && (!terms || r.k > terms->k || (r.k == terms->k && r.m > terms->m))) terms = &r;
   const double dt = ctx.config.sublist("time").get<double>("dt");
   if (terms) {
     writeHamiltonianTerms(fom, *terms, dt, p.at("hamiltonian_terms.csv"));
     written.push_back("hamiltonian_terms.csv");
   }
-  bool adeim = false;
-  for (const auto& r : st.runs) adeim |= r.method == method::kGpAdeim;
-  if (adeim) {
+  if (hasMethod(st, method::kGpAdeim)) {
     writeAdeimUpdates(fom, st.runs, dt, p.at("adeim_updates.csv"));
     written.push_back("adeim_updates.csv");
   }
+}
+
+}  // namespace
+
+std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult& fom, const RomStages& st,
+                                          const std::map<std::string, std::string>& p, bool plots) {
+  const ModelRun* terms = nullptr;  // the GP-DEIM run with the largest k, then m
+  for (const auto& r : st.runs)
+    if (r.method == method::kGpDeim && r.ok && (!terms || r.k > terms->k || (r.k == terms->k && r.m > terms->m))) terms = &r;
+  std::vector<std::string> written;
+  writeHyperData(ctx, fom, st, terms, p, written);
   if (!plots || !haveGnuplot()) return written;
   const std::string runs = p.at("runs.csv");
-  // error vs m, one curve per (method, k), the ROM's error as a horizontal line per k
-  {
-    std::ostringstream b;
-    b << "set logscale y\nset format y '%.0e'\nset xlabel 'm (DEIM size)'\nset ylabel 'E_L2'\nset key outside\n"
-      << "set title 'Relative error E_L2 against the number of sampled terms m'\nplot ";
-    std::vector<std::pair<std::string, int>> curves;
-    for (const auto& r : st.runs)
-      if (r.method != method::kRom && std::find(curves.begin(), curves.end(), std::make_pair(r.method, r.k)) == curves.end())
-        curves.push_back({r.method, r.k});
-    bool first = true;
-    for (const auto& [m, k] : curves) {
-      b << (first ? "" : ", ") << "'" << runs << "' using ((strcol('method') eq '" << m << "' && column('k') == " << k
-        << " && strcol('status') eq 'ok') ? column('m') : 1/0):(column('E_L2')) with linespoints lw 2 title '" << m << " 2k=" << 2 * k << "'";
-      first = false;
-    }
-    for (const auto& r : st.runs)
-      if (r.method == method::kRom)
-        b << (first ? "" : ", ") << r.eL2 << " with lines dt 2 lw 2 title 'rom 2k=" << 2 * r.k << "'", first = false;
-    if (anyUnbounded(st)) b << ", " << unboundedPoints(runs, "column('m')");
-    b << "\n";
-    if (!curves.empty() && gnuplot(p.at("error_vs_m.png"), b.str())) written.push_back("error_vs_m.png");
-  }
-  {  // Pareto: error vs online time
-    std::ostringstream b;
-    b << "set logscale xy\nset format y '%.0e'\nset xlabel 'online time [s]'\nset ylabel 'E_L2'\nset key outside\n"
-      << "set title 'Error vs online time (pick from the lower-left front)'\nplot ";
-    bool first = true;
-    for (const auto& m : methodsWith(st, [](const ModelRun& r) { return r.ok; })) {  // every method report.md lists
-      b << (first ? "" : ", ") << "'" << runs << "' using ((strcol('method') eq '" << m
-        << "' && strcol('status') eq 'ok') ? column('t_online_s') : 1/0):(column('E_L2')) with points pt 7 ps 1.5 title '" << m << "'";
-      first = false;
-    }
-    if (anyUnbounded(st)) b << (first ? "" : ", ") << unboundedPoints(runs, "column('t_online_s')"), first = false;
-    b << "\n";
-    if (!first && gnuplot(p.at("pareto.png"), b.str())) written.push_back("pareto.png");
-  }
-  if (terms) {
-    std::ostringstream b;
-    const std::string csv = p.at("hamiltonian_terms.csv");
-    b << "set logscale y\nset format y '%.0e'\nset xlabel 't'\nset ylabel 'Hamiltonian error'\nset key outside\n"
-      << "set title 'Hamiltonian error and the terms that bound it, " << terms->label() << "'\n"
-      << "plot for [term in 'dH_fom dH_hr_integration dH_deim dH_total'] '" << csv
-      << "' using (column('t')):(column(term) > 0 ? column(term) : 1e-17) with lines lw 2 title term\n";
-    if (gnuplot(p.at("hamiltonian_terms.png"), b.str())) written.push_back("hamiltonian_terms.png");
-  }
-  if (adeim) {
-    const std::string csv = p.at("adeim_updates.csv");
-    // Left: ||U_{j+1} C_j - F_j||_F over all rows where adeim.monitorResidual recorded it, and its
-    // part at the sampling rows; right: r_j and m_s. A curve without a positive point is left out
-    // (gnuplot drops the whole figure when a log-scale panel has none: m = d, monitor off).
-    std::ostringstream residuals, ranks;
-    bool first = true;
-    for (const auto& r : st.runs) {
-      if (r.method != method::kGpAdeim || r.adeimUpdates.empty()) continue;
-      const std::string sel = "'" + csv + "' using (strcol('run') eq '" + r.label() + "' ? ";
-      const auto any = [&](auto value) {
-        return std::any_of(r.adeimUpdates.begin(), r.adeimUpdates.end(), [&](const AdeimUpdateRecord& u) { return value(u) > 0.0; });
-      };
-      if (any([](const AdeimUpdateRecord& u) { return u.fullResidual; }))
-        residuals << (residuals.tellp() > 0 ? ", " : "") << sel
-                  << "column('update') : 1/0):(column('full_residual') > 0 ? column('full_residual') : 1/0) "
-                     "with lines lw 2 title '"
-                  << r.label() << "'";
-      if (any([](const AdeimUpdateRecord& u) { return u.sampledAfter; }))
-        residuals << (residuals.tellp() > 0 ? ", " : "") << sel
-                  << "column('update') : 1/0):(column('sampled_residual_after') > 0 ? "
-                     "column('sampled_residual_after') : 1/0) with lines dt 2 title 'at S, "
-                  << r.label() << "'";
-      ranks << (first ? "" : ", ") << sel << "column('update') : 1/0):(column('rank')) with lines lw 2 title 'r "
-            << r.label() << "', " << sel << "column('update') : 1/0):(column('m_s')) with lines dt 2 title 'm_s "
-            << r.label() << "'";
-      first = false;
-    }
-    std::ostringstream b;
-    b << "set multiplot layout 1," << (residuals.tellp() > 0 ? 2 : 1) << "\nset key below\nset xlabel 'update j'\n";
-    if (residuals.tellp() > 0)
-      b << "set logscale y\nset format y '%.0e'\nset title 'GP-ADEIM: residual after each update'\nplot "
-        << residuals.str() << "\nunset logscale y\n";
-    b << "set format y '%g'\nset title 'GP-ADEIM: rank r, sampled rows m_s'\nplot " << ranks.str()
-      << "\nunset multiplot\n";
-    if (!first && gnuplot(p.at("adeim_updates.png"), b.str())) written.push_back("adeim_updates.png");
-    std::ostringstream t;  // error vs total hyper-reduction time (doc/paper-map.md: the paper's figure)
-    t << "set logscale xy\nset format y '%.0e'\nset xlabel 't_total = hyper-reduction offline + online [s]'\n"
-      << "set ylabel 'E_L2'\nset key outside\nset title 'Error against total cost (offline hyper-reduction + online)'\nplot ";
-    std::vector<int> ks;
-    const auto totalled = methodsWith(st, [](const ModelRun& r) { return std::isfinite(r.metrics.number(Metric::TTotalS)); });
-    for (const auto& r : st.runs)
-      if (std::find(totalled.begin(), totalled.end(), r.method) != totalled.end() &&
-          std::find(ks.begin(), ks.end(), r.k) == ks.end())
-        ks.push_back(r.k);
-    first = true;
-    for (int k : ks)
-      for (const auto& m : totalled) {
-        t << (first ? "" : ", ") << "'" << runs << "' using ((strcol('method') eq '" << m << "' && column('k') == " << k
-          << " && strcol('status') eq 'ok') ? column('t_total_s') : 1/0):(column('E_L2')) with linespoints lw 2 pt 7 title '" << m << " 2k=" << 2 * k << "'";
-        first = false;
-      }
-    t << "\n";
-    if (gnuplot(p.at("error_vs_total_time.png"), t.str())) written.push_back("error_vs_total_time.png");
+  const auto plotted = [&](bool ok, const char* name) {
+    if (ok) written.push_back(name);
+  };
+  plotted(plotErrorVsM(st, runs, p.at("error_vs_m.png")), "error_vs_m.png");
+  plotted(plotPareto(st, runs, p.at("pareto.png")), "pareto.png");
+  if (terms) plotted(plotHamiltonianTerms(*terms, p), "hamiltonian_terms.png");
+  if (hasMethod(st, method::kGpAdeim)) {
+    plotted(plotAdeimUpdates(st, p), "adeim_updates.png");
+    plotted(plotErrorVsTotalTime(st, runs, p.at("error_vs_total_time.png")), "error_vs_total_time.png");
   }
   return written;
 }
