@@ -41,9 +41,10 @@ void onRootAgreed(const RCP<const Comm>& comm, const std::string& what, const st
 /// `gphr build`: the offline stages of the config at `configPath` -> the reduced-model file `modelPath`.
 int runBuild(const std::string& configPath, const std::string& modelPath, const std::string& artifactsDir,
              const RCP<const Comm>& comm);
-/// `gphr query`: the model file's models at the parameters of `queriesPath`, results in `outputDir`.
+/// `gphr query`: the model file's models at the parameters of `queriesPath`, results in `outputDir`;
+/// each rank's queries on `threads` threads (0: defaultQueryThreads, QueryThreads.hpp).
 int runQuery(const std::string& modelPath, const std::string& queriesPath, const std::string& outputDir,
-             const RCP<const Comm>& comm);
+             const RCP<const Comm>& comm, int threads = 0);
 
 /// `gphr validate`: the model file's models against the full model at the test parameters of `testsPath`.
 int runValidate(const std::string& modelPath, const std::string& testsPath, const std::string& outputDir,
