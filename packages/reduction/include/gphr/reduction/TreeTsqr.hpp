@@ -8,6 +8,7 @@
 ///                  the tree's Q applied back down to each rank's block.
 /// Each level's QR is at most 2c x c for c columns, and the root's R is c x c: the work a rank
 /// does beyond its own rows is O(log2(p) c^3), against the stacked route's O(p c^3) on every rank.
+#include <algorithm>
 #include <vector>
 
 #include "gphr/core/Types.hpp"
@@ -20,7 +21,7 @@ class HouseholderQr {
   HouseholderQr() = default;
   /// Factors a (m x n, column-major, leading dimension m; taken over). SolverError if LAPACK fails.
   HouseholderQr(int m, int n, std::vector<double> a);
-  int rows() const { return m_; }
+  int rows() const { return m_; }             ///< m, the block's rows
   int k() const { return std::min(m_, n_); }  ///< rows of R
   /// R: k() x n upper trapezoidal, column-major (leading dimension k()).
   std::vector<double> r() const;
@@ -38,6 +39,7 @@ class HouseholderQr {
 /// partner at a level passes its R up unchanged).
 class TreeTsqr {
  public:
+  /// A tree over comm's ranks for R factors of `columns` columns (comm must outlive it).
   TreeTsqr(const Comm& comm, int columns) : comm_(comm), n_(columns) {}
   /// R: this rank's k x n factor (column-major). Returns the root's R (K x n, K = min(sum k, n))
   /// on rank 0 and an empty vector elsewhere; K in *rootRows on rank 0.
