@@ -14,8 +14,11 @@
 #               its size (training shared with nls-queries and nls-box).
 #   nls-box     NLS over the box [0.9, 1.1]: 21 test points, the ROM and GP-DEIM (2k = 160,
 #               m = 130): max and mean E_L2 over the box (gphr validate).
+#   threads     16 NLS queries (n = 1024, T = 20, 2k = 40, m = 60) by one process with --threads 1 and
+#               --threads 2, alternating, three times each: queries per second (the median of each)
+#               side by side, and the results of both compared bit for bit (h5diff).
 # nls-queries and nls-box share their training, basis and model file (bench-out/model_nls).
-# usage: bash bench/model_file.sh CASE [BUILD_DIR]
+# usage: bash bench/model_file.sh CASE [BUILD_DIR]   (CASE: swe, nls-queries, swe-scaling, nls-file, nls-box, threads)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 case=$1; build=${2:-build}
@@ -78,6 +81,29 @@ print(f"SWE 50x50 T=10 IMR 2k=80 m=150: time loop in gphr run {inrun:.3f} s, in 
       f"(ratio {query / inrun:.2f}, target <= 1); set-up {setup * 1e3:.2f} ms = {100 * setup / query:.2f}% of the loop "
       f"(target <= 10%); model file {size / 1e6:.2f} MB (target <= 5 MB)")
 PY
+    ;;
+  threads)
+    out=bench-out/model_threads; mkdir -p $out
+    printf 'gphr:\n  scene: {name: nls1d, n: 1024}\n  time: {T: 5.0, dt: 0.01}\n  training: {points: [5]}\n  pipeline: {methods: [gp-deim], k: [20], m: [60]}\n  hyper: {snapshotEvery: 5}\n' > $out/build.yaml
+    "$gphr" build $out/build.yaml --model $out/nls.h5 --output $out/art > $out/build.log 2>&1
+    printf 'queries:\n  defaults: {T: 20.0, dt: 0.01, saveEvery: 100}\n  grid: {eps: [0.9, 1.1, 16]}\n' > $out/q.yaml
+    for rep in 1 2 3; do
+      for t in 1 2; do
+        rm -rf $out/t$t  # a fresh run: finished queries would be reused
+        "$gphr" query $out/nls.h5 $out/q.yaml --output $out/t$t --threads $t > $out/t${t}_$rep.log 2>&1
+        echo "$(json $out/t$t/query_summary.json "d['queries_per_s']")" >> $out/qps_t$t
+      done
+      h5diff $out/t1/results.h5 $out/t2/results.h5 > /dev/null || { echo "results differ between 1 and 2 threads"; exit 1; }
+    done
+    python3 - $out/qps_t1 $out/qps_t2 <<PY
+import statistics, sys
+q1, q2 = ([float(x) for x in open(p).read().split()[-3:]] for p in sys.argv[1:])
+print(f"16 NLS queries (n=1024, T=20, 2k=40, m=60), one process: --threads 1 {statistics.median(q1):.2f} queries/s, "
+      f"--threads 2 {statistics.median(q2):.2f} queries/s (medians of {q1} and {q2}): "
+      f"{statistics.median(q2) / statistics.median(q1):.2f}x; results.h5 identical (h5diff) in every pair; "
+      f"load at the end {open('/proc/loadavg').read().split()[0]}")
+PY
+    rm -f $out/qps_t1 $out/qps_t2
     ;;
   nls-queries)
     nls_model; out=bench-out/model_nls

@@ -3,7 +3,7 @@
 # 'tsqr' where a POD step has more columns than the rows per rank (n = 64: 128 state rows, 64
 # rows of G; steps of 2 x 51 snapshot columns and of 3 x 2k = 60 Jacobian columns) exits 2 with one
 # line naming the section, the step's columns and the rows; 'replicated' and 'stacked' run and
-# report their steps, and give the same errors (both routes are exact SVDs).
+# report their steps, and with 'tree' give the same errors (all three routes are exact SVDs).
 # usage: pod_route.sh GPHR
 set -u
 gphr=$1
@@ -47,7 +47,9 @@ assert g["deim_pod_steps_tsqr"] == g["deim_pod_steps_stacked"] == 0, g
 PY
 config stacked stacked
 "$gphr" run "$work/c.yaml" --output "$work/stacked" > /dev/null 2> "$work/err" || fail "stacked routes: exit code $?"
-python3 - "$work/fresh/summary.json" "$work/stacked/summary.json" <<'PY' || fail "stacked summary"
+config tree tree
+"$gphr" run "$work/c.yaml" --output "$work/tree" > /dev/null 2> "$work/err" || fail "tree routes: exit code $?"
+python3 - "$work/fresh/summary.json" "$work/stacked/summary.json" "$work/tree/summary.json" <<'PY' || fail "stacked or tree summary"
 import json, sys
 runs = [json.load(open(f))["runs"] for f in sys.argv[1:]]
 rom = [r for r in runs[1] if r["method"] == "rom"][0]
@@ -55,11 +57,13 @@ assert (rom["pod_route"], rom["pod_steps_tsqr"], rom["pod_steps_stacked"], rom["
 g = [r for r in runs[1] if r["method"] == "gp-deim"][0]
 assert not g["deim_basis_cached"] and g["deim_pod_steps_stacked"] > 0, g
 assert g["deim_pod_steps_tsqr"] == g["deim_pod_steps_replicated"] == 0, g
-assert len(runs[0]) == len(runs[1]), (len(runs[0]), len(runs[1]))
+assert [r for r in runs[2] if r["method"] == "rom"][0]["pod_route"] == "tree"
 # The same bases up to round-off, so the same errors: 1e-8 relative is far above the round-off
 # carried through 50 steps and far below what a wrong basis vector does (errors change by O(1)).
-for a, b in zip(runs[0][1:], runs[1][1:]):
-    assert a["method"] == b["method"], (a["method"], b["method"])
-    assert abs(a["E_L2"] - b["E_L2"]) <= 1e-8 * abs(b["E_L2"]), (a["method"], a["E_L2"], b["E_L2"])
+for other in runs[1:]:
+    assert len(runs[0]) == len(other), (len(runs[0]), len(other))
+    for a, b in zip(runs[0][1:], other[1:]):
+        assert a["method"] == b["method"], (a["method"], b["method"])
+        assert abs(a["E_L2"] - b["E_L2"]) <= 1e-8 * abs(b["E_L2"]), (a["method"], a["E_L2"], b["E_L2"])
 PY
 echo ok

@@ -40,13 +40,15 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
   setIntParameter(red, "blockColumns", 128, 1, 100000, "snapshot columns per incremental SVD step");
   setIntParameter(red, "maxRank", 0, 0, 1000000,
                   "singular triplets kept between incremental steps; 0: 2k + 32, or half the dofs per rank if k = 0");
-  const auto routes = Teuchos::tuple<std::string>("auto", "tsqr", "stacked", "replicated");
+  const auto routes = Teuchos::tuple<std::string>("auto", "tsqr", "stacked", "tree", "replicated");
   setChoiceParameter(red, "podRoute", "auto", routes,
-                     "incremental SVD step: auto (the stacked route, the fastest measured), tsqr (Tpetra's TSQR; refuses "
-                     "a step with more carried + new columns than rows on some rank), stacked (a TSQR on LAPACK "
-                     "kernels: each rank's rows by GEQRF, the R factors stacked and one SVD of the stack; any rank "
-                     "count, local work divides with the ranks), replicated (each step's matrix gathered on every "
-                     "rank, one LAPACK SVD: any rank count, no parallel speed-up)");
+                     "incremental SVD step: auto (stacked on up to 7 ranks, tree from 8: the faster measured), tsqr "
+                     "(Tpetra's TSQR; refuses a step with more carried + new columns than rows on some rank), stacked "
+                     "(a TSQR on LAPACK kernels: each rank's rows by GEQRF, the R factors stacked on every rank and "
+                     "one SVD of the stack; any rank count, local work divides with the ranks), tree (as stacked, "
+                     "the R factors reduced over a binary tree of ranks and one small SVD on rank 0: the work beyond "
+                     "a rank's rows grows with log2 of the ranks, not with the ranks), replicated (each step's matrix "
+                     "gathered on every rank, one LAPACK SVD: any rank count, no parallel speed-up)");
   auto& pipe = pl.sublist("pipeline");
   pipe.set("rom", false, "train, build the basis and evaluate the Galerkin reduced model beside the full model");
   pipe.set("methods", Teuchos::Array<std::string>(),
@@ -230,8 +232,10 @@ std::string helpText() {
         "  gphr build CONFIG --model FILE.h5 [--output DIR]\n"
         "                                offline stages of CONFIG (artifacts reused from DIR) -> a reduced-model\n"
         "                                file holding only the online data (section 'build')\n"
-        "  gphr query FILE.h5 QUERIES.yaml [--output DIR]\n"
-        "                                the file's models at many parameters, spread over the ranks:\n"
+        "  gphr query FILE.h5 QUERIES.yaml [--output DIR] [--threads N]\n"
+        "                                the file's models at many parameters, spread over the ranks and\n"
+        "                                N threads per rank (1 to 1024; default: the CPUs the rank may use,\n"
+        "                                shared with the node's other ranks when none is bound):\n"
         "                                DIR/results.h5, DIR/queries.csv (default ./gphr-queries)\n"
         "  gphr validate FILE.h5 TESTS.yaml [--output DIR]\n"
         "                                every model of the file and the ROM against the full model at test\n"

@@ -1,7 +1,8 @@
 // `gphr query MODEL.h5 QUERIES.yaml --output DIR`: the file's hyper-reduced models at many
 // parameters. Queries are dealt round-robin to the ranks, each run on one rank alone (the online
-// model is small and replicated: no communication in the time loop), so a query's result does not
-// depend on the rank count. Each finished query is written at once to DIR/queries/<name>.h5
+// model is small and replicated: no communication in the time loop), and within a rank to a pool of
+// --threads std::threads (QueryThreads.hpp), each query on one thread alone with its own online
+// model, so a query's result depends on neither count. Each finished query is written at once to DIR/queries/<name>.h5
 // (write-then-rename) with a key of everything that determines it: a killed run restarts without
 // redoing them. Rank 0 then gathers them into DIR/results.h5, DIR/queries.csv and
 // DIR/query_summary.json.
@@ -12,6 +13,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <mutex>
 #include <sstream>
 
 #include "gphr/core/Provenance.hpp"
@@ -21,6 +23,7 @@
 #include "gphr/driver/Json.hpp"
 #include "gphr/driver/OutputLock.hpp"
 #include "gphr/driver/QueryList.hpp"
+#include "gphr/driver/QueryThreads.hpp"
 #include "gphr/driver/XdmfWriter.hpp"
 #include "gphr/online/ReducedModel.hpp"
 #include "gphr/online/Method.hpp"
@@ -31,6 +34,12 @@ namespace gphr {
 namespace {
 
 RCP<const Comm> selfComm() { return rcp(new Teuchos::SerialComm<int>()); }
+
+// Held by a query thread for HDF5 (Debian's library is not built thread-safe) and for an online
+// model's set-up (setup: exact instantiates the full system on Tpetra and reads the basis; the
+// interpolated one parses the file's integrator settings): what runs unlocked is the online
+// model's own time loop and its kernels, on data of that model alone.
+std::mutex serialPart;
 
 std::string queryFile(const std::string& dir, const Query& q) { return dir + "/queries/" + q.name + ".h5"; }
 
@@ -158,11 +167,14 @@ void writeQuery(const std::string& path, const ReducedModel& model, const Query&
 
 // A query of a sample-mesh model, on this rank alone.
 QueryOutcome runOne(const ReducedModel& model, const Query& q, const std::string& path) {
+  std::unique_lock<std::mutex> lock(serialPart);
   OnlineModel online = model.instantiate(q.method, q.k, q.m, q.mu, q.extrapolate, q.setup);
+  lock.unlock();
   Recorder rec;
   rec.probeCount = q.probes ? online.probeGids().size() : 0;
   const auto stats = online.simulate(q.T, q.dt, recording(q, rec));
   const QueryOutcome out = outcomeOf(q, stats, rec, online.setupSeconds(), online.extrapolated());
+  lock.lock();
   writeQuery(path, model, q, rec, out);
   return out;
 }
@@ -257,7 +269,8 @@ void writeResults(const std::string& dir, const std::vector<Query>& qs) {
 }  // namespace
 
 int runQuery(const std::string& modelPath, const std::string& queriesPath, const std::string& outputDir,
-             const RCP<const Comm>& comm) {
+             const RCP<const Comm>& comm, int threads) {
+  if (threads == 0) threads = defaultQueryThreads();
   const int rank = comm->getRank(), size = comm->getSize();
   const ReducedModel model(modelPath);
   const auto queries = readQueries(queriesPath, model);
@@ -274,6 +287,7 @@ int runQuery(const std::string& modelPath, const std::string& queriesPath, const
   const long mine = static_cast<long>(local.size() + adaptive.size());
   long done = 0;
   double lastPrint = -1e9;
+  std::mutex progress;
   for (size_t i : adaptive) {  // all ranks together, one after another
     const std::string path = queryFile(outputDir, queries[i]);
     int reuse = rank == 0 && finished(path, resultKey(queries[i], model.data()), outs[i]);
@@ -281,9 +295,14 @@ int runQuery(const std::string& modelPath, const std::string& queriesPath, const
     if (!reuse) outs[i] = runAdaptive(model, queries[i], path, comm);
     ++done;
   }
-  for (size_t i : local) {
+  forEachOnThreads(local.size(), threads, [&](size_t j) {  // each outs[i] written by one thread
+    const size_t i = local[j];
     const std::string path = queryFile(outputDir, queries[i]);
-    if (!finished(path, resultKey(queries[i], model.data()), outs[i])) outs[i] = runOne(model, queries[i], path);
+    std::unique_lock<std::mutex> lock(serialPart);
+    const bool reuse = finished(path, resultKey(queries[i], model.data()), outs[i]);
+    lock.unlock();
+    if (!reuse) outs[i] = runOne(model, queries[i], path);
+    const std::lock_guard<std::mutex> count(progress);
     ++done;
     const double t = wall.totalElapsedTime(true);
     if (rank == 0 && (t - lastPrint > 2.0 || done == mine)) {
@@ -291,7 +310,7 @@ int runQuery(const std::string& modelPath, const std::string& queriesPath, const
                    mine, queries.size(), t, t / done * (mine - done));
       lastPrint = t;
     }
-  }
+  });
   double seconds = wall.stop(), slowest = 0.0;
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, seconds, Teuchos::outArg(slowest));
   shareOutcomes(comm, outs);
@@ -304,11 +323,12 @@ int runQuery(const std::string& modelPath, const std::string& queriesPath, const
     JsonObject s;
     s.set("model_file", modelPath).set("queries", static_cast<long>(queries.size())).set("queries_run", ran)
         .set("queries_reused", static_cast<long>(queries.size()) - ran).set("queries_ok", ok).set("ranks", size)
+        .set("threads_per_rank", threads)
         .set("wall_s", slowest).set("queries_per_s", ran > 0 ? ran / slowest : NAN).set("gphr_version", gphrVersion());
     writeTextFile(outputDir + "/query_summary.json", s.str(2) + "\n");
-    std::printf("gphr query: %zu queries (%ld run, %ld reused, %ld ok) on %d rank(s) in %.2f s: %.1f queries/s; "
-                "results in %s/results.h5, table %s/queries.csv\n", queries.size(), ran,
-                static_cast<long>(queries.size()) - ran, ok, size, slowest, ran > 0 ? ran / slowest : 0.0,
+    std::printf("gphr query: %zu queries (%ld run, %ld reused, %ld ok) on %d rank(s) x %d thread(s) in %.2f s: "
+                "%.1f queries/s; results in %s/results.h5, table %s/queries.csv\n", queries.size(), ran,
+                static_cast<long>(queries.size()) - ran, ok, size, threads, slowest, ran > 0 ? ran / slowest : 0.0,
                 outputDir.c_str(), outputDir.c_str());
   });
   return 0;

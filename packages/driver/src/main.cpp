@@ -11,6 +11,7 @@
 #include <iostream>
 #include <memory>
 #include <unistd.h>
+#include <vector>
 
 #include <Teuchos_Time.hpp>
 
@@ -19,6 +20,7 @@
 #include "gphr/driver/Console.hpp"
 #include "gphr/driver/Config.hpp"
 #include "gphr/driver/OutputLock.hpp"
+#include "gphr/driver/QueryThreads.hpp"
 #include "gphr/driver/HyperStage.hpp"
 #include "gphr/driver/Report.hpp"
 #include "gphr/driver/RomStage.hpp"
@@ -31,22 +33,26 @@ struct Args {
   enum Command { Run, Build, Query, Validate, Help } command = Run;
   enum Verbosity { Quiet, Normal, Verbose } verbosity = Normal;
   std::string config, output = "gphr-output", model, queries;
+  int threads = 0;  // query: threads per rank, 0 = the default (QueryThreads.hpp)
 };
 
 const char* kUsage = "usage: gphr [--output DIR] | run CONFIG [--output DIR] | build CONFIG --model FILE.h5 "
-                     "[--output DIR] | query MODEL.h5 QUERIES.yaml [--output DIR] | validate MODEL.h5 TESTS.yaml "
+                     "[--output DIR] | query MODEL.h5 QUERIES.yaml [--output DIR] [--threads N] | validate MODEL.h5 TESTS.yaml "
                      "[--output DIR] | --help; each command also takes --verbose or --quiet";
 
-// --output DIR, --model FILE, --verbose and --quiet after the positional arguments.
-void options(Args& a, const std::vector<std::string>& v, size_t from, bool model) {
+// --output DIR, --model FILE (build), --threads N (query), --verbose and --quiet after the
+// positional arguments.
+void options(Args& a, const std::vector<std::string>& v, size_t from, bool model, bool threads = false) {
   for (size_t i = from; i < v.size(); ++i) {
     if (v[i] == "--output" && i + 1 < v.size()) a.output = v[++i];
     else if (model && v[i] == "--model" && i + 1 < v.size()) a.model = v[++i];
+    else if (threads && v[i] == "--threads")
+      a.threads = gphr::queryThreadsFromText(i + 1 < v.size() ? v[++i] : std::string());
     else if (v[i] == "--verbose") a.verbosity = Args::Verbose;
     else if (v[i] == "--quiet") a.verbosity = Args::Quiet;
     else
       throw gphr::InputError("unknown argument '" + v[i] + "'; allowed: --output DIR" + (model ? ", --model FILE" : "") +
-                             ", --verbose, --quiet");
+                             (threads ? ", --threads N" : "") + ", --verbose, --quiet");
   }
 }
 
@@ -68,7 +74,7 @@ Args parseArgs(int argc, char** argv) {
     GPHR_REQUIRE(v.size() >= 3, gphr::InputError, "'gphr ", v[0], "' needs MODEL.h5 and a YAML file (", kUsage, ")");
     a.command = v[0] == "query" ? Args::Query : Args::Validate, a.model = v[1], a.queries = v[2];
     a.output = v[0] == "query" ? "gphr-queries" : "gphr-validation";
-    options(a, v, 3, false);
+    options(a, v, 3, false, a.command == Args::Query);
     return a;
   }
   GPHR_REQUIRE(v.size() >= 2, gphr::InputError, "'gphr ", v[0], "' needs a CONFIG file (", kUsage, ")");
@@ -125,7 +131,17 @@ int main(int argc, char** argv) {
     std::cout << gphr::helpText();
     return 0;
   }
-  Tpetra::ScopeGuard scope(&argc, &argv);
+  // Kokkos::initialize reads --threads (its own, expecting --threads=N): it gets the arguments
+  // without gphr query's --threads N.
+  std::vector<char*> forKokkos;
+  for (int i = 0; i < argc; ++i) {
+    if (std::string(argv[i]) == "--threads") ++i;
+    else forKokkos.push_back(argv[i]);
+  }
+  int kokkosArgc = static_cast<int>(forKokkos.size());
+  forKokkos.push_back(nullptr);
+  char** kokkosArgv = forKokkos.data();
+  Tpetra::ScopeGuard scope(&kokkosArgc, &kokkosArgv);
   auto comm = Tpetra::getDefaultComm();
   const bool root = comm->getRank() == 0;
   FILE* errors = stderr;
@@ -137,7 +153,7 @@ int main(int argc, char** argv) {
     }
     if (args.verbosity == Args::Quiet) errors = quiet();
     if (args.command == Args::Build) return gphr::runBuild(args.config, args.model, args.output, comm);
-    if (args.command == Args::Query) return gphr::runQuery(args.model, args.queries, args.output, comm);
+    if (args.command == Args::Query) return gphr::runQuery(args.model, args.queries, args.output, comm, args.threads);
     if (args.command == Args::Validate) return gphr::runValidate(args.model, args.queries, args.output, comm);
     return runMain(args, comm);
   } catch (const gphr::InputError& e) {

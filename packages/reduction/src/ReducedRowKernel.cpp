@@ -87,10 +87,11 @@ double ReducedRowKernel::value() const {
   const auto g = batch_.g;
   const auto gRef = gRef_;
   const auto w = w_;
+  // A plain loop, not Kokkos::parallel_reduce: the Serial backend keeps one process-wide scratch
+  // for reductions (resized on each dispatch), and gphr query runs independent online models on
+  // several threads at once. The sum is the same, in the same order, as Serial's.
   double local = 0.0;
-  Kokkos::parallel_reduce(
-      "gphr::reducedValue", Kokkos::RangePolicy<ExecSpace>(0, numRows()),
-      KOKKOS_LAMBDA(const LO i, double& acc) { acc += w(i) * (g(i) - gRef(i)); }, local);
+  for (LO i = 0; i < numRows(); ++i) local += w(i) * (g(i) - gRef(i));
   if (sumOver_.is_null()) return local;
   double global = 0.0;
   Teuchos::reduceAll(*sumOver_, Teuchos::REDUCE_SUM, local, Teuchos::outArg(global));

@@ -11,6 +11,7 @@
 #include "gphr/core/Error.hpp"
 #include "gphr/core/ReplicatedGather.hpp"
 #include "gphr/reduction/DenseSvd.hpp"
+#include "gphr/reduction/TreeTsqr.hpp"
 
 namespace gphr {
 
@@ -18,9 +19,18 @@ PodRoute podRouteFromName(const std::string& name) {
   if (name == "auto") return PodRoute::Auto;
   if (name == "tsqr") return PodRoute::Tsqr;
   if (name == "stacked") return PodRoute::Stacked;
+  if (name == "tree") return PodRoute::Tree;
   GPHR_REQUIRE(name == "replicated", InputError, "streaming POD: podRoute '", name,
-               "' is not one of 'auto', 'tsqr', 'stacked', 'replicated'");
+               "' is not one of 'auto', 'tsqr', 'stacked', 'tree', 'replicated'");
   return PodRoute::Replicated;
+}
+
+// auto: on up to 4 ranks both routes' small factorizations cost the same within the noise of a
+// shared machine; from 8 on the tree's are 1.6-2x faster and the gap grows with p
+// (bench/pod_tree_micro.cpp kernels; doc/design.md, 'Symplectic bases and the streaming POD').
+PodRoute stepRoute(PodRoute route, int ranks) {
+  if (route != PodRoute::Auto) return route;
+  return ranks >= kTreeRouteFromRanks ? PodRoute::Tree : PodRoute::Stacked;
 }
 
 StreamingPod::StreamingPod(RCP<const Map> map, int maxRank, int blockColumns, double rankTolerance, PodRoute route)
@@ -47,8 +57,7 @@ void StreamingPod::add(const MultiVector& X) {
   }
   columns_ += static_cast<long>(X.getNumVectors());
   // Steps of blockColumns columns whatever the rank count, so that the truncations (and the
-  // result) are the same on any number of ranks; each step takes the route of route_ (auto: the
-  // stacked route, the fastest measured on 1, 2 and 4 ranks).
+  // result) are the same on any number of ranks; each step takes the route of stepRoute.
   for (size_t c0 = 0; c0 < X.getNumVectors();) {
     const size_t c1 = std::min(X.getNumVectors(), c0 + static_cast<size_t>(blockColumns_));
     step(X, c0, c1);
@@ -109,6 +118,29 @@ void StreamingPod::replicatedStep(const MultiVector& Y) {
   }
 }
 
+namespace {
+// This rank's rows of Y, rows x nc column-major.
+std::vector<double> localColumns(const MultiVector& Y) {
+  const auto y = Y.getLocalViewHost(Tpetra::Access::ReadOnly);
+  const size_t rows = y.extent(0), nc = y.extent(1);
+  std::vector<double> a(rows * nc);
+  for (size_t j = 0; j < nc; ++j)
+    for (size_t i = 0; i < rows; ++i) a[i + rows * j] = y(i, j);
+  return a;
+}
+}  // namespace
+
+// U_p = Q_p [C; 0] for this rank's leaf QR and its block C of the small factor's left vectors.
+void StreamingPod::setLeftVectors(const HouseholderQr& leaf, const std::vector<double>& C, int keep) {
+  U_ = rcp(new MultiVector(map_, std::max(keep, 1)));
+  const int rows = leaf.rows();
+  if (keep == 0 || rows == 0) return;
+  const std::vector<double> c = leaf.applyQ(C, keep);
+  auto u = U_->getLocalViewHost(Tpetra::Access::OverwriteAll);
+  for (int j = 0; j < keep; ++j)
+    for (int i = 0; i < rows; ++i) u(i, j) = c[i + static_cast<size_t>(rows) * j];
+}
+
 // The stacked-QR route (a TSQR with LAPACK kernels and a flat reduction): each rank factors its
 // own rows Y_p = Q_p R_p by GEQRF (R_p is min(rows_p, nc) x nc: a rank may hold fewer rows than
 // columns), every rank holds the stack of all R_p (a sum-reduction of disjoint blocks, so exact)
@@ -119,51 +151,57 @@ void StreamingPod::replicatedStep(const MultiVector& Y) {
 // the replicated route costs, with stack rows instead of d.
 void StreamingPod::stackedStep(const MultiVector& Y) {
   const int nc = static_cast<int>(Y.getNumVectors());
-  const int rows = static_cast<int>(map_->getNodeNumElements()), kp = std::min(rows, nc);
+  const int rows = static_cast<int>(map_->getNodeNumElements());
   const auto& comm = *map_->getComm();
   const int p = comm.getSize(), me = comm.getRank();
-  std::vector<double> a(static_cast<size_t>(std::max(rows, 1)) * nc), tau(std::max(kp, 1)), work(1);
-  {
-    auto y = Y.getLocalViewHost(Tpetra::Access::ReadOnly);
-    for (int j = 0; j < nc; ++j)
-      for (int i = 0; i < rows; ++i) a[i + static_cast<size_t>(rows) * j] = y(i, j);
-  }
-  Teuchos::LAPACK<int, double> lapack;
-  const int lda = std::max(rows, 1);
-  int info = 0;
-  if (kp > 0) {
-    lapack.GEQRF(rows, nc, a.data(), lda, tau.data(), work.data(), -1, &info);
-    work.resize(std::max(1, static_cast<int>(work[0])));
-    lapack.GEQRF(rows, nc, a.data(), lda, tau.data(), work.data(), static_cast<int>(work.size()), &info);
-    GPHR_REQUIRE(info == 0, SolverError, "streaming POD: LAPACK GEQRF failed (info = ", info, ")");
-  }
+  const HouseholderQr leaf(rows, nc, localColumns(Y));
+  const int kp = leaf.k();
   // The stack: rank q's R factor at rows off[q] .. off[q] + k[q].
   std::vector<int> k(p, 0), off(p + 1, 0);
   Teuchos::gatherAll(comm, 1, &kp, p, k.data());
   for (int q = 0; q < p; ++q) off[q + 1] = off[q] + k[q];
   const int K = off[p];
   std::vector<double> mine(static_cast<size_t>(K) * nc, 0.0), stack(mine.size());
+  const std::vector<double> R = leaf.r();
   for (int j = 0; j < nc; ++j)
-    for (int i = 0; i < std::min(kp, j + 1); ++i) mine[off[me] + i + static_cast<size_t>(K) * j] = a[i + static_cast<size_t>(lda) * j];
+    std::copy_n(R.begin() + static_cast<size_t>(kp) * j, kp, mine.begin() + off[me] + static_cast<size_t>(K) * j);
   Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, static_cast<int>(mine.size()), mine.data(), stack.data());
   const int mn = std::min(K, nc);
   std::vector<double> S(mn), W(static_cast<size_t>(K) * mn), Zt(static_cast<size_t>(mn) * nc);
   denseThinSvd(K, nc, stack.data(), K, S.data(), W.data(), K, Zt.data(), mn, true, "streaming POD (stacked route)");
   const int keep = truncate(S, nc);
-  U_ = rcp(new MultiVector(map_, std::max(keep, 1)));
-  if (keep == 0 || rows == 0) return;
-  // U_p = Q_p [W_p(:, 1:keep); 0]: ORMQR applies the kp reflectors of GEQRF to a rows x keep block.
-  std::vector<double> c(static_cast<size_t>(rows) * keep, 0.0);
+  std::vector<double> C(static_cast<size_t>(kp) * keep);
   for (int j = 0; j < keep; ++j)
-    for (int i = 0; i < kp; ++i) c[i + static_cast<size_t>(rows) * j] = W[off[me] + i + static_cast<size_t>(K) * j];
-  lapack.ORMQR('L', 'N', rows, keep, kp, a.data(), lda, tau.data(), c.data(), rows, work.data(), -1, &info);
-  work.resize(std::max(1, static_cast<int>(work[0])));
-  lapack.ORMQR('L', 'N', rows, keep, kp, a.data(), lda, tau.data(), c.data(), rows, work.data(),
-               static_cast<int>(work.size()), &info);
-  GPHR_REQUIRE(info == 0, SolverError, "streaming POD: LAPACK ORMQR failed (info = ", info, ")");
-  auto u = U_->getLocalViewHost(Tpetra::Access::OverwriteAll);
-  for (int j = 0; j < keep; ++j)
-    for (int i = 0; i < rows; ++i) u(i, j) = c[i + static_cast<size_t>(rows) * j];
+    std::copy_n(W.begin() + off[me] + static_cast<size_t>(K) * j, kp, C.begin() + static_cast<size_t>(kp) * j);
+  setLeftVectors(leaf, C, keep);
+}
+
+// The tree route (TSQR with a binary-tree reduction, TreeTsqr.hpp): each rank's rows by GEQRF as
+// in the stacked route, the R factors reduced to rank 0 over ceil(log2 p) levels of QRs of at most
+// 2 nc x nc, one GESDD of the root's R (at most nc x nc) on rank 0, its singular values broadcast
+// (every rank truncates alike) and its left vectors carried back down the tree's Q factors to each
+// rank's block. Beyond its own rows a rank does at most log2(p) small QRs and their ORMQRs, and
+// rank 0 one nc x nc SVD: none of it grows with p but the log2 p levels.
+void StreamingPod::treeStep(const MultiVector& Y) {
+  const int nc = static_cast<int>(Y.getNumVectors());
+  const auto& comm = *map_->getComm();
+  const HouseholderQr leaf(static_cast<int>(map_->getNodeNumElements()), nc, localColumns(Y));
+  TreeTsqr tree(comm, nc);
+  int K = 0;
+  std::vector<double> R = tree.reduce(leaf.r(), leaf.k(), &K);
+  int mn = std::min(K, nc);
+  Teuchos::broadcast(comm, 0, Teuchos::outArg(mn));
+  std::vector<double> S(mn), W;
+  if (comm.getRank() == 0) {
+    W.resize(static_cast<size_t>(K) * mn);
+    std::vector<double> Zt(static_cast<size_t>(mn) * nc);
+    denseThinSvd(K, nc, R.data(), std::max(K, 1), S.data(), W.data(), std::max(K, 1), Zt.data(), std::max(mn, 1), true,
+                 "streaming POD (tree route)");
+  }
+  if (mn > 0) Teuchos::broadcast(comm, 0, mn, S.data());
+  const int keep = truncate(S, nc);
+  W.resize(static_cast<size_t>(K) * keep);  // W's leading keep columns (column-major)
+  setLeftVectors(leaf, tree.applyQ(std::move(W), keep), keep);
 }
 
 void StreamingPod::step(const MultiVector& X, size_t c0, size_t c1) {
@@ -178,11 +216,16 @@ void StreamingPod::step(const MultiVector& X, size_t c0, size_t c1) {
       for (int j = 0; j < b; ++j) y(i, r + j) = x(i, c0 + j);
     }
   }
-  if (route_ == PodRoute::Stacked || route_ == PodRoute::Auto) {
+  const PodRoute route = stepRoute(route_, map_->getComm()->getSize());
+  if (route == PodRoute::Stacked) {
     ++stackedSteps_;
     return stackedStep(Y);
   }
-  if (route_ == PodRoute::Replicated) {
+  if (route == PodRoute::Tree) {
+    ++treeSteps_;
+    return treeStep(Y);
+  }
+  if (route == PodRoute::Replicated) {
     ++replicatedSteps_;
     return replicatedStep(Y);
   }
@@ -191,7 +234,7 @@ void StreamingPod::step(const MultiVector& X, size_t c0, size_t c1) {
   GPHR_REQUIRE(nc <= cap_, InputError, "streaming POD: podRoute 'tsqr' cannot take a step of ", nc, " columns (", r,
                " carried + ", b, " new): TSQR needs at most as many columns as rows on every rank, and on ",
                map_->getComm()->getSize(), " rank(s) the smallest holds ", cap_, " of the ", d,
-               " rows; allowed: podRoute 'auto', 'stacked' or 'replicated', ",
+               " rows; allowed: podRoute 'auto', 'stacked', 'tree' or 'replicated', ",
                d >= nc ? detail::concat("at most ", d / nc, " rank(s) with the rows split evenly, ") : std::string(),
                "or fewer columns per step (a smaller maxRank or block size)");
   ++tsqrSteps_;

@@ -118,12 +118,16 @@ TEST_F(Routes, EachRouteGivesTheExactSvd) {
   const auto s = linearSpectrum(30, 1.0 / 40.0);  // 1 .. 0.275
   const MultiVector X = knownSvdData(map_, 60, s);
   const MultiVector F = leadingDct(map_, 30);
-  for (PodRoute route : {PodRoute::Tsqr, PodRoute::Stacked, PodRoute::Replicated}) {
+  for (PodRoute route : {PodRoute::Tsqr, PodRoute::Stacked, PodRoute::Tree, PodRoute::Replicated}) {
     const StreamingPod pod = podOf(X, 40, 12, route);  // 5 steps of 12 columns, up to 42 columns
-    const char* name = route == PodRoute::Tsqr ? "tsqr" : route == PodRoute::Stacked ? "stacked" : "replicated";
+    const char* name = route == PodRoute::Tsqr      ? "tsqr"
+                       : route == PodRoute::Stacked ? "stacked"
+                       : route == PodRoute::Tree    ? "tree"
+                                                    : "replicated";
     SCOPED_TRACE(name);
     EXPECT_EQ(pod.tsqrSteps(), route == PodRoute::Tsqr ? 5 : 0);
     EXPECT_EQ(pod.stackedSteps(), route == PodRoute::Stacked ? 5 : 0);
+    EXPECT_EQ(pod.treeSteps(), route == PodRoute::Tree ? 5 : 0);
     EXPECT_EQ(pod.replicatedSteps(), route == PodRoute::Replicated ? 5 : 0);
     ASSERT_EQ(pod.rank(), 30);
     EXPECT_LE(maxSigmaDiff(pod.singularValues(), s), 1e-12);
@@ -146,13 +150,16 @@ TEST_F(Routes, AllRoutesAgreeUnderTruncation) {
   const StreamingPod tsqr = podOf(X, 16, 8, PodRoute::Tsqr);  // 12 steps, truncating from the 3rd
   const StreamingPod repl = podOf(X, 16, 8, PodRoute::Replicated);
   const StreamingPod stacked = podOf(X, 16, 8, PodRoute::Stacked);
+  const StreamingPod tree = podOf(X, 16, 8, PodRoute::Tree);
+  EXPECT_EQ(tree.treeSteps(), 12);
   EXPECT_EQ(tsqr.tsqrSteps(), 12);
   EXPECT_EQ(repl.replicatedSteps(), 12);
   EXPECT_EQ(stacked.stackedSteps(), 12);
   ASSERT_EQ(tsqr.rank(), 16);
   ASSERT_EQ(repl.rank(), 16);
   ASSERT_EQ(stacked.rank(), 16);
-  for (const StreamingPod* pod : {&tsqr, &repl, &stacked})
+  ASSERT_EQ(tree.rank(), 16);
+  for (const StreamingPod* pod : {&tsqr, &repl, &stacked, &tree})
     for (int j = 0; j < 16; ++j) EXPECT_LE(pod->singularValues()[j], s[j] + 1e-12) << "sigma_" << j;
   const double dSigma = maxSigmaDiff(tsqr.singularValues(), repl.singularValues());
   const double dU = test::subspaceDistance(tsqr.leftVectors(), repl.leftVectors());
@@ -163,7 +170,7 @@ TEST_F(Routes, AllRoutesAgreeUnderTruncation) {
   EXPECT_LE(dSigmaStacked, 1e-10);
   EXPECT_LE(dUStacked, 1e-10);
   double orth = 0.0;
-  for (const StreamingPod* pod : {&tsqr, &repl, &stacked}) orth = std::max(orth, test::orthonormalityError(pod->leftVectors()));
+  for (const StreamingPod* pod : {&tsqr, &repl, &stacked, &tree}) orth = std::max(orth, test::orthonormalityError(pod->leftVectors()));
   EXPECT_LE(orth, kOrthTol);
   // Against the same recursion computed densely on rank 0 (GESVD per step): a truncation or carry
   // shared by the three routes, which their agreement cannot see, shows here. The routes and the
@@ -172,13 +179,14 @@ TEST_F(Routes, AllRoutesAgreeUnderTruncation) {
   const int d = static_cast<int>(X.getGlobalLength());
   const std::vector<double> Xall = test::gatherColumns(X);
   std::vector<std::vector<double>> Us;
-  for (const StreamingPod* pod : {&tsqr, &repl, &stacked}) Us.push_back(test::gatherColumns(pod->leftVectors()));
+  const std::vector<const StreamingPod*> pods = {&tsqr, &repl, &stacked, &tree};
+  for (const StreamingPod* pod : pods) Us.push_back(test::gatherColumns(pod->leftVectors()));
   if (test::comm()->getRank() == 0) {
     std::vector<double> Uref, sref;
     denseIncrementalSvd(Xall, d, 96, 16, 8, 1e-8, Uref, sref);
     ASSERT_EQ(sref.size(), 16u);
     for (size_t p = 0; p < Us.size(); ++p) {
-      const StreamingPod* pod = p == 0 ? &tsqr : p == 1 ? &repl : &stacked;
+      const StreamingPod* pod = pods[p];
       EXPECT_LE(maxSigmaDiff(pod->singularValues(), sref), 1e-10) << "route " << p;
       // ||U_ref - U U^T U_ref||_F, both orthonormal d x 16 (column-major)
       double dist2 = 0.0;
@@ -222,7 +230,7 @@ TEST_F(TooFewRows, TsqrRefusesNamingColumnsAndRows) {
     for (const std::string& part : {std::string("podRoute 'tsqr'"), std::string("a step of 12 columns (6 carried + 6 new)"),
                                     "on " + std::to_string(P) + " rank(s) the smallest holds 10 of the " +
                                         std::to_string(10 * P) + " rows",
-                                    std::string("'auto', 'stacked' or 'replicated'")})
+                                    std::string("'auto', 'stacked', 'tree' or 'replicated'")})
       EXPECT_NE(msg.find(part), std::string::npos) << "message lacks '" << part << "': " << msg;
   }
 }
@@ -243,34 +251,93 @@ TEST_F(TooFewRows, AutoTakesTheStackedRouteAndAgreesWithReplicated) {
 }
 
 // Uneven rows: rank 0 holds 40, every other rank 3, fewer than a step's 12 columns (the case
-// TSQR refuses). The stacked route takes every step there: rank q's R factor is 3 x 12
-// (trapezoidal) and the stack has 40 + 3 (P - 1) rows. 12 columns of rank 8 in two steps, maxRank
-// 8: nothing truncated, so it must give the exact SVD (tolerances as above).
-TEST(StackedRoute, TakesRanksWithFewerRowsThanColumns) {
+// TSQR refuses). The stacked and tree routes take every step there: rank q's R factor is 3 x 12
+// (trapezoidal); the stack has 40 + 3 (P - 1) rows, the tree's stacks 12 + 3 or 3 + 3. 12 columns
+// of rank 8 in two steps, maxRank 8: nothing truncated, so each must give the exact SVD
+// (tolerances as above).
+TEST(StackedAndTreeRoutes, TakeRanksWithFewerRowsThanColumns) {
   const auto comm = test::comm();
   const size_t mine = comm->getRank() == 0 ? 40 : 3;
   const GO d = 40 + 3 * (comm->getSize() - 1);
   const RCP<const Map> map = rcp(new Map(d, mine, 0, comm));
   const auto s = linearSpectrum(8, 0.1);
   const MultiVector X = knownSvdData(map, 12, s);
-  const StreamingPod stacked = podOf(X, 8, 6, PodRoute::Stacked);
-  EXPECT_EQ(stacked.stackedSteps(), 2);
-  ASSERT_EQ(stacked.rank(), 8);
-  EXPECT_LE(maxSigmaDiff(stacked.singularValues(), s), 1e-12);
-  EXPECT_LE(test::subspaceDistance(stacked.leftVectors(), leadingDct(map, 8)), 1e-10);
-  EXPECT_LE(test::orthonormalityError(stacked.leftVectors()), kOrthTol);
+  for (PodRoute route : {PodRoute::Stacked, PodRoute::Tree}) {
+    SCOPED_TRACE(route == PodRoute::Stacked ? "stacked" : "tree");
+    const StreamingPod pod = podOf(X, 8, 6, route);
+    EXPECT_EQ(pod.stackedSteps() + pod.treeSteps(), 2);
+    ASSERT_EQ(pod.rank(), 8);
+    EXPECT_LE(maxSigmaDiff(pod.singularValues(), s), 1e-12);
+    EXPECT_LE(test::subspaceDistance(pod.leftVectors(), leadingDct(map, 8)), 1e-10);
+    EXPECT_LE(test::orthonormalityError(pod.leftVectors()), kOrthTol);
+  }
+}
+
+// ||Ua Ua^T - Ub Ub^T||_F of the leading r columns of two d-row column-major bases, formed
+// entry by entry (exact to round-off, no cosines: see the file's head).
+double projectorDistance(const std::vector<double>& Ua, const std::vector<double>& Ub, int d, int r) {
+  double sum = 0.0;
+  for (int i = 0; i < d; ++i)
+    for (int l = 0; l < d; ++l) {
+      double e = 0.0;
+      for (int j = 0; j < r; ++j)
+        e += Ua[i + static_cast<size_t>(d) * j] * Ua[l + static_cast<size_t>(d) * j] -
+             Ub[i + static_cast<size_t>(d) * j] * Ub[l + static_cast<size_t>(d) * j];
+      sum += e * e;
+    }
+  return std::sqrt(sum);
+}
+
+// A graded spectrum s_j = 10^(-14 j / 29), j = 0..29: from sigma_1 = 1 down to 1e-14 sigma_1, the
+// range the POD meets when the basis is taken to round-off. The tree route (5 steps of 12 columns,
+// rankTolerance 0, maxRank 30: only round-off values beyond the 30th are dropped) against one
+// dense LAPACK SVD (GESVD) of the gathered matrix on rank 0. Singular values: both are backward
+// stable SVDs of the same matrix within ~ nc eps ||X|| (nc <= 42, a few steps), so by Weyl every
+// sigma_j of either is within ~1e-14 absolute of the exact one: 1e-12 as in the tests above, now
+// also for the values near 1e-14 (a lost tree level moves them by O(1)). Subspace: the leading 5
+// vectors (s_5 = 3.9e-3, gap to s_6 2.6e-3): Wedin bounds the move by ~1e-14 / 2.6e-3 ~ 4e-12 per
+// side, 1e-10 leaves a factor 10. The same test on 1, 2 and 3 ranks (3: a tree level without a
+// partner) checks each against the same dense reference, so the ranks agree to round-off.
+TEST(TreeRoute, MatchesTheDenseSvdOnAGradedSpectrum) {
+  const RCP<const Map> map = rcp(new Map(128, 0, test::comm()));
+  std::vector<double> s(30);
+  for (int j = 0; j < 30; ++j) s[j] = std::pow(10.0, -14.0 * j / 29.0);
+  const MultiVector X = knownSvdData(map, 60, s);
+  const StreamingPod tree = podOf(X, 30, 12, PodRoute::Tree, 0.0);
+  EXPECT_EQ(tree.treeSteps(), 5);
+  ASSERT_EQ(tree.rank(), 30);
+  EXPECT_LE(test::orthonormalityError(tree.leftVectors()), kOrthTol);
+  const std::vector<double> Xall = test::gatherColumns(X), Utree = test::gatherColumns(tree.leftVectors());
+  if (test::comm()->getRank() != 0) return;
+  std::vector<double> Udense, sdense;
+  denseIncrementalSvd(Xall, 128, 60, 60, 60, 0.0, Udense, sdense);  // one step: the dense thin SVD
+  ASSERT_GE(sdense.size(), 30u);
+  sdense.resize(30);
+  const double dSigma = maxSigmaDiff(tree.singularValues(), sdense), dExact = maxSigmaDiff(tree.singularValues(), s);
+  const double dU = projectorDistance(Utree, Udense, 128, 5);
+  EXPECT_LE(dSigma, 1e-12);
+  EXPECT_LE(dExact, 1e-12);
+  EXPECT_LE(dU, 1e-10);
+  std::printf("  tree vs dense GESVD (graded to 1e-14): max |d sigma| = %.1e (vs exact %.1e), sigma_30 = %.3e vs %.3e, "
+              "||P_tree - P_dense||_F (5 vectors) = %.1e\n", dSigma, dExact, tree.singularValues()[29], sdense[29], dU);
 }
 
 TEST(PodRoute, NamesAndUnknownName) {
   EXPECT_EQ(podRouteFromName("auto"), PodRoute::Auto);
   EXPECT_EQ(podRouteFromName("tsqr"), PodRoute::Tsqr);
   EXPECT_EQ(podRouteFromName("stacked"), PodRoute::Stacked);
+  EXPECT_EQ(podRouteFromName("tree"), PodRoute::Tree);
+  // auto: stacked below kTreeRouteFromRanks ranks (where the tests run), tree from there on.
+  EXPECT_EQ(stepRoute(PodRoute::Auto, 1), PodRoute::Stacked);
+  EXPECT_EQ(stepRoute(PodRoute::Auto, kTreeRouteFromRanks - 1), PodRoute::Stacked);
+  EXPECT_EQ(stepRoute(PodRoute::Auto, kTreeRouteFromRanks), PodRoute::Tree);
+  EXPECT_EQ(stepRoute(PodRoute::Replicated, 64), PodRoute::Replicated);
   EXPECT_EQ(podRouteFromName("replicated"), PodRoute::Replicated);
   try {
     podRouteFromName("anasazi");
     FAIL() << "an unknown route was accepted";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("'anasazi' is not one of 'auto', 'tsqr', 'stacked', 'replicated'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'anasazi' is not one of 'auto', 'tsqr', 'stacked', 'tree', 'replicated'"), std::string::npos) << e.what();
   }
 }
 

@@ -2,7 +2,10 @@
 
 #include <Teuchos_TimeMonitor.hpp>
 
+#include <optional>
+
 #include "gphr/core/ParameterValidation.hpp"
+#include "gphr/core/ThreadTimers.hpp"
 
 namespace gphr {
 
@@ -18,7 +21,8 @@ DenseModelIntegrator::DenseModelIntegrator(DenseHamiltonian& model, Teuchos::Par
               newtonOptionsFrom(params_)) {}
 
 RunStats DenseModelIntegrator::run(DenseVector& z, double dt, long steps, const StepObserver<DenseVector>& observer) {
-  Teuchos::TimeMonitor tm(*Teuchos::TimeMonitor::getNewCounter("gphr: dense model time stepping"));
+  std::optional<Teuchos::TimeMonitor> tm;  // not on a query worker thread (ThreadTimers.hpp)
+  if (processTimersOn()) tm.emplace(*Teuchos::TimeMonitor::getNewCounter("gphr: dense model time stepping"));
   return integrate(scheme_, backend_, z, dt, steps, observer, scheme_.options().predictorOrder);
 }
 

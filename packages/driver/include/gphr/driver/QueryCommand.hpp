@@ -7,8 +7,9 @@
 
 namespace gphr {
 
-/// `gphr query`: the model file's models at the parameters of `queriesPath`, results in `outputDir`.
+/// `gphr query`: the model file's models at the parameters of `queriesPath`, results in `outputDir`;
+/// each rank's queries on `threads` threads (0: defaultQueryThreads, QueryThreads.hpp).
 int runQuery(const std::string& modelPath, const std::string& queriesPath, const std::string& outputDir,
-             const RCP<const Comm>& comm);
+             const RCP<const Comm>& comm, int threads = 0);
 
 }  // namespace gphr

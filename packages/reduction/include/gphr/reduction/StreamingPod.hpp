@@ -7,7 +7,7 @@
 /// With every column in one block it is the exact thin SVD; truncating to maxRank between blocks
 /// is the incremental SVD of libROM / Brand 2002 (error bounded by the discarded sigma's).
 /// Steps take blockColumns columns each, on any rank count, so the truncations and the result are
-/// the same on 1, 2 or 3 ranks up to round-off. Each step takes one of three routes, all exact:
+/// the same on 1, 2 or 3 ranks up to round-off. Each step takes one of four routes, all exact:
 ///   tsqr:       TSQR needs (carried + new columns) <= rows on every rank;
 ///   replicated: [U diag(sigma), X] gathered on every rank, one LAPACK SVD there (d x columns
 ///               numbers per rank, and every rank does the whole SVD: it takes any rank count but
@@ -16,11 +16,16 @@
 ///               factors stacked on every rank and one GESDD of the stack, each rank's rows of U
 ///               by ORMQR; its local work divides with the ranks, it takes any rank count, and
 ///               where ranks hold fewer rows than columns it costs about what `replicated` costs.
-/// PodRoute::Auto (the default) takes the stacked route for every step: at the paper's NLS size
-/// (4096 rows, steps of up to 1120 columns) it is the fastest on 1, 2 and 4 ranks (doc/design.md,
-/// 'Symplectic bases and the streaming POD'; Tpetra's TSQR was 3-5x slower there). Tsqr refuses a step
-/// that does not fit (InputError naming its columns and the rows per rank); Stacked and Replicated
-/// take that route for every step.
+///   tree:       the stacked route with the R factors reduced over a binary tree of ranks
+///               (TreeTsqr.hpp) instead of stacked on every rank: one 2c x c QR per level, one
+///               c x c SVD on rank 0; its replicated work grows with log2 p, not with p.
+/// PodRoute::Auto (the default) takes the stacked route on up to 7 ranks (at the paper's NLS size,
+/// 4096 rows and steps of up to 1120 columns, it is the fastest measured on 1, 2 and 4 ranks, and
+/// the tree's small factorizations cost the same as its up to 4 ranks) and the tree route from 8
+/// ranks on, where they are measured 1.6x faster and more with p (doc/design.md, 'Symplectic bases
+/// and the streaming POD').
+/// Tsqr refuses a step that does not fit (InputError naming its columns and the rows per rank);
+/// the other routes take every step.
 #include <string>
 #include <vector>
 
@@ -28,10 +33,16 @@
 
 namespace gphr {
 
-/// Route of a streaming POD step (the file's description): auto (stacked), tsqr, stacked or replicated.
-enum class PodRoute { Auto, Tsqr, Stacked, Replicated };
-/// "auto" | "tsqr" | "stacked" | "replicated" (the config's podRoute values); anything else: InputError.
+class HouseholderQr;
+
+/// Route of a streaming POD step (the file's description): auto, tsqr, stacked, tree or replicated.
+enum class PodRoute { Auto, Tsqr, Stacked, Tree, Replicated };
+/// "auto" | "tsqr" | "stacked" | "tree" | "replicated" (the config's podRoute values); anything else: InputError.
 PodRoute podRouteFromName(const std::string& name);
+/// The rank count from which auto takes the tree route.
+constexpr int kTreeRouteFromRanks = 8;
+/// The route a step takes on `ranks` ranks: `route`, or for Auto stacked below kTreeRouteFromRanks, else tree.
+PodRoute stepRoute(PodRoute route, int ranks);
 
 /// A streaming POD (incremental thin SVD) of a tall distributed matrix given block by block.
 class StreamingPod {
@@ -54,18 +65,21 @@ class StreamingPod {
   int tsqrSteps() const { return tsqrSteps_; }              ///< steps taken by each route so far
   int replicatedSteps() const { return replicatedSteps_; }  ///< Steps taken by the replicated route.
   int stackedSteps() const { return stackedSteps_; }  ///< Steps taken by the stacked route.
+  int treeSteps() const { return treeSteps_; }        ///< Steps taken by the tree route.
 
  private:
   void step(const MultiVector& X, size_t c0, size_t c1);
   void replicatedStep(const MultiVector& Y);
   void stackedStep(const MultiVector& Y);
+  void treeStep(const MultiVector& Y);
+  void setLeftVectors(const HouseholderQr& leaf, const std::vector<double>& C, int keep);
   int truncate(const std::vector<double>& S, int nc);
   RCP<const Map> map_;
   int maxRank_, blockColumns_;
   double rankTolerance_;
   PodRoute route_;
   int cap_;
-  int tsqrSteps_ = 0, replicatedSteps_ = 0, stackedSteps_ = 0;
+  int tsqrSteps_ = 0, replicatedSteps_ = 0, stackedSteps_ = 0, treeSteps_ = 0;
   RCP<MultiVector> U_;
   std::vector<double> sigma_;
   double energy_ = 0.0;

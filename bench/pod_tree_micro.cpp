@@ -1,0 +1,146 @@
+// Micro-benchmark of the streaming POD's per-step work beyond each rank's own rows: the stacked
+// route (every rank takes the GESDD of the p c x c stack of R factors) against the tree route (a
+// binary tree of 2c x c QRs, one c x c GESDD on rank 0, the tree's Q applied back down), at the
+// rank count it is started on. Each rank holds `rowsPerRank` rows; after the first steps every
+// step has c = maxRank + block columns (carried + new). Per route: wall seconds per step (slowest
+// rank, the median of `repeats` POD runs, the routes alternating so both see the same load; the
+// average over all steps, the first ones narrower) and the flop model of a full step's small
+// factorizations that every rank waits for (a c x c GESDD with vectors counted as 8 c^3):
+//   stacked: GESDD of pc x c ~ (8 + 4 (p - 1)) c^3 (the c x c one plus the QR of the taller stack
+//   and its Q applied); tree: ~ (8 + 22/3 ceil(log2 p)) c^3 (per level a 2c x c GEQRF, 10/3 c^3,
+//   and its ORMQR on the way down, 4 c^3).
+// The local GEQRF/ORMQR of each rank's rows (rowsPerRank c^2) is the same on both routes.
+// With `kernels` it times those small factorizations alone on one core instead, for any p (the
+// critical path of one step beyond the local rows; the steadier figure on a loaded machine):
+// stacked: GESDD of the p c x c stack of triangles; tree: ceil(log2 p) x (GEQRF of two stacked
+// triangles, its R, ORMQR of a 2c x c block) and a c x c GESDD. CPU seconds, median of REPEATS.
+// usage: mpirun -np P pod_tree_micro [ROWS_PER_RANK=4096] [MAXRANK=192] [BLOCK=64] [STEPS=6] [REPEATS=3]
+//        pod_tree_micro kernels [C=256] [REPEATS=5]
+#include <Teuchos_CommHelpers.hpp>
+#include <Tpetra_Core.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <string>
+#include <ctime>
+#include <vector>
+
+#include "gphr/reduction/DenseSvd.hpp"
+#include "gphr/reduction/StreamingPod.hpp"
+#include "gphr/reduction/TreeTsqr.hpp"
+
+namespace {
+using namespace gphr;
+
+// Random snapshots with a decaying spectrum (column j scaled by 0.97^j), the same on any rank count.
+MultiVector snapshots(const RCP<const Map>& map, int columns) {
+  MultiVector X(map, columns);
+  auto x = X.getLocalViewHost(Tpetra::Access::OverwriteAll);
+  for (LO l = 0; l < static_cast<LO>(map->getNodeNumElements()); ++l) {
+    std::mt19937 gen(static_cast<unsigned>(map->getGlobalElement(l)));
+    std::normal_distribution<double> N(0.0, 1.0);
+    for (int j = 0; j < columns; ++j) x(l, j) = N(gen) * std::pow(0.97, j);
+  }
+  return X;
+}
+
+// Wall seconds of one POD over X by `route`, the slowest rank's.
+double podSeconds(const MultiVector& X, int maxRank, int block, PodRoute route) {
+  const auto& comm = *X.getMap()->getComm();
+  comm.barrier();
+  const auto t0 = std::chrono::steady_clock::now();
+  StreamingPod pod(X.getMap(), maxRank, block, 0.0, route);
+  pod.add(X);
+  const double mine = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  double slowest = 0.0;
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, mine, Teuchos::outArg(slowest));
+  return slowest;
+}
+double cpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// p random c x c upper triangles stacked (pc x c, column-major).
+std::vector<double> triangles(int p, int c, std::mt19937& gen) {
+  std::normal_distribution<double> N(0.0, 1.0);
+  std::vector<double> a(static_cast<size_t>(p) * c * c, 0.0);
+  for (int q = 0; q < p; ++q)
+    for (int j = 0; j < c; ++j)
+      for (int i = 0; i <= j; ++i) a[q * c + i + static_cast<size_t>(p) * c * j] = N(gen);
+  return a;
+}
+
+template <class Fn>
+double medianCpu(int repeats, Fn&& fn) {
+  std::vector<double> t;
+  for (int r = 0; r < repeats; ++r) {
+    const double t0 = cpuSeconds();
+    fn();
+    t.push_back(cpuSeconds() - t0);
+  }
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+
+void kernels(int c, int repeats) {
+  std::mt19937 gen(3);
+  std::printf("one step's small factorizations on one core, c = %d (CPU s, median of %d):\n", c, repeats);
+  for (int p : {1, 2, 3, 4, 8, 16, 32, 64}) {
+    const int K = p * c, levels = static_cast<int>(std::ceil(std::log2(p)));
+    std::vector<double> S(c), W(static_cast<size_t>(K) * c), Zt(static_cast<size_t>(c) * c);
+    const std::vector<double> stack = triangles(p, c, gen), pair = triangles(2, c, gen), root = triangles(1, c, gen);
+    const double stacked = medianCpu(repeats, [&] {
+      std::vector<double> a = stack;
+      denseThinSvd(K, c, a.data(), K, S.data(), W.data(), K, Zt.data(), c, true, "bench");
+    });
+    const double tree = medianCpu(repeats, [&] {
+      std::vector<double> C(static_cast<size_t>(c) * c, 1.0);
+      for (int l = 0; l < levels; ++l) {
+        const HouseholderQr qr(2 * c, c, pair);
+        const std::vector<double> R = qr.r();
+        C = qr.applyQ(C, c);
+      }
+      std::vector<double> a = root;
+      denseThinSvd(c, c, a.data(), c, S.data(), W.data(), c, Zt.data(), c, true, "bench");
+    });
+    std::printf("  p = %2d: stacked %.4f s, tree %.4f s, stacked/tree %.2f\n", p, stacked, tree, stacked / tree);
+  }
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "kernels") {
+    kernels(argc > 2 ? std::atoi(argv[2]) : 256, argc > 3 ? std::atoi(argv[3]) : 5);
+    return 0;
+  }
+  Tpetra::ScopeGuard scope(&argc, &argv);
+  const auto comm = Tpetra::getDefaultComm();
+  const int rowsPerRank = argc > 1 ? std::atoi(argv[1]) : 4096, maxRank = argc > 2 ? std::atoi(argv[2]) : 192;
+  const int block = argc > 3 ? std::atoi(argv[3]) : 64, steps = argc > 4 ? std::atoi(argv[4]) : 6;
+  const int repeats = argc > 5 ? std::atoi(argv[5]) : 3, p = comm->getSize();
+  const auto map = rcp(new Map(static_cast<GO>(rowsPerRank) * p, 0, comm));
+  // maxRank / block steps fill the carried rank; `steps` more run at c = maxRank + block.
+  const int fill = (maxRank + block - 1) / block;
+  const MultiVector X = snapshots(map, (fill + steps) * block);
+  std::vector<double> stacked, tree;
+  for (int r = 0; r < repeats; ++r) {
+    stacked.push_back(podSeconds(X, maxRank, block, PodRoute::Stacked));
+    tree.push_back(podSeconds(X, maxRank, block, PodRoute::Tree));
+  }
+  for (auto* t : {&stacked, &tree}) std::sort(t->begin(), t->end());
+  const double c = maxRank + block, c3 = c * c * c, levels = std::ceil(std::log2(p));
+  const double perStep = 1.0 / (fill + steps);
+  if (comm->getRank() == 0)
+    std::printf("p = %d, %d rows per rank, c = %.0f: average step stacked %.4f s, tree %.4f s (stacked/tree %.2f); "
+                "flop model of the small factorizations: stacked %.2e, tree %.2e (%.2f)\n",
+                p, rowsPerRank, c, stacked[repeats / 2] * perStep, tree[repeats / 2] * perStep,
+                stacked[repeats / 2] / tree[repeats / 2], (8.0 + 4.0 * (p - 1)) * c3,
+                (8.0 + 22.0 / 3.0 * levels) * c3, (8.0 + 4.0 * (p - 1)) / (8.0 + 22.0 / 3.0 * levels));
+  return 0;
+}
