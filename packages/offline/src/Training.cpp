@@ -1,6 +1,7 @@
 #include "gphr/offline/Training.hpp"
 
 #include <Teuchos_Time.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
@@ -58,6 +59,7 @@ TrainingOptions trainingOptionsFrom(const Teuchos::ParameterList& cfg, const Par
   o.steps = wholeSteps(time.get<double>("T"), o.dt);
   o.snapshotEvery = tr.get<int>("snapshotEvery");
   o.integrator = cfg.sublist("integrator");
+  if (tr.isParameter("groupSize")) o.groupSize = tr.get<int>("groupSize");
   return o;
 }
 
@@ -111,57 +113,118 @@ RCP<MultiVector> integrate(const Scene& scene, const RCP<const Comm>& comm, cons
 
 }  // namespace
 
+int trainingGroupSize(long fullDim, int ranks) {
+  const long worth = (fullDim + kTrainingRowsPerRank - 1) / kTrainingRowsPerRank;  // ranks one system may use
+  return static_cast<int>(std::clamp<long>(worth, 1, ranks));
+}
+
+namespace {
+
+// Which parameters the cache holds complete for `key`; a half-written one is removed (redone).
+std::vector<char> completeInCache(const ArtifactsCache& cache, size_t count, const std::string& key) {
+  std::vector<char> done(count, 0);
+  const auto f = cache.open();
+  for (size_t j = 0; j < count; ++j) {
+    done[j] = ArtifactsCache::holds(*f, datasetName(j), key);
+    if (!done[j]) f->remove(datasetName(j));
+  }
+  return done;
+}
+
+void storeInCache(const ArtifactsCache& cache, size_t j, const MultiVector& snaps, const PhaseSpace& ps,
+                  const std::vector<double>& mu, const std::string& key) {
+  // Written when the parameter has finished, the file closed between parameters: a kill during
+  // the next one leaves this one intact.
+  const auto f = cache.open();
+  f->writeStates(datasetName(j), snaps, ps);
+  f->setAttribute(datasetName(j), "parameters", mu);
+  ArtifactsCache::seal(*f, datasetName(j), key);
+}
+
+std::string groupFile(const ArtifactsCache& cache, int group) { return cache.path() + ".group" + std::to_string(group); }
+
+// Rank groups (TrainingOptions::groupSize): group g integrates parameters g, g + groups, ... on its
+// own ranks into a file of its own (each its own parallel HDF5 file: two groups cannot share one
+// writer), then every rank copies them into the cache in order, one parameter at a time.
+void trainInGroups(const Scene& scene, const RCP<const Comm>& comm, const TrainingOptions& o, const ArtifactsCache& cache,
+                   const std::string& key, const std::vector<char>& done, int size, const PhaseSpace& ps) {
+  const int groups = comm->getSize() / size, group = std::min(comm->getRank() / size, groups - 1);
+  const RCP<const Comm> sub = comm->split(group, comm->getRank());
+  Progress progress(o.progress && comm->getRank() == 0);
+  {
+    Hdf5File f(groupFile(cache, group), sub, Hdf5File::Mode::Create);
+    f.createGroup("/training");
+    size_t computed = 0;
+    for (size_t j = group; j < o.parameters.size(); j += groups) {
+      if (done[j]) continue;
+      const auto inst = scene.instantiate(sub, o.parameters[j], true);
+      f.writeStates(datasetName(j), *integrate(scene, sub, o, o.parameters[j]), inst.system->space());
+      progress.done(j, o.parameters.size(), ++computed, o.parameters[j], false);  // group 0's, on rank 0
+    }
+  }
+  comm->barrier();
+  for (size_t j = 0; j < o.parameters.size(); ++j) {
+    if (done[j]) continue;
+    RCP<const MultiVector> snaps;
+    {
+      Hdf5File f(groupFile(cache, static_cast<int>(j % groups)), comm, Hdf5File::Mode::ReadOnly);
+      snaps = f.readStates(datasetName(j), ps);
+    }
+    storeInCache(cache, j, *snaps, ps, o.parameters[j], key);
+  }
+  comm->barrier();
+  if (comm->getRank() == 0)
+    for (int g = 0; g < groups; ++g) std::remove(groupFile(cache, g).c_str());
+  comm->barrier();  // gone for every rank when training returns
+  if (o.progress && comm->getRank() == 0)
+    std::fprintf(stderr, "[gphr] train: %d groups of %d rank(s) integrated side by side\n", groups, size);
+}
+
+}  // namespace
+
 TrainingResult runTraining(const Scene& scene, const RCP<const Comm>& comm, const TrainingOptions& o,
                            const ArtifactsCache* cache, const std::string& key) {
   GPHR_REQUIRE(!o.parameters.empty(), InputError, "the training set is empty; allowed: at least one parameter");
+  GPHR_REQUIRE(o.groupSize >= 0, InputError, "training group size ", o.groupSize, "; allowed: 0 (automatic) or >= 1");
   Teuchos::Time clock("train");
   clock.start();
   TrainingResult res;
   res.parameters = o.parameters;
   const auto probe = scene.instantiate(comm, o.parameters[0], true);
   const PhaseSpace& ps = probe.system->space();
-  if (cache) startCache(*cache, key);
-  Progress progress(o.progress && comm->getRank() == 0);
-  std::vector<RCP<const MultiVector>> held;  // without a cache
-  std::vector<size_t> columns;
-  size_t computed = 0;
-  for (size_t j = 0; j < o.parameters.size(); ++j) {
-    const auto& mu = o.parameters[j];
-    if (cache) {
-      auto f = cache->open();
-      if (ArtifactsCache::holds(*f, datasetName(j), key)) {
-        columns.push_back(static_cast<size_t>(o.steps / o.snapshotEvery + 1));
-        res.reused++;
-        progress.done(j, o.parameters.size(), computed, mu, true);
-        continue;
-      }
-      f->remove(datasetName(j));  // half-written by a killed run: redo
+  const size_t count = o.parameters.size(), columns = static_cast<size_t>(o.steps / o.snapshotEvery + 1);
+  if (!cache) {  // in memory, on all ranks together
+    std::vector<RCP<const MultiVector>> held;
+    Progress progress(o.progress && comm->getRank() == 0);
+    for (size_t j = 0; j < count; ++j) {
+      held.push_back(integrate(scene, comm, o, o.parameters[j]));
+      progress.done(j, count, j + 1, o.parameters[j], false);
     }
-    auto snaps = integrate(scene, comm, o, mu);
-    columns.push_back(snaps->getNumVectors());
-    if (cache) {
-      // Written when the parameter has finished, the file closed between parameters: a kill
-      // during the next one leaves this one intact.
-      auto f = cache->open();
-      f->writeStates(datasetName(j), *snaps, ps);
-      f->setAttribute(datasetName(j), "parameters", mu);
-      ArtifactsCache::seal(*f, datasetName(j), key);
-    } else {
-      held.push_back(snaps);
-    }
-    ++computed;
-    progress.done(j, o.parameters.size(), computed, mu, false);
-  }
-  if (cache) {
-    const std::string path = cache->path();
-    const RCP<const HamiltonianSystem> system = probe.system;  // keeps the phase space of the blocks
-    res.snapshots = SnapshotSet(columns, [path, comm, system](size_t j) -> RCP<const MultiVector> {
-      Hdf5File f(path, comm, Hdf5File::Mode::ReadOnly);
-      return f.readStates(datasetName(j), system->space());
-    });
-  } else {
     res.snapshots = SnapshotSet(held);
+    res.seconds = clock.stop();
+    return res;
   }
+  startCache(*cache, key);
+  const std::vector<char> done = completeInCache(*cache, count, key);
+  res.reused = std::count(done.begin(), done.end(), 1);
+  const int size = o.groupSize > 0 ? std::min(o.groupSize, comm->getSize())
+                                   : trainingGroupSize(ps.fullDim(), comm->getSize());
+  if (size < comm->getSize()) {
+    trainInGroups(scene, comm, o, *cache, key, done, size, ps);
+  } else {
+    Progress progress(o.progress && comm->getRank() == 0);
+    size_t computed = 0;
+    for (size_t j = 0; j < count; ++j) {
+      if (!done[j]) storeInCache(*cache, j, *integrate(scene, comm, o, o.parameters[j]), ps, o.parameters[j], key);
+      progress.done(j, count, done[j] ? computed : ++computed, o.parameters[j], done[j]);
+    }
+  }
+  const std::string path = cache->path();
+  const RCP<const HamiltonianSystem> system = probe.system;  // keeps the phase space of the blocks
+  res.snapshots = SnapshotSet(std::vector<size_t>(count, columns), [path, comm, system](size_t j) -> RCP<const MultiVector> {
+    Hdf5File f(path, comm, Hdf5File::Mode::ReadOnly);
+    return f.readStates(datasetName(j), system->space());
+  });
   res.seconds = clock.stop();
   return res;
 }

@@ -22,7 +22,16 @@ struct TrainingOptions {
   long snapshotEvery = 1;                       ///< keep every snapshotEvery-th state (and state 0)
   Teuchos::ParameterList integrator{"integrator"};  ///< the integrator section (scheme, Newton)
   bool progress = true;                         ///< one progress line per parameter on rank 0 (stderr)
+  /// Ranks per training group: the communicator splits into groups of this many consecutive ranks
+  /// (the last may be larger), each integrating its own parameters (j = group, group + groups, ...)
+  /// side by side; needs the artifacts cache (the snapshots meet there). 0: trainingGroupSize().
+  int groupSize = 0;
 };
+
+/// The group size worth taking for a state of fullDim rows on `ranks` ranks: groups of at least
+/// kTrainingRowsPerRank rows per rank (a smaller system is mostly communication), at most all ranks.
+int trainingGroupSize(long fullDim, int ranks);
+constexpr long kTrainingRowsPerRank = 4096;  ///< The fewest state rows per rank worth splitting a system over.
 
 /// The training options of a `gphr` configuration's sections time (T, dt), training (values or
 /// points, snapshotEvery) and integrator, the parameters checked against `box`.
@@ -46,7 +55,9 @@ struct TrainingResult {
 /// Integrates the scene at every training parameter. With `cache`, each parameter's snapshots are
 /// written as it finishes and released: the result streams them from the file. A parameter whose
 /// dataset is complete for `key` is not integrated again, one without its mark (killed
-/// mid-write) is redone, and a cache trained with another key is trained again. Collective over `comm`.
+/// mid-write) is redone, and a cache trained with another key is trained again. With a cache the
+/// ranks train in groups (TrainingOptions::groupSize); each group writes its parameters to a file
+/// of its own beside the cache, and all ranks then copy them into it. Collective over `comm`.
 TrainingResult runTraining(const Scene& scene, const RCP<const Comm>& comm, const TrainingOptions& options,
                            const ArtifactsCache* cache = nullptr, const std::string& key = "");
 
