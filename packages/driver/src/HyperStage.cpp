@@ -94,6 +94,7 @@ void runGpDeim(const RunContext& ctx, const FomResult& fom, RomStages& st, const
         .set(Metric::DeimPodStepsTsqr, static_cast<long>(db.basis.tsqrSteps))  // 0 when cached or randomized
         .set(Metric::DeimPodStepsStacked, static_cast<long>(db.basis.stackedSteps))
         .set(Metric::DeimPodStepsReplicated, static_cast<long>(db.basis.replicatedSteps))
+        .set(Metric::DeimPodStepsTree, static_cast<long>(db.basis.treeSteps))
         .set(Metric::TDeimBasisS, db.seconds)
         .set(Metric::TDeimPairS, tPair)
         .set(Metric::TOfflineS, st.training.seconds + st.basisSeconds + db.seconds + tPair)

@@ -90,7 +90,8 @@ void setBasisKeys(const RunContext& ctx, const RomStages& st, RunMetrics& run) {
       .set(Metric::PodRoute, ctx.config.sublist("reduction").get<std::string>("podRoute"))
       .set(Metric::PodStepsTsqr, static_cast<long>(st.basis.tsqrSteps))
       .set(Metric::PodStepsReplicated, static_cast<long>(st.basis.replicatedSteps))
-      .set(Metric::PodStepsStacked, static_cast<long>(st.basis.stackedSteps));
+      .set(Metric::PodStepsStacked, static_cast<long>(st.basis.stackedSteps))
+      .set(Metric::PodStepsTree, static_cast<long>(st.basis.treeSteps));
 }
 
 }  // namespace gphr

@@ -66,6 +66,7 @@ const MetricInfo kMetrics[] = {
     {"deim_pod_steps_tsqr", Integer},
     {"deim_pod_steps_stacked", Integer},
     {"deim_pod_steps_replicated", Integer},
+    {"deim_pod_steps_tree", Integer},
     {"eqp_terms", Integer},
     {"eqp_fit_residual", Number},
     {"eqp_fit_residual_exact_rows", Number},
@@ -101,9 +102,10 @@ const MetricInfo kMetrics[] = {
     {"pod_steps_tsqr", Integer},
     {"pod_steps_replicated", Integer},
     {"pod_steps_stacked", Integer},
+    {"pod_steps_tree", Integer},
 };
 constexpr int kCount = sizeof(kMetrics) / sizeof(kMetrics[0]);
-static_assert(kCount == static_cast<int>(Metric::PodStepsStacked) + 1, "one table row per Metric");
+static_assert(kCount == static_cast<int>(Metric::PodStepsTree) + 1, "one table row per Metric");
 
 const MetricInfo& info(Metric m) { return kMetrics[static_cast<int>(m)]; }
 

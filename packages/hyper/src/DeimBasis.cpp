@@ -236,6 +236,7 @@ DeimBasis computeDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& syst
   out.energy = pod.totalEnergy();
   out.U = rcp(new MultiVector(pod.leftVectors(), Teuchos::Copy));
   out.tsqrSteps = pod.tsqrSteps(), out.stackedSteps = pod.stackedSteps(), out.replicatedSteps = pod.replicatedSteps();
+  out.treeSteps = pod.treeSteps();
   return out;
 }
 

@@ -181,6 +181,7 @@ ReducedBasis computeSymplecticBasis(const SnapshotSet& snapshots, const PhaseSpa
   out.tsqrSteps = pod.tsqrSteps();
   out.replicatedSteps = pod.replicatedSteps();
   out.stackedSteps = pod.stackedSteps();
+  out.treeSteps = pod.treeSteps();
   int k = opt.k;
   if (k <= 0) {  // smallest k whose discarded energy fraction is <= tolerance
     double captured = 0.0;

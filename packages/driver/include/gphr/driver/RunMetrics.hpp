@@ -27,7 +27,7 @@ enum class Metric : int {
   // term-weighted models: convexity and online size
   HessMinEigHr, HessMinEigRom, ConvexityLost, KernelRowsPerEvaluation, OnlineNumbersHeld,
   // the DEIM pair and basis
-  CondPtU, DeimWeightMin, DeimWeightMax, DeimSnapshots, DeimBasisCached, DeimPodStepsTsqr, DeimPodStepsStacked, DeimPodStepsReplicated,
+  CondPtU, DeimWeightMin, DeimWeightMax, DeimSnapshots, DeimBasisCached, DeimPodStepsTsqr, DeimPodStepsStacked, DeimPodStepsReplicated, DeimPodStepsTree,
   // empirical quadrature fits
   EqpTerms, EqpFitResidual, EqpFitResidualExactRows, EqpWeightMin, EqpWeightMax, EqpStop, EqpSelections, EqpCached,
   // GP-ADEIM
@@ -35,7 +35,7 @@ enum class Metric : int {
   // offline and total times
   TTrainingS, TBasisS, TBasisCpuS, TDeimBasisS, TDeimBasisComputeS, TDeimPairS, TEqpTrainingS, TEqpFitS, TEqpMeshS, TInitialBasisS, TUpdatesS, TOfflineS, THyperOfflineS, TTotalS,
   // the POD routes of the basis
-  PodRoute, PodStepsTsqr, PodStepsReplicated, PodStepsStacked,
+  PodRoute, PodStepsTsqr, PodStepsReplicated, PodStepsStacked, PodStepsTree,
 };
 
 /// The metrics one run has set (see the file's description).

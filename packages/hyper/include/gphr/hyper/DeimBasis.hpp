@@ -46,7 +46,7 @@ struct DeimBasis {
   double energy = 0.0;                 ///< ||M_J||_F^2
   /// svd exact: the streaming POD's steps by route (hyper.podRoute); all 0 for randomized
   /// @{
-  int tsqrSteps = 0, stackedSteps = 0, replicatedSteps = 0;
+  int tsqrSteps = 0, stackedSteps = 0, replicatedSteps = 0, treeSteps = 0;
   /// @}
 };
 

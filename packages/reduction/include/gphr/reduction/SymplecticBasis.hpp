@@ -39,7 +39,7 @@ struct ReducedBasis {
   std::string method;  ///< Construction used (psd | cotangent).
   /// streaming POD steps taken by each route
   /// @{
-  int tsqrSteps = 0, replicatedSteps = 0, stackedSteps = 0;
+  int tsqrSteps = 0, replicatedSteps = 0, stackedSteps = 0, treeSteps = 0;
   /// @}
 };
 
