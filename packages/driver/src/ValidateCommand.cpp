@@ -24,6 +24,7 @@
 #include "gphr/driver/ValidationReport.hpp"
 #include "gphr/io/Hdf5File.hpp"
 #include "gphr/reduction/GalerkinRom.hpp"
+#include "gphr/offline/Training.hpp"
 #include "gphr/online/Method.hpp"
 
 namespace gphr {
@@ -86,6 +87,31 @@ FomResult fullModel(const RunContext& ctx, const Scene& scene, const ReducedMode
   }
   commit.commit();
   return fom;
+}
+
+// The full models of the points whose results are not in DIR/points, over rank groups
+// (trainingGroupSize: a system worth splitting over all ranks stays on all ranks): group g runs
+// points g, g + G, ... on its own ranks into DIR/fom/<point>.h5 (one file per point, so groups
+// never share a writer); the points' evaluations then read them back on all ranks. The full
+// model's time in the report is then its time on its group's ranks.
+void fullModelsOverGroups(const RunContext& ctx, const ReducedModel& rm, const std::vector<Query>& points,
+                          const std::vector<char>& reused) {
+  const auto& d = rm.data();
+  const long fullDim = rm.scene().instantiate(ctx.comm, points.front().mu, true).system->space().fullDim();
+  const int size = trainingGroupSize(fullDim, ctx.comm->getSize()), groups = ctx.comm->getSize() / size;
+  if (groups < 2 || std::count(reused.begin(), reused.end(), 0) == 0) return;  // on all ranks, or nothing to run
+  const int group = std::min(ctx.comm->getRank() / size, groups - 1);
+  RunContext sub = ctx;
+  sub.comm = ctx.comm->split(group, ctx.comm->getRank());
+  for (size_t i = group; i < points.size(); i += groups) {
+    if (reused[i]) continue;
+    const auto inst = rm.scene().instantiate(sub.comm, points[i].mu, true);
+    bool cached = false;
+    fullModel(sub, rm.scene(), d, points[i], pointSettings(d, points[i]), inst.system->space(), cached);
+  }
+  ctx.comm->barrier();
+  if (ctx.comm->getRank() == 0)
+    std::fprintf(stderr, "[gphr] validate: full models in %d groups of %d rank(s)\n", groups, size);
 }
 
 ValidationRecord recordOf(const ModelRun& run, const Query& q, double setupSeconds, bool extrapolated) {
@@ -151,12 +177,19 @@ int runValidate(const std::string& modelPath, const std::string& testsPath, cons
   std::vector<double> fomSeconds;
   Teuchos::Time wall("validate");
   wall.start();
+  std::vector<std::vector<ValidationRecord>> stored(points.size());
+  std::vector<double> storedFom(points.size(), NAN);
+  std::vector<char> done(points.size());
+  for (size_t i = 0; i < points.size(); ++i)
+    done[i] = readPointRecords(outputDir + "/points/" + points[i].name + ".txt", resultKey(points[i], d), comm,
+                               stored[i], storedFom[i]);
+  if (!points.empty()) fullModelsOverGroups(ctx, rm, points, done);
   for (size_t i = 0; i < points.size(); ++i) {
     const auto& q = points[i];
     const std::string key = resultKey(q, d);
-    std::vector<ValidationRecord> recs;
-    double tFom = NAN;
-    bool cachedFom = false, reused = readPointRecords(outputDir + "/points/" + q.name + ".txt", key, comm, recs, tFom);
+    std::vector<ValidationRecord> recs = std::move(stored[i]);
+    double tFom = storedFom[i];
+    bool cachedFom = false, reused = done[i];
     if (!reused) {
       recs = evaluatePoint(ctx, rm, q, tFom, cachedFom);
       writePointRecords(outputDir + "/points/" + q.name + ".txt", key, recs, tFom, comm);
