@@ -99,9 +99,8 @@ void startCache(const ArtifactsCache& cache, const std::string& key) {
   f->setAttribute("/training", "config", key);
 }
 
-RCP<MultiVector> integrate(const Scene& scene, const RCP<const Comm>& comm, const TrainingOptions& o,
-                           const std::vector<double>& mu) {
-  auto inst = scene.instantiate(comm, mu, true);
+// The shifted snapshots of one training parameter's instance.
+RCP<MultiVector> integrate(const SceneInstance& inst, const TrainingOptions& o) {
   FullModelIntegrator integ(inst.system, o.integrator);
   auto snaps = rcp(new MultiVector(inst.system->map(), o.steps / o.snapshotEvery + 1));
   Vector y(*inst.y0, Teuchos::Copy);
@@ -158,7 +157,7 @@ void trainInGroups(const Scene& scene, const RCP<const Comm>& comm, const Traini
     for (size_t j = group; j < o.parameters.size(); j += groups) {
       if (done[j]) continue;
       const auto inst = scene.instantiate(sub, o.parameters[j], true);
-      f.writeStates(datasetName(j), *integrate(scene, sub, o, o.parameters[j]), inst.system->space());
+      f.writeStates(datasetName(j), *integrate(inst, o), inst.system->space());
       progress.done(j, o.parameters.size(), ++computed, o.parameters[j], false);  // group 0's, on rank 0
     }
   }
@@ -197,7 +196,7 @@ TrainingResult runTraining(const Scene& scene, const RCP<const Comm>& comm, cons
     std::vector<RCP<const MultiVector>> held;
     Progress progress(o.progress && comm->getRank() == 0);
     for (size_t j = 0; j < count; ++j) {
-      held.push_back(integrate(scene, comm, o, o.parameters[j]));
+      held.push_back(integrate(scene.instantiate(comm, o.parameters[j], true), o));
       progress.done(j, count, j + 1, o.parameters[j], false);
     }
     res.snapshots = SnapshotSet(held);
@@ -215,7 +214,8 @@ TrainingResult runTraining(const Scene& scene, const RCP<const Comm>& comm, cons
     Progress progress(o.progress && comm->getRank() == 0);
     size_t computed = 0;
     for (size_t j = 0; j < count; ++j) {
-      if (!done[j]) storeInCache(*cache, j, *integrate(scene, comm, o, o.parameters[j]), ps, o.parameters[j], key);
+      if (!done[j])
+        storeInCache(*cache, j, *integrate(scene.instantiate(comm, o.parameters[j], true), o), ps, o.parameters[j], key);
       progress.done(j, count, done[j] ? computed : ++computed, o.parameters[j], done[j]);
     }
   }

@@ -34,12 +34,6 @@ class SnapshotSet {
   bool streamed() const { return static_cast<bool>(load_); }  ///< Whether blocks are read on access.
   /// The number of states in block j, without reading it.
   size_t numColumns(size_t j) const { return columns_.at(j); }
-  /// The total number of states.
-  size_t totalColumns() const {
-    size_t n = 0;
-    for (size_t c : columns_) n += c;
-    return n;
-  }
   /// Block j: held, or read now (a streamed block lives as long as the caller keeps it).
   RCP<const MultiVector> operator[](size_t j) const { return load_ ? load_(j) : blocks_.at(j); }
 
