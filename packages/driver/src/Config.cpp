@@ -83,6 +83,10 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
   setIntParameter(hyp, "powerIterations", 1, 0, 10, "randomized: power iterations (one streamed pass each)");
   setIntParameter(hyp, "blockSnapshots", 0, 0, 100000,
                   "reduced-Jacobian snapshots per incremental POD step; 0: about maxRank columns per step");
+  setIntParameter(hyp, "chunkSnapshots", 0, 0, 100000000,
+                  "svd exact: reduced-Jacobian snapshots per chunk of the hierarchical POD (each chunk POD'd on its "
+                  "own, by the rank groups side by side, then one POD of the chunks' modes); 0: about 32 maxRank "
+                  "columns per chunk, equal chunks; a number >= the snapshots used: one chunk, the plain streaming POD");
   setChoiceParameter(hyp, "podRoute", "auto", routes, "svd exact: the incremental SVD's step route, as reduction.podRoute");
   setChoiceParameter(hyp, "deimSnapshots", "full", Teuchos::tuple<std::string>("full", "projected"),
                      "snapshots of the classic DEIM baseline (method deim): full = grad N(y) - grad N(y0) at the full "

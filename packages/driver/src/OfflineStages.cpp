@@ -42,11 +42,12 @@ ModelBuildKeys cacheKeys(const Teuchos::ParameterList& cfg) {
   k.training = trainingKey(cfg);
   k.basis = basisKey(cfg);
   // The DEIM algorithm's revision is part of the key: a basis cached by an earlier one is
-  // recomputed (2: the randomized range finder draws random signs instead of Gaussian numbers).
+  // recomputed (2: the randomized range finder draws random signs instead of Gaussian numbers;
+  // 3: the exact route's POD is hierarchical, over chunks of the snapshots).
   // hyper.deimSnapshots configures the classic DEIM baseline only: out of this basis's key.
   Teuchos::ParameterList hyper = cfg.sublist("hyper");
   hyper.remove("deimSnapshots", false);
-  k.deim = k.basis + toYaml(hyper) + "deim basis revision 2, m <= " + std::to_string(largestM(cfg));
+  k.deim = k.basis + toYaml(hyper) + "deim basis revision 3, m <= " + std::to_string(largestM(cfg));
   k.nnls = k.basis + toYaml(cfg.sublist("eqp"));
   k.refit = k.nnls + toYaml(cfg.sublist("hyper"));  // the refit's terms are GP-DEIM's
   return k;

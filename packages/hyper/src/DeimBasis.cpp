@@ -200,16 +200,32 @@ DeimBasis randomizedDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& s
 
 }  // namespace
 
-DeimBasis computeDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& systems,
-                           const SnapshotSet& states, const MultiVector& A,
-                           const DeimBasisOptions& opt) {
-  checkInputs(systems, states, opt);
+int deimMaxRank(const DeimBasisOptions& opt, GO d) {
+  return static_cast<int>(std::min<GO>(d, opt.maxRank > 0 ? opt.maxRank : kDefaultDeimRank));
+}
+
+DeimChunks deimChunks(const SnapshotSet& states, const DeimBasisOptions& opt, int r, int maxRank) {
+  GPHR_REQUIRE(opt.chunkSnapshots >= 0, InputError, "DEIM basis: chunkSnapshots = ", opt.chunkSnapshots,
+               " (allowed: 0 for automatic, or >= 1)");
+  DeimChunks c;
+  c.snapshots = usedSnapshotCount(states, opt.snapshotEvery);
+  const long target = opt.chunkSnapshots > 0
+                          ? opt.chunkSnapshots
+                          : std::max<long>(1, (static_cast<long>(kChunkColumnsPerRank) * maxRank + r - 1) / std::max(r, 1));
+  const long chunks = std::max<long>(1, (c.snapshots + target - 1) / target);
+  c.perChunk = std::max<long>(1, (c.snapshots + chunks - 1) / chunks);  // evened out: chunk sizes differ by < chunks
+  return c;
+}
+
+namespace {
+
+// The streaming POD of the reduced-Jacobian snapshots in `range`; `snapshots` gets their count.
+StreamingPod chunkPod(const std::vector<RCP<const HamiltonianSystem>>& systems, const SnapshotSet& states,
+                      const MultiVector& A, const DeimBasisOptions& opt, int maxRank, SnapshotRange range,
+                      long& snapshots) {
   const RCP<const Map> rowMap = systems[0]->nonlinearTerm().rowMap();
   const int r = static_cast<int>(A.getNumVectors());
   const LO nl = static_cast<LO>(rowMap->getNodeNumElements());
-  const GO d = static_cast<GO>(rowMap->getGlobalNumElements());
-  const int maxRank = static_cast<int>(std::min<GO>(d, opt.maxRank > 0 ? opt.maxRank : kDefaultDeimRank));
-  if (opt.svd == "randomized") return randomizedDeimBasis(systems, states, A, opt, maxRank);
   // Snapshots per POD step (the same on any rank count): a step costs O(d (rank + columns)^2), so
   // about maxRank new columns per step balances the number of steps against their size.
   const int perBlock = opt.blockSnapshots > 0 ? opt.blockSnapshots : std::max(1, (maxRank + r - 1) / r);
@@ -222,28 +238,99 @@ DeimBasis computeDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& syst
     else if (filled > 0) pod.add(*block.subView(Teuchos::Range1D(0, static_cast<size_t>(filled) * r - 1)));
     filled = 0;
   };
-  const long used = forEachJacobianSnapshot(systems, states, A, opt.snapshotEvery, jac, [&](const auto& J, long) {
+  snapshots = forEachJacobianSnapshotIn(systems, states, A, opt.snapshotEvery, range, jac, [&](const auto& J, long) {
     auto b = block.getLocalViewHost(Tpetra::Access::ReadWrite);
     for (LO i = 0; i < nl; ++i)
       for (int a = 0; a < r; ++a) b(i, static_cast<size_t>(filled) * r + a) = J[static_cast<size_t>(i) * r + a];
     if (++filled == perBlock) flush();
   });
   flush();
-  requireNonzero(used, pod.rank());
-  DeimBasis out;
-  out.singularValues = pod.singularValues();
-  out.snapshots = used;
+  return pod;
+}
+
+DeimChunkModes statisticsOf(const StreamingPod& pod, long snapshots) {
+  DeimChunkModes out;
+  out.rank = pod.rank();
   out.energy = pod.totalEnergy();
-  out.U = rcp(new MultiVector(pod.leftVectors(), Teuchos::Copy));
+  out.snapshots = snapshots;
   out.tsqrSteps = pod.tsqrSteps(), out.stackedSteps = pod.stackedSteps(), out.replicatedSteps = pod.replicatedSteps();
   out.treeSteps = pod.treeSteps();
   return out;
+}
+
+DeimBasis basisOf(const StreamingPod& pod, const DeimChunkModes& stats) {
+  requireNonzero(stats.snapshots, pod.rank());
+  DeimBasis out;
+  out.singularValues = pod.singularValues();
+  out.snapshots = stats.snapshots;
+  out.energy = stats.energy;
+  out.U = rcp(new MultiVector(pod.leftVectors(), Teuchos::Copy));
+  out.tsqrSteps = stats.tsqrSteps + pod.tsqrSteps(), out.stackedSteps = stats.stackedSteps + pod.stackedSteps();
+  out.replicatedSteps = stats.replicatedSteps + pod.replicatedSteps(), out.treeSteps = stats.treeSteps + pod.treeSteps();
+  return out;
+}
+
+void addStatistics(DeimChunkModes& sum, const DeimChunkModes& c) {
+  sum.energy += c.energy, sum.snapshots += c.snapshots;
+  sum.tsqrSteps += c.tsqrSteps, sum.stackedSteps += c.stackedSteps;
+  sum.replicatedSteps += c.replicatedSteps, sum.treeSteps += c.treeSteps;
+}
+
+}  // namespace
+
+DeimChunkModes deimChunkModes(const std::vector<RCP<const HamiltonianSystem>>& systems, const SnapshotSet& states,
+                              const MultiVector& A, const DeimBasisOptions& opt, int maxRank, SnapshotRange range) {
+  long snapshots = 0;
+  const StreamingPod pod = chunkPod(systems, states, A, opt, maxRank, range, snapshots);
+  DeimChunkModes out = statisticsOf(pod, snapshots);
+  out.modes = rcp(new MultiVector(pod.leftVectors(), Teuchos::Copy));
+  if (out.rank > 0) {
+    std::vector<double> sigma(pod.singularValues());
+    out.modes->scale(Teuchos::ArrayView<const double>(sigma));
+  }
+  return out;
+}
+
+// One step per chunk (blockColumns = maxRank >= a chunk's rank): maxRank carried + at most maxRank
+// new columns, the size of a chunk's own steps.
+DeimRootPod::DeimRootPod(RCP<const Map> rowMap, const DeimBasisOptions& opt, int maxRank)
+    : pod_(std::move(rowMap), maxRank, maxRank, -1.0, podRouteFromName(opt.podRoute)) {}
+
+void DeimRootPod::add(const MultiVector& modes, const DeimChunkModes& stats) {
+  addStatistics(sum_, stats);
+  if (stats.rank > 0) pod_.add(*modes.subView(Teuchos::Range1D(0, stats.rank - 1)));
+}
+
+DeimBasis DeimRootPod::basis() const { return basisOf(pod_, sum_); }
+
+DeimBasis computeDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& systems,
+                           const SnapshotSet& states, const MultiVector& A,
+                           const DeimBasisOptions& opt) {
+  checkInputs(systems, states, opt);
+  const RCP<const Map> rowMap = systems[0]->nonlinearTerm().rowMap();
+  const int r = static_cast<int>(A.getNumVectors());
+  const int maxRank = deimMaxRank(opt, static_cast<GO>(rowMap->getGlobalNumElements()));
+  if (opt.svd == "randomized") return randomizedDeimBasis(systems, states, A, opt, maxRank);
+  const DeimChunks chunks = deimChunks(states, opt, r, maxRank);
+  if (chunks.count() == 1) {  // one chunk: its own POD is the basis, no root
+    long snapshots = 0;
+    const StreamingPod pod = chunkPod(systems, states, A, opt, maxRank, chunks.range(0), snapshots);
+    return basisOf(pod, statisticsOf(pod, snapshots));
+  }
+  DeimRootPod root(rowMap, opt, maxRank);
+  const SnapshotSet blocks = states.keepingLastBlock();  // consecutive chunks share blocks: read each once
+  for (int q = 0; q < chunks.count(); ++q) {
+    const DeimChunkModes c = deimChunkModes(systems, blocks, A, opt, maxRank, chunks.range(q));
+    root.add(*c.modes, c);
+  }
+  return root.basis();
 }
 
 DeimBasisOptions deimBasisOptionsFrom(const Teuchos::ParameterList& hyp, int largestM) {
   DeimBasisOptions o;
   o.snapshotEvery = hyp.get<int>("snapshotEvery");
   o.blockSnapshots = hyp.get<int>("blockSnapshots");
+  o.chunkSnapshots = hyp.get<int>("chunkSnapshots");
   o.svd = hyp.get<std::string>("svd");
   o.oversampling = hyp.get<int>("oversampling");
   o.powerIterations = hyp.get<int>("powerIterations");

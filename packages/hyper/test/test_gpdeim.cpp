@@ -404,6 +404,61 @@ TEST(GpDeim, RandomizedQrProjectionResolvesBelowTheGramFloor) {
   EXPECT_GT(exact.singularValues[gram.singularValues.size()], 1e-10 * s1);
 }
 
+int podSteps(const DeimBasis& b) { return b.tsqrSteps + b.stackedSteps + b.replicatedSteps + b.treeSteps; }
+
+// M_J's SVD for the hierarchical-POD tests: maxRank = d = 64 and all snapshots in one chunk.
+DeimBasis svdOfSnapshots(const TrainedBasis& t, DeimBasisOptions& opt) {
+  opt.maxRank = 64;
+  opt.chunkSnapshots = 100000;
+  return computeDeimBasis({t.tr.system}, {t.snaps}, *t.basis.A, opt);
+}
+
+TEST(GpDeim, HierarchicalPodWithoutTruncationIsTheSvd) {
+  // maxRank = d: no chunk and no root truncates beyond the numerical rank, so the hierarchical POD
+  // (11 chunks of 6 snapshots, then the root) and one streaming POD of all snapshots (one chunk)
+  // both give M_J's singular values; a backward-stable SVD per step keeps them to a few eps
+  // sigma_1 per step (~20 steps here): 1e-12 sigma_1 is a margin of ~20x over that.
+  const TrainedBasis t = trainedBasis(Nls1d(64, 5.0), 60, 4);
+  DeimBasisOptions opt;
+  const auto plain = svdOfSnapshots(t, opt);
+  opt.chunkSnapshots = 6;
+  const auto hier = computeDeimBasis({t.tr.system}, {t.snaps}, *t.basis.A, opt);
+  const double s1 = plain.singularValues[0];
+  size_t resolved = 0;  // above the chunks' own rank floor (their columns x eps x their sigma_1)
+  while (resolved < plain.singularValues.size() && plain.singularValues[resolved] > 1e-10 * s1) ++resolved;
+  ASSERT_GE(hier.singularValues.size(), resolved);
+  ASSERT_GT(resolved, 20u);
+  for (size_t j = 0; j < resolved; ++j) EXPECT_NEAR(hier.singularValues[j], plain.singularValues[j], 1e-12 * s1) << j;
+  EXPECT_NEAR(hier.energy, plain.energy, 1e-12 * plain.energy);
+  EXPECT_EQ(hier.snapshots, plain.snapshots);
+}
+
+TEST(GpDeim, HierarchicalPodBoundedByItsTruncations) {
+  // With maxRank = 12 < rank(M_J) every step may drop singular directions. A step's input
+  // [Z, X] has Z Z^T <= (the columns it stands for) (...)^T, so each dropped sigma^2 is at most
+  // sigma_13(M_J)^2, and the Gram matrices differ by at most (steps) sigma_13^2 in the 2-norm
+  // (HAPOD, Himpe, Leibner & Rave 2018, Thm. 3.1); by Weyl, |sigma_j^2 - sigma_hat_j^2| is
+  // bounded by the same. Checked for the plain streaming POD (one chunk) and the hierarchical one.
+  const TrainedBasis t = trainedBasis(Nls1d(64, 5.0), 60, 4);
+  DeimBasisOptions opt;
+  const auto exact = svdOfSnapshots(t, opt);
+  ASSERT_GT(exact.singularValues.size(), 13u);
+  const double s13 = exact.singularValues[12], s1 = exact.singularValues[0];
+  opt.maxRank = 12;
+  for (int chunk : {100000, 6}) {
+    opt.chunkSnapshots = chunk;
+    const auto b = computeDeimBasis({t.tr.system}, {t.snaps}, *t.basis.A, opt);
+    ASSERT_EQ(b.singularValues.size(), 12u);
+    const double bound = podSteps(b) * s13 * s13 + 1e-12 * s1 * s1;  // + the round-off of the steps
+    for (size_t j = 0; j < 12; ++j) {
+      const double se = exact.singularValues[j], sh = b.singularValues[j];
+      EXPECT_LE(std::abs(se * se - sh * sh), bound) << "chunkSnapshots " << chunk << ", j = " << j;
+      // Z Z^T <= M_J M_J^T after every truncation: no sigma grows (to the steps' round-off).
+      EXPECT_LE(sh, se + 1e-13 * s1) << "a truncated POD cannot exceed M_J's singular values";
+    }
+  }
+}
+
 TEST(GpDeim, DuplicatedSnapshotsGiveTheSameDeimPair) {
   const auto [tr, snaps, basis] = trainedBasis(Nls1d(32), 40, 3);
   DeimBasisOptions dopt;

@@ -1,10 +1,13 @@
 #include "gphr/offline/DeimBasisStage.hpp"
 
+#include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_Time.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/core/RankGroups.hpp"
 
 namespace gphr {
 
@@ -31,6 +34,81 @@ void writeDeimBasis(Hdf5File& f, const std::string& name, const std::string& key
   ArtifactsCache::seal(f, name, key);
 }
 
+// Per chunk, what the root needs besides its modes: rank, energy, snapshots, steps by route.
+constexpr int kChunkFields = 7;
+void putStatistics(const DeimChunkModes& c, double* out) {
+  const double f[kChunkFields] = {double(c.rank), c.energy, double(c.snapshots), double(c.tsqrSteps),
+                                  double(c.stackedSteps), double(c.replicatedSteps), double(c.treeSteps)};
+  std::copy_n(f, kChunkFields, out);
+}
+DeimChunkModes getStatistics(const double* f) {
+  DeimChunkModes c;
+  c.rank = int(f[0]), c.energy = f[1], c.snapshots = long(f[2]), c.tsqrSteps = int(f[3]);
+  c.stackedSteps = int(f[4]), c.replicatedSteps = int(f[5]), c.treeSteps = int(f[6]);
+  return c;
+}
+
+// The hierarchical POD (DeimChunks) over the training's rank groups, in rounds: in round t group
+// g PODs chunk t G + g on its own ranks (from its own systems, the snapshots streamed on its
+// communicator and its own copy of A); the round's modes then meet on all ranks (RankGroups::
+// toWorld: a group fills its chunk's columns, the others stay zero) and go into the root POD in
+// chunk order. A round holds G chunks' modes: the memory does not grow with the snapshots.
+// Only the chunk PODs' replicated SVDs were the stage's time that no rank count divided (the NLS
+// at the paper's size: ~2/3 of each step); G groups divide them by G.
+DeimBasis deimBasisInGroups(const Scene& scene, const TrainingResult& training, const MultiVector& A,
+                            const HamiltonianSystem& reference, const DeimBasisOptions& opt, const RankGroups& groups) {
+  const auto systems = trainingSystems(scene, groups.sub(), training);
+  const SnapshotSet states = trainingSnapshotsOn(training, groups.sub(), systems[0]->space()).keepingLastBlock();
+  const RCP<MultiVector> Ag = groups.toGroup(A, systems[0]->map());
+  const RCP<const Map> rowMap = reference.nonlinearTerm().rowMap(), groupRows = systems[0]->nonlinearTerm().rowMap();
+  const int maxRank = deimMaxRank(opt, static_cast<GO>(rowMap->getGlobalNumElements()));
+  const DeimChunks chunks = deimChunks(training.snapshots, opt, static_cast<int>(A.getNumVectors()), maxRank);
+  const int count = chunks.count(), G = groups.count();
+  DeimRootPod root(rowMap, opt, maxRank);
+  Teuchos::Time clock("chunks");
+  clock.start();
+  for (int first = 0; first < count; first += G) {
+    const int q = first + groups.group(), inRound = std::min(G, count - first);
+    DeimChunkModes mine;
+    std::vector<double> stats(static_cast<size_t>(inRound) * kChunkFields, 0.0), all(stats.size());
+    if (q < count) {
+      mine = deimChunkModes(systems, states, *Ag, opt, maxRank, chunks.range(q));
+      if (groups.leader()) putStatistics(mine, stats.data() + static_cast<size_t>(q - first) * kChunkFields);
+    }
+    Teuchos::reduceAll(*groups.world(), Teuchos::REDUCE_SUM, static_cast<int>(stats.size()), stats.data(), all.data());
+    std::vector<DeimChunkModes> round(inRound);
+    std::vector<size_t> offset(inRound + 1, 0);
+    for (int c = 0; c < inRound; ++c) {
+      round[c] = getStatistics(all.data() + static_cast<size_t>(c) * kChunkFields);
+      offset[c + 1] = offset[c] + round[c].rank;
+    }
+    MultiVector ours(groupRows, std::max<size_t>(offset[inRound], 1));  // zero but our chunk's columns
+    if (q < count)
+      for (int j = 0; j < mine.rank; ++j)
+        Tpetra::deep_copy(*ours.getVectorNonConst(offset[q - first] + j), *mine.modes->getVector(j));
+    const RCP<MultiVector> modes = groups.toWorld(ours, rowMap);
+    for (int c = 0; c < inRound; ++c)  // a chunk of rank 0 adds its statistics only
+      root.add(round[c].rank > 0 ? *modes->subView(Teuchos::Range1D(offset[c], offset[c + 1] - 1)) : *modes, round[c]);
+    if (groups.world()->getRank() == 0)
+      std::fprintf(stderr, "[gphr] deim basis: chunks %d-%d of %d POD'd by %d group(s) side by side, %.1f s\n", first + 1,
+                   first + inRound, count, G, clock.totalElapsedTime(true));
+  }
+  return root.basis();
+}
+
+// Rank groups for the DEIM basis: as the training's, when it streams from the artifacts file,
+// splits the ranks, and the exact route has more than one chunk to share.
+int deimGroupSize(const RCP<const Comm>& comm, const TrainingResult& training, const MultiVector& A,
+                  const HamiltonianSystem& reference, const DeimBasisOptions& opt) {
+  if (training.cachePath.empty() || training.groupSize <= 0 || training.groupSize >= comm->getSize() ||
+      opt.svd != "exact")
+    return 0;
+  const int maxRank = deimMaxRank(opt, static_cast<GO>(reference.nonlinearTerm().rowMap()->getGlobalNumElements()));
+  return deimChunks(training.snapshots, opt, static_cast<int>(A.getNumVectors()), maxRank).count() > 1
+             ? training.groupSize
+             : 0;
+}
+
 }  // namespace
 
 CachedDeimBasis runDeimBasisStage(const Scene& scene, const RCP<const Comm>& comm, const TrainingResult& training,
@@ -45,7 +123,9 @@ CachedDeimBasis runDeimBasisStage(const Scene& scene, const RCP<const Comm>& com
   if (cache) readDeimBasis(*cache->open(), name, fullKey, reference, out);  // closed again: the snapshots stream from it
   if (!out.cached) {
     try {
-      out.basis = computeDeimBasis(trainingSystems(scene, comm, training), training.snapshots, A, options);
+      const int groupSize = deimGroupSize(comm, training, A, reference, options);
+      out.basis = groupSize > 0 ? deimBasisInGroups(scene, training, A, reference, options, RankGroups(comm, groupSize))
+                                : computeDeimBasis(trainingSystems(scene, comm, training), training.snapshots, A, options);
     } catch (const InputError& e) {  // e.g. podRoute 'tsqr' on too few rows per rank: name the section
       throw InputError(detail::concat(section, ": ", e.what()));
     }

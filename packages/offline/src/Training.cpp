@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/core/RankGroups.hpp"
 #include "gphr/online/TimeLoop.hpp"
 #include "gphr/timeint/FullModelIntegrator.hpp"
 
@@ -147,8 +148,9 @@ std::string groupFile(const ArtifactsCache& cache, int group) { return cache.pat
 // writer), then every rank copies them into the cache in order, one parameter at a time.
 void trainInGroups(const Scene& scene, const RCP<const Comm>& comm, const TrainingOptions& o, const ArtifactsCache& cache,
                    const std::string& key, const std::vector<char>& done, int size, const PhaseSpace& ps) {
-  const int groups = comm->getSize() / size, group = std::min(comm->getRank() / size, groups - 1);
-  const RCP<const Comm> sub = comm->split(group, comm->getRank());
+  const RankGroups split(comm, size);
+  const int groups = split.count(), group = split.group();
+  const RCP<const Comm>& sub = split.sub();
   Progress progress(o.progress && comm->getRank() == 0);
   {
     Hdf5File f(groupFile(cache, group), sub, Hdf5File::Mode::Create);
@@ -208,6 +210,8 @@ TrainingResult runTraining(const Scene& scene, const RCP<const Comm>& comm, cons
   res.reused = std::count(done.begin(), done.end(), 1);
   const int size = o.groupSize > 0 ? std::min(o.groupSize, comm->getSize())
                                    : trainingGroupSize(ps.fullDim(), comm->getSize());
+  res.groupSize = size;
+  res.cachePath = cache->path();
   if (size < comm->getSize()) {
     trainInGroups(scene, comm, o, *cache, key, done, size, ps);
   } else {
@@ -227,6 +231,20 @@ TrainingResult runTraining(const Scene& scene, const RCP<const Comm>& comm, cons
   });
   res.seconds = clock.stop();
   return res;
+}
+
+SnapshotSet trainingSnapshotsOn(const TrainingResult& training, const RCP<const Comm>& comm, const PhaseSpace& space) {
+  GPHR_REQUIRE(!training.cachePath.empty(), InputError,
+               "training snapshots on a rank group: the training holds its snapshots in memory; allowed: a training "
+               "with an artifacts cache");
+  std::vector<size_t> columns;
+  for (size_t j = 0; j < training.snapshots.size(); ++j) columns.push_back(training.snapshots.numColumns(j));
+  const std::string path = training.cachePath;
+  const PhaseSpace* ps = &space;  // the caller's system keeps it alive while the set is used
+  return SnapshotSet(columns, [path, comm, ps](size_t j) -> RCP<const MultiVector> {
+    Hdf5File f(path, comm, Hdf5File::Mode::ReadOnly);
+    return f.readStates(datasetName(j), *ps);
+  });
 }
 
 std::vector<RCP<const HamiltonianSystem>> trainingSystems(const Scene& scene, const RCP<const Comm>& comm,

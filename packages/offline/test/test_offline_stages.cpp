@@ -14,7 +14,9 @@
 #include "gphr/core/Error.hpp"
 #include "gphr/models/Scene.hpp"
 #include "gphr/hyper/DeimBasis.hpp"
+#include "gphr/offline/DeimBasisStage.hpp"
 #include "gphr/offline/ModelFileBuild.hpp"
+#include "gphr/reduction/SymplecticBasis.hpp"
 #include "gphr/online/ReducedModel.hpp"
 
 namespace gphr {
@@ -148,6 +150,57 @@ TEST(Training, RankGroupsGiveTheSameSnapshots) {
   }
   EXPECT_EQ(runTraining(scene, comm, o, &grouped, "key").reused, 5);  // resumed: every parameter kept
   EXPECT_FALSE(std::filesystem::exists(dir.file("grouped.h5.group0")));  // the group files are gone
+}
+
+// The DEIM basis stage over rank groups (each chunk of the hierarchical POD on one group's ranks)
+// gives the basis all ranks together give: the chunks are the same, only the order of the sums in
+// each step's QR differs. Compared as U diag(sigma^2) U^T applied to a few vectors (blind to signs
+// and to rotations inside clusters of equal sigma): the steps' round-off is a few eps sigma_1^2
+// each (~40 steps here), so 1e-11 sigma_1^2 leaves a margin of ~20x.
+TEST(DeimBasisStage, RankGroupsGiveTheBasisAllRanksGive) {
+  auto comm = Tpetra::getDefaultComm();
+  TempDir dir;
+  const Nls1d scene(64);
+  TrainingOptions o = smallTraining();
+  o.parameters = {{0.9}, {0.95}, {1.0}, {1.05}, {1.1}};
+  o.groupSize = 1;
+  const ArtifactsCache cache(dir.file("a.h5"), comm, scene.name(), 128);
+  TrainingResult training = runTraining(scene, comm, o, &cache, "key");
+  const auto inst = scene.instantiate(comm, training.parameters[0], true);
+  BasisOptions b;
+  b.k = 4;
+  const ReducedBasis basis = computeSymplecticBasis(training.snapshots, inst.system->space(), b);
+  DeimBasisOptions d;
+  d.maxRank = 12;
+  d.chunkSnapshots = 4;  // 55 snapshots: 14 chunks, shared by the groups
+  const DeimBasis grouped = runDeimBasisStage(scene, comm, training, *basis.A, *inst.system, d).basis;
+  training.groupSize = comm->getSize();  // one group: every chunk on all ranks
+  const DeimBasis together = runDeimBasisStage(scene, comm, training, *basis.A, *inst.system, d).basis;
+  ASSERT_EQ(grouped.singularValues.size(), together.singularValues.size());
+  const double s1 = together.singularValues[0];
+  for (size_t j = 0; j < together.singularValues.size(); ++j)
+    EXPECT_NEAR(grouped.singularValues[j], together.singularValues[j], 1e-12 * s1) << j;
+  EXPECT_EQ(grouped.snapshots, 55);
+  EXPECT_NEAR(grouped.energy, together.energy, 1e-12 * together.energy);
+  auto weighted = [](const DeimBasis& e, const MultiVector& x) {  // U diag(sigma^2) U^T x
+    auto local = rcp(new Map(e.singularValues.size(), 0, x.getMap()->getComm(), Tpetra::LocallyReplicated));
+    MultiVector c(local, x.getNumVectors());
+    c.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, *e.U, x, 0.0);
+    {
+      auto v = c.getLocalViewHost(Tpetra::Access::ReadWrite);
+      for (size_t i = 0; i < e.singularValues.size(); ++i)
+        for (size_t j = 0; j < x.getNumVectors(); ++j) v(i, j) *= e.singularValues[i] * e.singularValues[i];
+    }
+    MultiVector y(x.getMap(), x.getNumVectors());
+    y.multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, *e.U, c, 0.0);
+    return y;
+  };
+  MultiVector x(together.U->getMap(), 3);
+  x.randomize();
+  const MultiVector a = weighted(together, x), g = weighted(grouped, x);
+  std::vector<double> n(3);
+  x.norm2(n);
+  EXPECT_LE(maxDifference(a, g), 1e-11 * s1 * s1 * *std::max_element(n.begin(), n.end()));
 }
 
 // The heap in use (glibc's count of allocated bytes: what this process holds, not what it maps).

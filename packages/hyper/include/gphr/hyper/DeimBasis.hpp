@@ -5,11 +5,14 @@
 /// d x 2k per kept training state, streamed into an incremental SVD (StreamingPod) or a
 /// randomized range finder, so that M_J (d x 2k x states: 5 GB at the paper's NLS sizes) is never held.
 #include <Teuchos_ParameterList.hpp>
+#include <algorithm>
 #include <string>
 #include <vector>
 
 #include "gphr/core/HamiltonianSystem.hpp"
 #include "gphr/core/SnapshotSet.hpp"
+#include "gphr/hyper/JacobianSnapshots.hpp"
+#include "gphr/reduction/StreamingPod.hpp"
 
 namespace gphr {
 
@@ -18,6 +21,9 @@ struct DeimBasisOptions {
   int maxRank = 0;        ///< singular triplets kept between blocks (>= the largest m wanted); 0: min(d, 400)
   int snapshotEvery = 1;  ///< use every N-th stored training state (the paper: 20)
   int blockSnapshots = 0; ///< reduced-Jacobian snapshots (2k columns each) per POD step; 0: ~maxRank columns
+  /// exact: reduced-Jacobian snapshots per chunk of the hierarchical POD (DeimChunks); 0: about
+  /// kChunkColumnsPerRank x maxRank columns per chunk, equal chunks.
+  int chunkSnapshots = 0;
   /// exact: the streaming POD (incremental TSQR + SVD); randomized: the range finder of HMT11
   /// (one streamed pass + powerIterations passes + one for B B^T), oversampling extra columns.
   std::string svd = "exact";
@@ -48,6 +54,59 @@ struct DeimBasis {
   /// @{
   int tsqrSteps = 0, stackedSteps = 0, replicatedSteps = 0, treeSteps = 0;
   /// @}
+};
+
+/// The exact route's chunks. Its POD is hierarchical (HAPOD: Himpe, Leibner & Rave, SIAM J. Sci.
+/// Comput. 40 (2018), the distributed two-level tree of their Sec. 3.2): the used snapshots, in
+/// order, are cut into chunks; each chunk's reduced-Jacobian snapshots go through a streaming POD
+/// of their own, truncated at maxRank, and the chunks' modes U_q diag(sigma_q), in chunk order,
+/// through one more (the root). Each truncation drops only singular values below the kept ones,
+/// and the root's error is bounded by the chunks' and its own discarded sigma's (HAPOD Thm. 3.1).
+/// Why chunks: a streaming POD step costs a replicated SVD of (maxRank + block) columns that no
+/// rank count divides (at the paper's NLS size ~0.2 s of every 0.3 s step); chunks are
+/// independent, so rank groups POD them side by side (offline/DeimBasisStage), and a root over
+/// (chunks x maxRank) columns adds about one step per two chunks. The chunks are fixed by the data
+/// (snapshot count, maxRank, 2k), not by the ranks: the basis is the same on any rank count and
+/// any group split, to round-off.
+struct DeimChunks {
+  long snapshots = 0;  ///< used snapshots in all
+  long perChunk = 1;   ///< snapshots per chunk (the last may hold fewer)
+  int count() const { return static_cast<int>((snapshots + perChunk - 1) / perChunk); }  ///< Number of chunks.
+  SnapshotRange range(int q) const { return {q * perChunk, std::min(snapshots, (q + 1) * perChunk)}; }  ///< Chunk q.
+};
+constexpr int kChunkColumnsPerRank = 32;  ///< Default chunk size: about this many times maxRank columns.
+/// The chunks of the used snapshots of `states` for 2k = r basis columns and maxRank triplets:
+/// options.chunkSnapshots per chunk, or (0) about kChunkColumnsPerRank maxRank / r, evened out.
+DeimChunks deimChunks(const SnapshotSet& states, const DeimBasisOptions& options, int r, int maxRank);
+
+/// One chunk's POD: its modes U_q diag(sigma_q) (rank columns; one zero column when rank is 0).
+struct DeimChunkModes {
+  RCP<MultiVector> modes;  ///< on the row map of G of the systems given
+  int rank = 0;            ///< triplets kept
+  double energy = 0.0;     ///< ||the chunk's snapshots||_F^2
+  long snapshots = 0;      ///< snapshots POD'd
+  int tsqrSteps = 0, stackedSteps = 0, replicatedSteps = 0, treeSteps = 0;  ///< POD steps by route
+};
+/// The POD of the reduced-Jacobian snapshots in `range` (the exact route, maxRank triplets).
+/// Collective over the systems' communicator.
+DeimChunkModes deimChunkModes(const std::vector<RCP<const HamiltonianSystem>>& systems, const SnapshotSet& states,
+                              const MultiVector& A, const DeimBasisOptions& options, int maxRank, SnapshotRange range);
+/// The largest DEIM rank the options keep for a row map of d rows (options.maxRank, or the default, at most d).
+int deimMaxRank(const DeimBasisOptions& options, GO d);
+
+/// The root of the hierarchical POD: a streaming POD of the chunks' modes U_q diag(sigma_q), one
+/// step per chunk, added in chunk order (so that it holds one chunk's modes at a time besides its
+/// own maxRank triplets); the chunks' statistics are summed into the basis. Collective.
+class DeimRootPod {
+ public:
+  DeimRootPod(RCP<const Map> rowMap, const DeimBasisOptions& options, int maxRank);
+  /// Chunk `stats`'s modes: the leading stats.rank columns of `modes` (on the row map).
+  void add(const MultiVector& modes, const DeimChunkModes& stats);
+  DeimBasis basis() const;  ///< The DEIM basis of the chunks added so far.
+
+ private:
+  StreamingPod pod_;
+  DeimChunkModes sum_;
 };
 
 /// systems[j]: the (shifted) system at training parameter j; states[j]: its stored states in the

@@ -5,7 +5,9 @@
 /// and the row kernel of G at y0_j + A z on this rank's own rows of G. Both offline rules that
 /// choose terms read their snapshots here: the DEIM basis (rows of J_G A, eq:snaps_JG) and the
 /// empirical quadrature (the same rows, read as each term's reduced gradient, and G_e - G_e(y0)).
+#include <limits>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "gphr/core/Error.hpp"
@@ -15,18 +17,38 @@
 
 namespace gphr {
 
+/// The used snapshots s in [first, last) (numbered over all systems in order, every N-th state of
+/// each block: see forEachJacobianSnapshot).
+struct SnapshotRange {
+  long first = 0;                                   ///< the first used snapshot
+  long last = std::numeric_limits<long>::max();     ///< past the last one
+};
+
+/// The number of snapshots forEachJacobianSnapshot visits: ceil(columns_j / every) summed over the blocks.
+inline long usedSnapshotCount(const SnapshotSet& states, int every) {
+  long used = 0;
+  for (size_t j = 0; j < states.size(); ++j) used += (static_cast<long>(states.numColumns(j)) + every - 1) / every;
+  return used;
+}
+
 /// Calls fn(jac, index) -- or fn(jac, index, kernel), when fn takes the evaluated kernel too -- for
-/// every used snapshot, jac = this rank's rows of J_G(y0_j + A A^T y_s) A (row-major, local rows x
-/// 2k). Returns the number of snapshots used. Collective.
+/// every used snapshot in `range`, jac = this rank's rows of J_G(y0_j + A A^T y_s) A (row-major,
+/// local rows x 2k); a block with none of the range's snapshots is not read. Returns the number of
+/// snapshots visited. Collective.
 template <class Fn>
-long forEachJacobianSnapshot(const std::vector<RCP<const HamiltonianSystem>>& systems,
-                             const SnapshotSet& states, const MultiVector& A, int every,
-                             std::vector<Scalar>& jac, Fn&& fn) {
+long forEachJacobianSnapshotIn(const std::vector<RCP<const HamiltonianSystem>>& systems,
+                               const SnapshotSet& states, const MultiVector& A, int every, SnapshotRange range,
+                               std::vector<Scalar>& jac, Fn&& fn) {
   const RCP<const Map> rowMap = systems[0]->nonlinearTerm().rowMap();
   const int r = static_cast<int>(A.getNumVectors());
   auto local = rcp(new Map(r, 0, rowMap->getComm(), Tpetra::LocallyReplicated));
-  long used = 0;
+  long index = 0, visited = 0;  // index: the used snapshot's number over all blocks
   for (size_t j = 0; j < systems.size(); ++j) {
+    const long inBlock = (static_cast<long>(states.numColumns(j)) + every - 1) / every;
+    if (index + inBlock <= range.first || index >= range.last) {
+      index += inBlock;
+      continue;
+    }
     const HamiltonianSystem& sys = *systems[j];
     GPHR_REQUIRE(sys.nonlinearTerm().rowMap()->isSameAs(*rowMap), InputError, "training system ", j,
                  " has another row map of G");
@@ -35,17 +57,29 @@ long forEachJacobianSnapshot(const std::vector<RCP<const HamiltonianSystem>>& sy
     Z.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, A, *states[j], 0.0);  // z = A^T y_s (the block read once)
     auto zv = Z.getLocalViewHost(Tpetra::Access::ReadOnly);
     Teuchos::SerialDenseVector<int, double> z(r);
-    for (size_t c = 0; c < states.numColumns(j); c += every) {
+    for (size_t c = 0; c < states.numColumns(j); c += every, ++index) {
+      if (index < range.first || index >= range.last) continue;
       for (int i = 0; i < r; ++i) z(i) = zv(i, c);
       kernel.evaluate(z, true, false);
       kernel.reducedJacobian(jac.data());
       if constexpr (std::is_invocable_v<Fn, std::vector<Scalar>&, long, ReducedRowKernel&>)
-        fn(jac, used++, kernel);
+        fn(jac, index, kernel);
       else
-        fn(jac, used++);
+        fn(jac, index);
+      ++visited;
     }
   }
-  return used;
+  return visited;
+}
+
+/// Calls fn(jac, index) -- or fn(jac, index, kernel), when fn takes the evaluated kernel too -- for
+/// every used snapshot, jac = this rank's rows of J_G(y0_j + A A^T y_s) A (row-major, local rows x
+/// 2k). Returns the number of snapshots used. Collective.
+template <class Fn>
+long forEachJacobianSnapshot(const std::vector<RCP<const HamiltonianSystem>>& systems,
+                             const SnapshotSet& states, const MultiVector& A, int every,
+                             std::vector<Scalar>& jac, Fn&& fn) {
+  return forEachJacobianSnapshotIn(systems, states, A, every, SnapshotRange{}, jac, std::forward<Fn>(fn));
 }
 
 }  // namespace gphr

@@ -49,6 +49,10 @@ struct TrainingResult {
   /// time), else held in memory.
   SnapshotSet snapshots;
   long reused = 0;                                ///< parameters taken from the cache
+  /// Ranks per rank group of the training (TrainingOptions::groupSize, resolved); the stages after
+  /// it split the ranks alike. 0 when the snapshots are held in memory (no groups).
+  int groupSize = 0;
+  std::string cachePath;                          ///< the artifacts file the snapshots stream from ("": held)
   double seconds = 0.0;                           ///< Wall seconds of the stage.
 };
 
@@ -60,6 +64,11 @@ struct TrainingResult {
 /// of its own beside the cache, and all ranks then copy them into it. Collective over `comm`.
 TrainingResult runTraining(const Scene& scene, const RCP<const Comm>& comm, const TrainingOptions& options,
                            const ArtifactsCache* cache = nullptr, const std::string& key = "");
+
+/// The training's snapshots streamed from its artifacts file on `comm` (e.g. a rank group's), in the
+/// distribution of `space` (a system's phase space on that communicator, kept alive by the caller).
+/// InputError when the training holds its snapshots in memory.
+SnapshotSet trainingSnapshotsOn(const TrainingResult& training, const RCP<const Comm>& comm, const PhaseSpace& space);
 
 /// The shifted systems of the training parameters (cheap to build: the kernels differ by mu).
 std::vector<RCP<const HamiltonianSystem>> trainingSystems(const Scene& scene, const RCP<const Comm>& comm,

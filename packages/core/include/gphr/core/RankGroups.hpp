@@ -1,0 +1,42 @@
+#pragma once
+/// @file
+/// Rank groups of the offline stages: the world communicator split into groups of consecutive
+/// ranks (the last group takes the remainder), each working on its own share of a stage's items
+/// (training parameters, chunks of snapshots) side by side, on a distributed object of its own.
+/// Besides the split, the two moves between a world-distributed object and the group's copy of it:
+///   toGroup:  every group gets the whole of a world MultiVector, in its own row distribution;
+///   toWorld:  the sum over the groups of each group's MultiVector, in the world's distribution
+///             (a group fills the columns it computed and leaves the others zero: the sum is then
+///             exact, x + 0 = x, and independent of the number of groups).
+/// Both are one Tpetra Import/Export between the world map and the group map's rows seen from the
+/// world communicator (a map that holds every row once per group).
+#include "gphr/core/Types.hpp"
+
+namespace gphr {
+
+/// The split of `world` into groups of `size` consecutive ranks (see the file's description).
+class RankGroups {
+ public:
+  /// size in [1, world size]; groups = world size / size, the last one larger by the remainder.
+  RankGroups(RCP<const Comm> world, int size);
+  int count() const { return count_; }  ///< The number of groups.
+  int group() const { return group_; }  ///< This rank's group, 0 .. count() - 1.
+  int size() const { return size_; }    ///< The ranks per group asked for (the last group may hold more).
+  bool leader() const { return sub_->getRank() == 0; }  ///< Whether this rank is its group's first.
+  const RCP<const Comm>& world() const { return world_; }  ///< The whole communicator.
+  const RCP<const Comm>& sub() const { return sub_; }      ///< This rank's group's communicator.
+
+  /// X (on a map of world()) as a MultiVector on groupMap (a map of sub() over the same global
+  /// ids): every group receives all of X. Collective over world().
+  RCP<MultiVector> toGroup(const MultiVector& X, const RCP<const Map>& groupMap) const;
+  /// The sum over the groups of Xg (each group's on its groupMap, all with the same columns), on
+  /// worldMap (a map of world() over the same global ids). Collective over world().
+  RCP<MultiVector> toWorld(const MultiVector& Xg, const RCP<const Map>& worldMap) const;
+
+ private:
+  RCP<const Map> groupRowsOnWorld(const Map& groupMap) const;
+  RCP<const Comm> world_, sub_;
+  int size_, count_, group_;
+};
+
+}  // namespace gphr

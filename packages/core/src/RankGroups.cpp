@@ -1,0 +1,54 @@
+#include "gphr/core/RankGroups.hpp"
+
+#include <Tpetra_Export.hpp>
+#include <Tpetra_Import.hpp>
+#include <algorithm>
+
+#include "gphr/core/Error.hpp"
+
+namespace gphr {
+
+RankGroups::RankGroups(RCP<const Comm> world, int size) : world_(std::move(world)), size_(size) {
+  const int p = world_->getSize();
+  GPHR_REQUIRE(size >= 1 && size <= p, InputError, "rank group size ", size, "; allowed: 1 .. ", p,
+               " (the ranks there are)");
+  count_ = p / size;
+  group_ = std::min(world_->getRank() / size, count_ - 1);
+  sub_ = world_->split(group_, world_->getRank());
+}
+
+// The rows this rank holds of groupMap, as a map of the world communicator: every global id is
+// then held once in each group (a target of an Import, a source of an Export, need not be one-to-one).
+RCP<const Map> RankGroups::groupRowsOnWorld(const Map& groupMap) const {
+  const auto invalid = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
+  return rcp(new Map(invalid, groupMap.getNodeElementList(), groupMap.getIndexBase(), world_));
+}
+
+namespace {
+// dst's local rows = src's local rows (two MultiVectors over the same local ids on different maps).
+void copyLocal(const MultiVector& src, MultiVector& dst) {
+  auto s = src.getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto d = dst.getLocalViewHost(Tpetra::Access::OverwriteAll);
+  Kokkos::deep_copy(d, s);
+}
+}  // namespace
+
+RCP<MultiVector> RankGroups::toGroup(const MultiVector& X, const RCP<const Map>& groupMap) const {
+  const RCP<const Map> target = groupRowsOnWorld(*groupMap);
+  MultiVector onWorld(target, X.getNumVectors());
+  onWorld.doImport(X, Import(X.getMap(), target), Tpetra::INSERT);
+  auto out = rcp(new MultiVector(groupMap, X.getNumVectors()));
+  copyLocal(onWorld, *out);
+  return out;
+}
+
+RCP<MultiVector> RankGroups::toWorld(const MultiVector& Xg, const RCP<const Map>& worldMap) const {
+  const RCP<const Map> source = groupRowsOnWorld(*Xg.getMap());
+  MultiVector onWorld(source, Xg.getNumVectors());
+  copyLocal(Xg, onWorld);
+  auto out = rcp(new MultiVector(worldMap, Xg.getNumVectors()));
+  out->doExport(onWorld, Export(source, worldMap), Tpetra::ADD);
+  return out;
+}
+
+}  // namespace gphr
