@@ -14,6 +14,18 @@ function(gphr_add_package)
   set_property(GLOBAL APPEND PROPERTY GPHR_PACKAGES ${_t})
 endfunction()
 
+# gphr_time_mpi(<target>): links the PMPI interposer (packages/driver/src/MpiTimeInterposer.cpp)
+# into an executable, so that gphr::mpiTimeNow() counts its time inside MPI (StageClock.hpp).
+# The executable exports the MPI_* symbols it defines, so that calls from shared libraries
+# (Trilinos, HDF5) resolve to them, not to libmpi's. GNU ld already exports the ones that the
+# shared libraries on the link line reference; the flag makes sure of the others (a library that
+# is only reached through another, e.g. HDF5's MPI-IO). Only executables: the libraries stay free of it.
+function(gphr_time_mpi target)
+  target_sources(${target} PRIVATE ${PROJECT_SOURCE_DIR}/packages/driver/src/MpiTimeInterposer.cpp)
+  target_link_libraries(${target} PRIVATE gphr_core MPI::MPI_C)
+  target_link_options(${target} PRIVATE "LINKER:--export-dynamic-symbol=MPI_*")
+endfunction()
+
 # gphr_add_test(NAME <name> SOURCES <files...> DEPENDS <targets...> [RANKS n...] [LABELS ...])
 # Each test binary has GPHR's gtest main (Tpetra::ScopeGuard + an MPI reduction of the result).
 # RANKS lists the MPI rank counts it runs with (default 1); rank counts > 1 run under mpirun.

@@ -2,9 +2,11 @@
 // as the config sets it, reusing DIR/artifacts.h5 with `gphr run`: training, basis, DEIM basis
 // and term-weight fits for every k and m of the pipeline, then the reduced-model file: per k the
 // parameter interpolant of L_r, f_r, c and the reference rows (doc/model-file.md), per stored
-// (method, k, m) its sample mesh. The full model is not evaluated.
+// (method, k, m) its sample mesh. The full model is not evaluated. DIR/stages.csv: every rank's
+// clocks per stage (StageTable.hpp).
 #include <algorithm>
 #include <filesystem>
+#include <memory>
 
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/BuildCommand.hpp"
@@ -12,6 +14,7 @@
 #include "gphr/driver/Config.hpp"
 #include "gphr/driver/OfflineStages.hpp"
 #include "gphr/driver/OutputLock.hpp"
+#include "gphr/driver/StageTable.hpp"
 #include "gphr/models/SceneFactory.hpp"
 #include "gphr/online/Method.hpp"
 
@@ -74,6 +77,10 @@ void printBuild(const std::string& path, const ReducedModelData& data, double se
 
 int runBuild(const std::string& configPath, const std::string& modelPath, const std::string& artifactsDir,
              const RCP<const Comm>& comm) {
+  // The command's own set-up (config, output directory, the scene's instance for the cache) is a
+  // stage too: on a large scene its instance is not free.
+  StageClocks setup;
+  auto setupClock = std::make_unique<StageClocks::Scope>(setup, "setup");
   RunContext ctx;
   ctx.config = loadConfig(configPath);
   ctx.scene = makeScene(ctx.config.sublist("scene"));
@@ -98,8 +105,16 @@ int runBuild(const std::string& configPath, const std::string& modelPath, const 
   const ModelBuildOptions options = buildOptions(ctx, stored);
   const auto inst = ctx.scene->instantiate(comm, ctx.mu, true);
   const ArtifactsCache cache = artifactsCache(ctx, inst.system->space().fullDim());
+  setupClock.reset();
   const ModelBuildResult r = buildReducedModelFile(*ctx.scene, comm, options, modelPath, &cache);
-  if (comm->getRank() == 0) printBuild(modelPath, r.data, r.seconds, comm->getSize());
+  std::vector<StageTime> stages = setup.stages();
+  stages.insert(stages.end(), r.stages.begin(), r.stages.end());
+  const StageTable table = gatherStages(comm, stages);
+  onRootAgreed(comm, "gphr build", [&] { writeTextFile(artifactsDir + "/stages.csv", table.csv()); });
+  if (comm->getRank() == 0) {
+    printBuild(modelPath, r.data, r.seconds, comm->getSize());
+    std::printf("%s", table.summary().c_str());
+  }
   return 0;
 }
 

@@ -25,7 +25,10 @@ struct BuildState {
   const ArtifactsCache* cache;
   const TrainingResult& training;
   const SceneInstance& instance;
+  StageClocks& clocks;
 };
+
+std::string ofK(const char* stage, int k) { return std::string(stage) + " k=" + std::to_string(k); }
 
 int largest(const std::vector<int>& ms) { return ms.empty() ? 0 : *std::max_element(ms.begin(), ms.end()); }
 
@@ -52,7 +55,9 @@ void addAdeimModels(const BuildState& b, int k, std::vector<StoredHyperModel>& o
   }
 }
 
-RCP<const MultiVector> deimBasisOf(const BuildState& b, const MultiVector& A) {
+// Timed from outside: the DEIM basis stage's internals are its own.
+RCP<const MultiVector> deimBasisOf(const BuildState& b, const MultiVector& A, int k) {
+  const StageClocks::Scope clock(b.clocks, ofK("deim basis", k));
   DeimBasisOptions opt = b.options.deim;
   if (opt.maxRank == 0) opt.maxRank = largest(b.options.ms) + 32;
   return runDeimBasisStage(b.scene, b.comm, b.training, A, *b.instance.system, opt, b.cache, b.options.keys.deim).basis.U;
@@ -64,14 +69,18 @@ std::vector<StoredHyperModel> modelsOfK(const BuildState& b, const MultiVector& 
   const auto& o = b.options;
   std::vector<StoredHyperModel> out;
   RCP<const MultiVector> U;  // the DEIM basis, computed on first need
-  auto deimBasis = [&] { return U.is_null() ? (U = deimBasisOf(b, A)) : U; };
+  auto deimBasis = [&] { return U.is_null() ? (U = deimBasisOf(b, A, k)) : U; };
   for (const auto& method : o.methods) {
     if (method == method::kGpAdeim) {
       addAdeimModels(b, k, out);
     } else if (method == method::kGpDeim) {
-      auto deim = gpDeimModels(b.instance, A, k, *deimBasis(), o.ms, o.file.indices);
+      const auto& basis = *deimBasis();
+      const StageClocks::Scope clock(b.clocks, ofK("gp-deim", k));
+      auto deim = gpDeimModels(b.instance, A, k, basis, o.ms, o.file.indices);
       std::move(deim.begin(), deim.end(), std::back_inserter(out));
     } else {
+      // A DEIM basis the fits ask for inside is a stage of its own (nested scopes exclude it).
+      const StageClocks::Scope clock(b.clocks, ofK("fits", k));
       TermWeightFits fits(b.scene, b.comm, b.training, A, o.eqp, o.eqpTolerance, o.ms,
                           [&](int m) { return selectDeimIndices(*deimBasis(), m, o.file.indices); }, b.cache,
                           o.keys.nnls, o.keys.refit);
@@ -114,26 +123,48 @@ ModelBuildResult buildReducedModelFile(const Scene& scene, const RCP<const Comm>
   Teuchos::Time clock("build");
   clock.start();
   ModelBuildResult r;
-  r.training = runTraining(scene, comm, options.training, cache, options.keys.training);
+  StageClocks clocks;
+  using Scope = StageClocks::Scope;
+  {
+    const Scope stage(clocks, "training");
+    r.training = runTraining(scene, comm, options.training, cache, options.keys.training);
+  }
   const auto mu = options.parameter.empty() ? boxCentre(scene.parameterBox()) : options.parameter;
-  const auto inst = scene.instantiate(comm, mu, true);
-  r.basis = runBasisStage(r.training, inst.system->space(), options.basis, scene.name(), cache, options.keys.basis);
+  const auto inst = [&] {
+    const Scope stage(clocks, "instance");
+    return scene.instantiate(comm, mu, true);
+  }();
+  {
+    const Scope stage(clocks, "basis");
+    r.basis = runBasisStage(r.training, inst.system->space(), options.basis, scene.name(), cache, options.keys.basis);
+  }
   ReducedModelData& data = r.data;
-  data = modelFileHeader(scene, inst, options.file);
+  {
+    const Scope stage(clocks, "header");
+    data = modelFileHeader(scene, inst, options.file);
+  }
   data.sceneConfig = options.sceneConfig;
   data.config = options.config;
   data.dt = options.training.dt;
   data.T = options.T > 0.0 ? options.T : options.training.dt * options.training.steps;
-  const BuildState state{scene, comm, options, cache, r.training, inst};
+  const BuildState state{scene, comm, options, cache, r.training, inst, clocks};
   std::vector<RCP<const MultiVector>> bases;
   for (int k : basisSizes(options.ks.empty() ? std::vector<int>{0} : options.ks, r.basis.basis)) {
     const auto A = leadingBasis(r.basis.basis, k);
-    addReducedBasis(data, scene, inst, *A, k, modelsOfK(state, *A, k), options.file);
+    auto models = modelsOfK(state, *A, k);
+    {
+      const Scope stage(clocks, ofK("interpolation", k));
+      addReducedBasis(data, scene, inst, *A, k, std::move(models), options.file);
+    }
     bases.push_back(options.withBasis ? RCP<const MultiVector>(A) : Teuchos::null);
   }
   data.offlineSeconds = clock.totalElapsedTime(true);
-  writeReducedModelFile(path, comm, data, bases, &inst.system->space());
+  {
+    const Scope stage(clocks, "write");
+    writeReducedModelFile(path, comm, data, bases, &inst.system->space());
+  }
   r.seconds = clock.stop();
+  r.stages = clocks.stages();
   return r;
 }
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "gphr/core/StageClock.hpp"
 #include "gphr/hyper/DeimBasis.hpp"
 #include "gphr/hyper/EmpiricalQuadrature.hpp"
 #include "gphr/offline/BasisStage.hpp"
@@ -52,6 +53,11 @@ struct ModelBuildResult {
   TrainingResult training; ///< the training stage
   BasisStageResult basis;  ///< the basis stage
   double seconds = 0.0;    ///< wall seconds of the whole phase, the file's write included
+  /// This rank's clocks per stage (StageClock.hpp), in order: "training", "instance", "basis",
+  /// "header", per k "deim basis k=K", "gp-deim k=K" (DEIM indices and sample meshes), "fits k=K"
+  /// (term-weight fits, gp-eqp), "interpolation k=K" (the parameter interpolants of the basis
+  /// data), then "write" (the model file). Stages not run are absent; they add up to the phase.
+  std::vector<StageTime> stages;
 };
 
 /// Runs the offline phase for `scene` and writes the reduced-model file at `path` (write-then-

@@ -1,0 +1,264 @@
+#!/usr/bin/env python3
+"""The cost model of doc/scaling.md against bench/scaling.sh's CSV (python3 standard library only).
+
+usage: python3 bench/scaling_model.py SCALING.csv
+
+For each case and stage: the predicted compute seconds of the busiest rank (CPU outside MPI)
+beside the measured ones, at every rank count of the CSV, and their ratio; then the model
+extrapolated to p = 1024 ranks and n = 1e8 state rows, with the stage whose parallel efficiency
+falls below 50 % first.
+
+Machine constants, fitted on the 1-rank runs of the CSV (the model's p-dependence is not fitted):
+  F_dense   flop rate of the dense LAPACK kernels (QR, SVD) of the streaming POD: one rate for
+            the basis stages of both build cases (least squares on their 1-rank compute seconds);
+  g_node    seconds per state row and parameter node of the model file's interpolation (each node
+            a scene instance and its O(n k) projections): one value for both build cases;
+  g_train   seconds per state row per time step of the training's integrator, per scene (NLS AVF
+            and SWE IMR do different Newton and GMRES work per row);
+  g_fom     the same for the full model case (SWE IMR with a fresh Jacobian every step), plus its
+            set-up per state row;
+  q_step    seconds per reduced time step of a query, and the query process's fixed set-up.
+Communication (only for the extrapolated wall time; not measurable on one small machine):
+  ALPHA = 2e-6 s per message, BETA = 1e-10 s per byte (10 GB/s): an InfiniBand-class cluster.
+The DEIM basis stage has no model yet (doc/scaling.md, "DEIM basis": TODO): measured only.
+"""
+import csv
+import math
+import sys
+from collections import OrderedDict, defaultdict
+
+ALPHA, BETA = 2e-6, 1e-10
+ROWS_PER_RANK = 4096  # packages/offline: kTrainingRowsPerRank, the rank-group rule
+
+
+def sizes_of(text):
+    out = {}
+    for part in text.split(";"):
+        key, value = part.split("=")
+        out[key] = [float(v) for v in value.split("+")] if "+" in value else float(value)
+    return out
+
+
+def state_rows(s):
+    """2n for the NLS, 2 nx^2 for the SWE (chi and phi on the grid)."""
+    return 2 * s["n"] if "n" in s else 2 * s["nx"] ** 2
+
+
+# ---- work of the busiest rank, per stage (doc/scaling.md has the derivations) -------------------
+
+def training_units(s, p):
+    """State rows x time steps that the busiest rank integrates: rank groups of g ranks (at least
+    4096 rows per rank), G = p // g groups, ceil(P / G) parameters per group."""
+    rows = state_rows(s)
+    g = max(1, min(p, math.ceil(rows / ROWS_PER_RANK)))
+    groups = max(1, p // g)
+    return math.ceil(s["points"] / groups) * s["steps"] * rows / g
+
+
+def pod_flops(rows, cols, carried, block, p):
+    """Streaming POD (packages/reduction/src/StreamingPod.cpp) of a rows x cols matrix, blocks of
+    `block` columns, `carried` triplets kept: per step nc = carried + block columns; each rank's QR
+    and ORMQR of its rows (about 4 (rows/p) nc^2, divided by p); the replicated part: the stacked
+    route (p < 8) an SVD of the (p nc) x nc stack (~ 6 p nc^3), the tree route (p >= 8)
+    ceil(log2 p) QRs of 2nc x nc and their ORMQRs (~ 8 nc^3 each) and one nc x nc SVD (~ 6 nc^3)."""
+    steps = math.ceil(cols / block)
+    nc = carried + block
+    local = 4.0 * (rows / p) * nc * nc
+    if p < 8:
+        replicated = 6.0 * min(p * nc, rows) * nc * nc
+    else:
+        replicated = 8.0 * math.ceil(math.log2(p)) * nc ** 3 + 6.0 * nc ** 3
+    return steps * (local + replicated)
+
+
+def basis_flops(s, p):
+    """PSD basis: the real form [D, J^T D] of the complex data: 2n rows, 2 N_s columns, blocks of
+    2 x 128 columns, 2 (2k + 32) triplets carried (packages/offline/src/BasisStage.cpp)."""
+    ns = s["points"] * (s["steps"] / s["every"] + 1)
+    return pod_flops(state_rows(s), 2 * ns, 2 * (2 * s["k"] + 32), 256, p)
+
+
+def basis_messages(s, p):
+    """Messages and bytes per rank: stacked route an all-reduce of the p nc x nc stack per step,
+    tree route log2 p messages of nc x nc (up and down)."""
+    ns = s["points"] * (s["steps"] / s["every"] + 1)
+    steps = math.ceil(2 * ns / 256)
+    nc = 2 * (2 * s["k"] + 32) + 256
+    if p < 8:
+        return steps * math.ceil(math.log2(max(p, 2))), steps * 8.0 * p * nc * nc
+    return steps * 2 * math.ceil(math.log2(p)), steps * 2 * math.ceil(math.log2(p)) * 8.0 * nc * nc
+
+
+def training_comm(s, p):
+    """Seconds of messages of the busiest rank's training: inside a group of g > 1 ranks, per
+    Newton-GMRES iteration two all-reduces (log2 g messages each) and a halo exchange (2); about
+    30 such iterations per step (the order gphr run reports for the SWE IMR). Groups of one rank
+    send nothing."""
+    rows = state_rows(s)
+    g = max(1, min(p, math.ceil(rows / ROWS_PER_RANK)))
+    if g == 1:
+        return 0.0
+    per_group = math.ceil(s["points"] / max(1, p // g))
+    return per_group * s["steps"] * 30 * (2 * math.ceil(math.log2(g)) + 2) * ALPHA
+
+
+def interpolation_units(s, p):
+    """Parameter nodes x state rows per rank: each node instantiates the scene and projects L, f
+    and the reference rows on the basis (O(n k) per node)."""
+    return s["nodes"] * state_rows(s) / p
+
+
+# ---- fitting ------------------------------------------------------------------------------------
+
+def load(path):
+    rows = list(csv.DictReader(open(path)))
+    # per case, ranks, stage: the busiest rank's compute seconds (or the wall of a timing row)
+    table = defaultdict(dict)
+    sizes = {}
+    for r in rows:
+        key = (r["case"], int(r["ranks"]))
+        sizes[r["case"]] = sizes_of(r["sizes"])
+        value = float(r["compute_s"]) if r["compute_s"] else float(r["wall_s"])
+        table[key][r["stage"]] = max(table[key].get(r["stage"], 0.0), value)
+    return table, sizes
+
+
+def fit(table, sizes):
+    c = {}
+    builds = [x for x in ("nls", "swe") if (x, 1) in table]
+    # F_dense: least squares of compute = flops / F through the origin over the basis stages.
+    num = sum(basis_flops(sizes[x], 1) ** 2 for x in builds)
+    den = sum(basis_flops(sizes[x], 1) * table[(x, 1)]["basis"] for x in builds)
+    c["F_dense"] = num / den if den > 0 else float("nan")
+    units = [(interpolation_units(sizes[x], 1), sum(v for k, v in table[(x, 1)].items() if k.startswith("interpolation")))
+             for x in builds]
+    c["g_node"] = sum(u * t for u, t in units) / sum(u * u for u, t in units) if units else float("nan")
+    for x in builds:
+        c["g_train_" + x] = table[(x, 1)]["training"] / training_units(sizes[x], 1)
+        # the small stages (set-up, instance, header, gp-deim, write): a constant, not modelled
+        c["rest_" + x] = sum(v for k, v in table[(x, 1)].items()
+                             if k in ("setup", "instance", "header", "write") or k.startswith("gp-deim"))
+    if ("fom", 1) in table:
+        s = sizes["fom"]
+        c["g_fom"] = table[("fom", 1)]["process"] / (s["steps"] * state_rows(s))
+    if ("query", 1) in table:
+        s = sizes["query"]
+        loop = table[("query", 1)]["queries"]  # one rank: the query loop waits for nobody
+        c["q_step"] = loop / (s["queries"] * s["steps"])
+        c["q_setup"] = table[("query", 1)]["process"] - loop
+    return c
+
+
+def predict(case, stage, s, p, c):
+    """Predicted compute seconds of the busiest rank, or None where the model has none."""
+    if case in ("nls", "swe"):
+        if stage == "training":
+            return c["g_train_" + case] * training_units(s, p)
+        if stage == "basis":
+            return basis_flops(s, p) / c["F_dense"]
+        if stage.startswith("interpolation"):
+            return c["g_node"] * interpolation_units(s, p)
+        if stage == "rest":
+            return c["rest_" + case]
+        return None  # DEIM basis: TODO (doc/scaling.md)
+    if case == "fom" and stage == "process":
+        return c["g_fom"] * s["steps"] * state_rows(s) / p
+    if case == "query" and stage == "process":
+        return c["q_setup"] + c["q_step"] * math.ceil(s["queries"] / p) * s["steps"]
+    return None
+
+
+def main():
+    table, sizes = load(sys.argv[1])
+    c = fit(table, sizes)
+    print("machine constants (1-rank runs): " + ", ".join(
+        f"{k} = {v:.3e}" for k, v in c.items() if not k.startswith("rest")))
+    print(f"{'case':<6} {'stage':<20} {'ranks':>5} {'measured s':>11} {'predicted s':>11} {'pred/meas':>9}")
+    worst = {}
+    for case in OrderedDict.fromkeys(k[0] for k in table):
+        ranks = sorted(p for (x, p) in table if x == case)
+        stages = OrderedDict()
+        for p in ranks:
+            for st in table[(case, p)]:
+                if case in ("nls", "swe") and (st in ("setup", "instance", "header", "write") or st.startswith("gp-deim")):
+                    stages["rest"] = None
+                elif case in ("nls", "swe") and st == "process":
+                    continue
+                elif case in ("fom", "query") and st != "process":
+                    continue
+                else:
+                    stages[st] = None
+        for st in stages:
+            for p in ranks:
+                t = table[(case, p)]
+                if st == "rest":
+                    meas = sum(v for k, v in t.items() if k in ("setup", "instance", "header", "write")
+                               or k.startswith("gp-deim"))
+                else:
+                    meas = t.get(st)
+                pred = predict(case, st, sizes[case], p, c)
+                ratio = pred / meas if pred is not None and meas else None
+                if ratio is not None and p > 1:
+                    worst[(case, st)] = max(worst.get((case, st), (0.0, 1.0)), (abs(math.log(ratio)), ratio))
+                print(f"{case:<6} {st:<20} {p:>5} {meas:>11.3f} "
+                      f"{('-' if pred is None else f'{pred:.3f}'):>11} {('-' if ratio is None else f'{ratio:.2f}'):>9}"
+                      + ("  (model: TODO, DEIM basis)" if st.startswith("deim basis") and p == ranks[0] else ""))
+    if worst:
+        print("largest |pred/meas - 1| at p > 1 per stage: " + ", ".join(
+            f"{c_}/{s_} {r - 1:+.0%}" for (c_, s_), (w, r) in worst.items()))
+    extrapolate(sizes, c, None)
+    extrapolate(sizes, c, 1e8)
+
+
+def extrapolate(sizes, c, total_rows):
+    """p = 1 .. 1024 at `total_rows` state rows (None: the CSV's), with each case's other sizes: per
+    stage the busiest rank's compute seconds plus the communication time, and the parallel
+    efficiency T(1) / (p T(p))."""
+    print(f"\nextrapolated to p = 1024 at {'the CSV sizes' if total_rows is None else f'{total_rows:g} state rows'}"
+          " (other sizes as in the CSV's cases), time = compute + ALPHA messages + BETA bytes (efficiency):")
+    ps = [1, 8, 64, 256, 1024]
+    first = None
+    for case in ("nls", "swe"):
+        if case not in sizes or "g_train_" + case not in c:
+            continue
+        s = dict(sizes[case])
+        if total_rows is not None and "n" in s:
+            s["n"] = 0.5 * total_rows
+        elif total_rows is not None:
+            s["nx"] = math.sqrt(0.5 * total_rows)
+        rows = state_rows(s)
+        stages = {
+            # training: per GMRES iteration 2 all-reduces (log2 p messages) and a halo exchange (2);
+            # about 30 iterations per step (GMRES + Newton, measured order on the SWE): 130 messages.
+            "training": lambda p: (c["g_train_" + case] * training_units(s, p), training_comm(s, p)),
+            "basis": lambda p: (basis_flops(s, p) / c["F_dense"],
+                                basis_messages(s, p)[0] * ALPHA + basis_messages(s, p)[1] * BETA),
+            "interpolation": lambda p: (c["g_node"] * interpolation_units(s, p),
+                                        s["nodes"] * math.ceil(math.log2(max(p, 2))) * (ALPHA + BETA * 8 * (2 * s["k"]) ** 2)),
+        }
+        print(f"  {case} ({', '.join(f'{k}={v:g}' for k, v in s.items() if not isinstance(v, list))}):")
+        print(f"    {'stage':<14}" + "".join(f"{'p=' + str(p):>22}" for p in ps))
+        for name, f in stages.items():
+            t1 = sum(f(1))
+            cells, dropped = [], None
+            for p in ps:
+                comp, comm = f(p)
+                eff = t1 / (p * (comp + comm))
+                cells.append(f"{comp + comm:9.3g}s ({eff:4.0%})")
+            for p in (2 ** j for j in range(1, 11)):
+                if t1 / (p * sum(f(p))) < 0.5:
+                    dropped = p
+                    break
+            print(f"    {name:<14}" + "".join(f"{x:>22}" for x in cells)
+                  + (f"   efficiency < 50% from p = {dropped}" if dropped else ""))
+            if dropped and (first is None or dropped < first[0]):
+                first = (dropped, f"{case} {name}")
+        print("    deim basis    model: TODO (doc/scaling.md, 'DEIM basis')")
+    if first:
+        print(f"first to stop scaling (efficiency below 50%, DEIM basis not modelled): {first[1]} at p = {first[0]}")
+    else:
+        print("no modelled stage falls below 50% efficiency up to p = 1024 (DEIM basis not modelled)")
+
+
+if __name__ == "__main__":
+    main()

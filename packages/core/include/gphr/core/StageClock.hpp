@@ -1,0 +1,94 @@
+#pragma once
+/// @file
+/// Per-stage clocks of the offline phase (doc/scaling.md): wall seconds, CPU seconds of the
+/// process, seconds inside MPI calls (wall and CPU) and the peak resident memory, on each rank.
+/// The issue asks for each stage's compute time per rank with waits excluded: oversubscribed ranks
+/// spin inside MPI, so wall time and even CPU time count the waits. "Compute seconds" is therefore
+/// the process's CPU seconds minus the CPU seconds spent inside MPI calls.
+///
+/// Time inside MPI is counted by a PMPI interposer that only the `gphr` executable links
+/// (packages/driver/src/MpiTimeInterposer.cpp): it registers its counters with
+/// setMpiTimeSource(). Libraries only read them; without the interposer mpiTimeAvailable() is false
+/// and the MPI columns read 0, so no library depends on it.
+#include <string>
+#include <vector>
+
+namespace gphr {
+
+/// Accumulated time inside MPI calls of this process (outermost calls only).
+struct MpiTime {
+  double wall = 0.0;    ///< wall seconds
+  double cpu = 0.0;     ///< CPU seconds of the calling threads
+  long long calls = 0;  ///< calls counted
+};
+
+/// Reads the interposer's counters; thread-safe.
+using MpiTimeSource = MpiTime (*)();
+
+/// Registers the interposer's counters (its static initializer calls this once).
+void setMpiTimeSource(MpiTimeSource source);
+
+/// Whether an interposer registered: false means the MPI columns are not measured (0).
+bool mpiTimeAvailable();
+
+/// The counters now (all 0 without an interposer).
+MpiTime mpiTimeNow();
+
+/// One reading of every clock.
+struct ClockReading {
+  double wall = 0.0;     ///< steady clock, seconds
+  double cpu = 0.0;      ///< CLOCK_PROCESS_CPUTIME_ID, seconds (all threads of the process)
+  MpiTime mpi;           ///< mpiTimeNow()
+  double peakRssMb = 0;  ///< getrusage ru_maxrss of the process, MB (a high-water mark)
+};
+
+/// Reads every clock.
+ClockReading readClocks();
+
+/// What one stage cost on this rank. Exclusive of the stages timed inside it.
+struct StageTime {
+  std::string name;        ///< the stage, e.g. "training", "deim basis k=80"
+  double wall = 0.0;       ///< wall seconds
+  double cpu = 0.0;        ///< CPU seconds of the process
+  double mpiWall = 0.0;    ///< wall seconds inside MPI calls
+  double mpiCpu = 0.0;     ///< CPU seconds inside MPI calls
+  double peakRssMb = 0.0;  ///< peak resident memory of the process at the stage's end, MB
+  /// CPU seconds outside MPI calls: the stage's own work, waits excluded.
+  double compute() const { return cpu - mpiCpu; }
+};
+
+/// Named stages of one computation, in the order they were first started. A stage started inside
+/// another is charged to itself only: the outer stage's figures exclude it (so the stages add up
+/// to the whole), and its peak memory is read at its own end. A stage started twice under one
+/// name accumulates. Single-threaded: one StageClocks per thread of work.
+class StageClocks {
+ public:
+  /// Times a stage while alive.
+  class Scope {
+   public:
+    /// Starts stage `name` of `clocks`; the destructor ends it.
+    Scope(StageClocks& clocks, std::string name);
+    ~Scope();
+    Scope(const Scope&) = delete;
+    Scope& operator=(const Scope&) = delete;
+
+   private:
+    StageClocks& clocks_;
+  };
+
+  /// The stages timed so far.
+  const std::vector<StageTime>& stages() const { return stages_; }
+
+ private:
+  struct Open {
+    size_t index;        // into stages_
+    ClockReading start;  // at its start
+    StageTime inner;     // what its inner stages took (subtracted at its end)
+  };
+  void begin(std::string name);
+  void end();
+  std::vector<StageTime> stages_;
+  std::vector<Open> open_;
+};
+
+}  // namespace gphr

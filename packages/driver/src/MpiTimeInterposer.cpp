@@ -1,0 +1,205 @@
+// The PMPI interposer of the `gphr` executable (doc/scaling.md, "Per-stage clocks"): every MPI
+// call that can wait or move data (collectives, point-to-point, waits and tests, communicator
+// creation, MPI-IO) is defined here, times its PMPI_ twin and adds the time to per-process
+// counters that gphr::StageClocks reads through setMpiTimeSource(). The list is what `nm -D
+// --undefined-only` shows the executable and its libraries (Trilinos, parallel HDF5, GPHR) call
+// among those that can block; calls that only describe (types, groups, attributes) stay
+// untimed. The executable exports these symbols (-Wl,--export-dynamic-symbol=MPI_*, see
+// packages/driver/CMakeLists.txt), so the shared libraries' calls resolve here too.
+//
+// Only the outermost call of a thread is counted (an MPI call made inside another, as MPI-IO
+// does, is not counted twice). CPU seconds are the calling thread's (CLOCK_THREAD_CPUTIME_ID),
+// so with several threads (gphr query --threads) the per-process sum is still the CPU spent
+// inside MPI, and "compute = process CPU - MPI CPU" stays the CPU outside MPI.
+//
+// Whole-process figures for commands without a stage table (gphr run, gphr query; bench/scaling.sh):
+// with GPHR_PROCESS_CLOCKS=PREFIX in the environment, MPI_Finalize first writes PREFIX.RANK, one
+// line in stages.csv's columns with the stage "process" (wall seconds since the executable's
+// static initialisation, i.e. nearly since exec).
+#define OMPI_SKIP_MPICXX 1  // the C API only: this file defines C functions
+#include <mpi.h>
+
+#include <sys/resource.h>
+#include <time.h>
+
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "gphr/core/StageClock.hpp"
+
+namespace {
+
+std::atomic<long long> g_wallNs{0}, g_cpuNs{0}, g_calls{0};
+thread_local int t_depth = 0;
+
+long long nanoseconds(clockid_t clock) {
+  timespec t{};
+  clock_gettime(clock, &t);
+  return static_cast<long long>(t.tv_sec) * 1000000000LL + t.tv_nsec;
+}
+
+gphr::MpiTime counters() {
+  gphr::MpiTime t;
+  t.wall = 1e-9 * static_cast<double>(g_wallNs.load(std::memory_order_relaxed));
+  t.cpu = 1e-9 * static_cast<double>(g_cpuNs.load(std::memory_order_relaxed));
+  t.calls = g_calls.load(std::memory_order_relaxed);
+  return t;
+}
+
+// Times one MPI call, if it is the thread's outermost.
+class TimedCall {
+ public:
+  TimedCall() : outer_(t_depth++ == 0) {
+    if (outer_) wall_ = nanoseconds(CLOCK_MONOTONIC), cpu_ = nanoseconds(CLOCK_THREAD_CPUTIME_ID);
+  }
+  ~TimedCall() {
+    --t_depth;
+    if (!outer_) return;
+    g_wallNs.fetch_add(nanoseconds(CLOCK_MONOTONIC) - wall_, std::memory_order_relaxed);
+    g_cpuNs.fetch_add(nanoseconds(CLOCK_THREAD_CPUTIME_ID) - cpu_, std::memory_order_relaxed);
+    g_calls.fetch_add(1, std::memory_order_relaxed);
+  }
+  TimedCall(const TimedCall&) = delete;
+  TimedCall& operator=(const TimedCall&) = delete;
+
+ private:
+  bool outer_;
+  long long wall_ = 0, cpu_ = 0;
+};
+
+// Registers the counters before main() runs (StageClock.cpp's registry is constant-initialised).
+const bool g_registered = (gphr::setMpiTimeSource(&counters), true);
+const long long g_startNs = nanoseconds(CLOCK_MONOTONIC);
+
+// GPHR_PROCESS_CLOCKS=PREFIX: this rank's whole-process line into PREFIX.RANK (see the top).
+void writeProcessClocks() {
+  const char* prefix = std::getenv("GPHR_PROCESS_CLOCKS");
+  if (!prefix || !*prefix) return;
+  int rank = 0;
+  PMPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  const gphr::MpiTime mpi = counters();
+  const double wall = 1e-9 * static_cast<double>(nanoseconds(CLOCK_MONOTONIC) - g_startNs);
+  const double cpu = 1e-9 * static_cast<double>(nanoseconds(CLOCK_PROCESS_CPUTIME_ID));
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  const std::string path = std::string(prefix) + "." + std::to_string(rank);
+  if (FILE* f = std::fopen(path.c_str(), "w")) {
+    std::fprintf(f, "%d,process,%.6f,%.6f,%.6f,%.6f,%.6f,%.1f\n", rank, wall, cpu, mpi.wall, mpi.cpu, cpu - mpi.cpu,
+                 static_cast<double>(u.ru_maxrss) / 1024.0);
+    std::fclose(f);
+  } else {
+    std::fprintf(stderr, "[gphr] GPHR_PROCESS_CLOCKS: cannot write '%s'\n", path.c_str());
+  }
+}
+
+}  // namespace
+
+// MPI_NAME(PARAMS) { PMPI_NAME(ARGS), timed }
+#define GPHR_TIMED(NAME, PARAMS, ARGS)   \
+  extern "C" int MPI_##NAME PARAMS {     \
+    const TimedCall timed;               \
+    return PMPI_##NAME ARGS;             \
+  }
+
+GPHR_TIMED(Allgather, (const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, int recvcount,
+           MPI_Datatype recvtype, MPI_Comm comm), (sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, comm))
+GPHR_TIMED(Allgatherv, (const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, const int
+           recvcounts[], const int displs[], MPI_Datatype recvtype, MPI_Comm comm), (sendbuf, sendcount, sendtype,
+           recvbuf, recvcounts, displs, recvtype, comm))
+GPHR_TIMED(Allreduce, (const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, MPI_Comm
+           comm), (sendbuf, recvbuf, count, datatype, op, comm))
+GPHR_TIMED(Alltoall, (const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, int recvcount,
+           MPI_Datatype recvtype, MPI_Comm comm), (sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, comm))
+GPHR_TIMED(Alltoallv, (const void *sendbuf, const int sendcounts[], const int sdispls[], MPI_Datatype sendtype, void
+           *recvbuf, const int recvcounts[], const int rdispls[], MPI_Datatype recvtype, MPI_Comm comm), (sendbuf,
+           sendcounts, sdispls, sendtype, recvbuf, recvcounts, rdispls, recvtype, comm))
+GPHR_TIMED(Alltoallw, (const void *sendbuf, const int sendcounts[], const int sdispls[], const MPI_Datatype
+           sendtypes[], void *recvbuf, const int recvcounts[], const int rdispls[], const MPI_Datatype recvtypes[],
+           MPI_Comm comm), (sendbuf, sendcounts, sdispls, sendtypes, recvbuf, recvcounts, rdispls, recvtypes, comm))
+GPHR_TIMED(Barrier, (MPI_Comm comm), (comm))
+GPHR_TIMED(Bcast, (void *buffer, int count, MPI_Datatype datatype, int root, MPI_Comm comm), (buffer, count, datatype,
+           root, comm))
+GPHR_TIMED(Exscan, (const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, MPI_Comm comm),
+           (sendbuf, recvbuf, count, datatype, op, comm))
+GPHR_TIMED(Gather, (const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, int recvcount,
+           MPI_Datatype recvtype, int root, MPI_Comm comm), (sendbuf, sendcount, sendtype, recvbuf, recvcount,
+           recvtype, root, comm))
+GPHR_TIMED(Gatherv, (const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, const int recvcounts[],
+           const int displs[], MPI_Datatype recvtype, int root, MPI_Comm comm), (sendbuf, sendcount, sendtype,
+           recvbuf, recvcounts, displs, recvtype, root, comm))
+GPHR_TIMED(Reduce, (const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, int root,
+           MPI_Comm comm), (sendbuf, recvbuf, count, datatype, op, root, comm))
+GPHR_TIMED(Reduce_scatter, (const void *sendbuf, void *recvbuf, const int recvcounts[], MPI_Datatype datatype, MPI_Op
+           op, MPI_Comm comm), (sendbuf, recvbuf, recvcounts, datatype, op, comm))
+GPHR_TIMED(Reduce_scatter_block, (const void *sendbuf, void *recvbuf, int recvcount, MPI_Datatype datatype, MPI_Op op,
+           MPI_Comm comm), (sendbuf, recvbuf, recvcount, datatype, op, comm))
+GPHR_TIMED(Scan, (const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, MPI_Comm comm),
+           (sendbuf, recvbuf, count, datatype, op, comm))
+GPHR_TIMED(Scatter, (const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, int recvcount,
+           MPI_Datatype recvtype, int root, MPI_Comm comm), (sendbuf, sendcount, sendtype, recvbuf, recvcount,
+           recvtype, root, comm))
+GPHR_TIMED(Scatterv, (const void *sendbuf, const int sendcounts[], const int displs[], MPI_Datatype sendtype, void
+           *recvbuf, int recvcount, MPI_Datatype recvtype, int root, MPI_Comm comm), (sendbuf, sendcounts, displs,
+           sendtype, recvbuf, recvcount, recvtype, root, comm))
+GPHR_TIMED(Send, (const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm), (buf, count,
+           datatype, dest, tag, comm))
+GPHR_TIMED(Ssend, (const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm), (buf, count,
+           datatype, dest, tag, comm))
+GPHR_TIMED(Rsend, (const void *ibuf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm), (ibuf,
+           count, datatype, dest, tag, comm))
+GPHR_TIMED(Bsend, (const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm), (buf, count,
+           datatype, dest, tag, comm))
+GPHR_TIMED(Recv, (void *buf, int count, MPI_Datatype datatype, int source, int tag, MPI_Comm comm, MPI_Status
+           *status), (buf, count, datatype, source, tag, comm, status))
+GPHR_TIMED(Sendrecv, (const void *sendbuf, int sendcount, MPI_Datatype sendtype, int dest, int sendtag, void *recvbuf,
+           int recvcount, MPI_Datatype recvtype, int source, int recvtag, MPI_Comm comm, MPI_Status *status),
+           (sendbuf, sendcount, sendtype, dest, sendtag, recvbuf, recvcount, recvtype, source, recvtag, comm, status))
+GPHR_TIMED(Sendrecv_replace, (void * buf, int count, MPI_Datatype datatype, int dest, int sendtag, int source, int
+           recvtag, MPI_Comm comm, MPI_Status *status), (buf, count, datatype, dest, sendtag, source, recvtag, comm,
+           status))
+GPHR_TIMED(Probe, (int source, int tag, MPI_Comm comm, MPI_Status *status), (source, tag, comm, status))
+GPHR_TIMED(Iprobe, (int source, int tag, MPI_Comm comm, int *flag, MPI_Status *status), (source, tag, comm, flag,
+           status))
+GPHR_TIMED(Mprobe, (int source, int tag, MPI_Comm comm, MPI_Message *message, MPI_Status *status), (source, tag, comm,
+           message, status))
+GPHR_TIMED(Wait, (MPI_Request *request, MPI_Status *status), (request, status))
+GPHR_TIMED(Waitall, (int count, MPI_Request array_of_requests[], MPI_Status *array_of_statuses), (count,
+           array_of_requests, array_of_statuses))
+GPHR_TIMED(Waitany, (int count, MPI_Request array_of_requests[], int *index, MPI_Status *status), (count,
+           array_of_requests, index, status))
+GPHR_TIMED(Waitsome, (int incount, MPI_Request array_of_requests[], int *outcount, int array_of_indices[], MPI_Status
+           array_of_statuses[]), (incount, array_of_requests, outcount, array_of_indices, array_of_statuses))
+GPHR_TIMED(Test, (MPI_Request *request, int *flag, MPI_Status *status), (request, flag, status))
+GPHR_TIMED(Testall, (int count, MPI_Request array_of_requests[], int *flag, MPI_Status array_of_statuses[]), (count,
+           array_of_requests, flag, array_of_statuses))
+GPHR_TIMED(Comm_split, (MPI_Comm comm, int color, int key, MPI_Comm *newcomm), (comm, color, key, newcomm))
+GPHR_TIMED(Comm_dup, (MPI_Comm comm, MPI_Comm *newcomm), (comm, newcomm))
+GPHR_TIMED(Comm_create, (MPI_Comm comm, MPI_Group group, MPI_Comm *newcomm), (comm, group, newcomm))
+GPHR_TIMED(Comm_split_type, (MPI_Comm comm, int split_type, int key, MPI_Info info, MPI_Comm *newcomm), (comm,
+           split_type, key, info, newcomm))
+GPHR_TIMED(File_open, (MPI_Comm comm, const char *filename, int amode, MPI_Info info, MPI_File *fh), (comm, filename,
+           amode, info, fh))
+GPHR_TIMED(File_close, (MPI_File *fh), (fh))
+GPHR_TIMED(File_read_at, (MPI_File fh, MPI_Offset offset, void *buf, int count, MPI_Datatype datatype, MPI_Status
+           *status), (fh, offset, buf, count, datatype, status))
+GPHR_TIMED(File_read_at_all, (MPI_File fh, MPI_Offset offset, void *buf, int count, MPI_Datatype datatype, MPI_Status
+           *status), (fh, offset, buf, count, datatype, status))
+GPHR_TIMED(File_write_at, (MPI_File fh, MPI_Offset offset, const void *buf, int count, MPI_Datatype datatype,
+           MPI_Status *status), (fh, offset, buf, count, datatype, status))
+GPHR_TIMED(File_write_at_all, (MPI_File fh, MPI_Offset offset, const void *buf, int count, MPI_Datatype datatype,
+           MPI_Status *status), (fh, offset, buf, count, datatype, status))
+GPHR_TIMED(File_set_view, (MPI_File fh, MPI_Offset disp, MPI_Datatype etype, MPI_Datatype filetype, const char
+           *datarep, MPI_Info info), (fh, disp, etype, filetype, datarep, info))
+GPHR_TIMED(File_set_size, (MPI_File fh, MPI_Offset size), (fh, size))
+GPHR_TIMED(File_get_size, (MPI_File fh, MPI_Offset *size), (fh, size))
+GPHR_TIMED(File_sync, (MPI_File fh), (fh))
+GPHR_TIMED(Win_fence, (int mode, MPI_Win win), (mode, win))
+
+extern "C" int MPI_Finalize() {
+  writeProcessClocks();
+  return PMPI_Finalize();
+}
+
+#undef GPHR_TIMED

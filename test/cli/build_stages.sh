@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# gphr build's per-stage clocks (doc/user-guide.md, "stages.csv"), on 2 ranks:
+#  1. DIR/stages.csv has the documented header and one row per rank and stage, the stages of a
+#     gp-deim + gp-eqp build in order, and no stages.csv.tmp left behind;
+#  2. compute_s = cpu_s - mpi_cpu_s, and no MPI column exceeds its total (wall, cpu);
+#  3. the PMPI layer of the executable counts: every rank spent time inside MPI (the training's
+#     and the bases' reductions), so mpi_wall_s summed over a rank's stages is > 0;
+#  4. the console prints one line per stage.
+# usage: build_stages.sh GPHR MPIEXEC
+set -u
+gphr=$1; mpi=$2
+here=$(cd "$(dirname "$0")" && pwd)
+export OPENBLAS_NUM_THREADS=1 OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+cd "$work"
+# The shared small NLS build, with gp-eqp beside gp-deim (a stage of its own: the fits).
+sed 's/methods: \[gp-deim\]/methods: [gp-deim, gp-eqp]/' "$here/../support/small_nls_model.yaml" > build.yaml
+grep -q "gp-eqp" build.yaml || fail "could not add gp-eqp to the shared config"
+"$mpi" -np 2 "$gphr" build build.yaml --model nls.h5 --output art > build.out 2> build.err || { cat build.err; fail "build"; }
+[ -f art/stages.csv ] || fail "no art/stages.csv"
+[ -e art/stages.csv.tmp ] && fail "stages.csv.tmp left behind"
+grep -q "stages (max over 2 rank(s))" build.out || fail "no stage table on the console: $(cat build.out)"
+grep -qE "^ +deim basis k=6 +[0-9.]+ +[0-9.]+ +[0-9.]+$" build.out || fail "no console line of the DEIM basis: $(cat build.out)"
+python3 - art/stages.csv <<'PY' || fail "stages.csv: see above"
+import csv, sys
+rows = list(csv.reader(open(sys.argv[1])))
+head = ["rank", "stage", "wall_s", "cpu_s", "mpi_wall_s", "mpi_cpu_s", "compute_s", "peak_rss_mb"]
+assert rows[0] == head, rows[0]
+want = ["setup", "training", "instance", "basis", "header", "deim basis k=6", "gp-deim k=6", "fits k=6",
+        "interpolation k=6", "write"]
+body = rows[1:]
+assert len(body) == 2 * len(want), f"{len(body)} rows, want {2 * len(want)}"
+for r in (0, 1):
+    mine = [x for x in body if x[0] == str(r)]
+    assert [x[1] for x in mine] == want, [x[1] for x in mine]
+    for x in mine:
+        wall, cpu, mw, mc, comp, rss = map(float, x[2:])
+        # The file prints 6 decimals: compute_s is cpu_s - mpi_cpu_s up to their rounding (1.5e-6).
+        assert abs(comp - (cpu - mc)) <= 2e-6, x
+        # Inside MPI is part of the total, up to the two clocks' reads (a few microseconds apart).
+        assert 0 <= mw <= wall + 1e-4 and 0 <= mc <= cpu + 1e-4, x
+        assert wall >= 0 and rss > 0, x
+    mpi = sum(float(x[4]) for x in mine)
+    # Zero would mean the PMPI layer is not linked or its symbols are not exported.
+    assert mpi > 0, f"rank {r}: no time inside MPI in any stage"
+print("stages.csv ok")
+PY
+echo PASS
