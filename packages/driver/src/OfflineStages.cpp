@@ -44,9 +44,11 @@ ModelBuildKeys cacheKeys(const Teuchos::ParameterList& cfg) {
   // The DEIM algorithm's revision is part of the key: a basis cached by an earlier one is
   // recomputed (2: the randomized range finder draws random signs instead of Gaussian numbers;
   // 3: the exact route's POD is hierarchical, over chunks of the snapshots).
-  // hyper.deimSnapshots configures the classic DEIM baseline only: out of this basis's key.
+  // hyper.deimSnapshots configures the classic DEIM baseline only, and hyper.groupSize only who
+  // POD's which chunk (the same basis to round-off): both out of this basis's key.
   Teuchos::ParameterList hyper = cfg.sublist("hyper");
   hyper.remove("deimSnapshots", false);
+  hyper.remove("groupSize", false);
   k.deim = k.basis + toYaml(hyper) + "deim basis revision 3, m <= " + std::to_string(largestM(cfg));
   k.nnls = k.basis + toYaml(cfg.sublist("eqp"));
   k.refit = k.nnls + toYaml(cfg.sublist("hyper"));  // the refit's terms are GP-DEIM's

@@ -331,6 +331,7 @@ DeimBasisOptions deimBasisOptionsFrom(const Teuchos::ParameterList& hyp, int lar
   o.snapshotEvery = hyp.get<int>("snapshotEvery");
   o.blockSnapshots = hyp.get<int>("blockSnapshots");
   o.chunkSnapshots = hyp.get<int>("chunkSnapshots");
+  o.groupSize = hyp.get<int>("groupSize");
   o.svd = hyp.get<std::string>("svd");
   o.oversampling = hyp.get<int>("oversampling");
   o.powerIterations = hyp.get<int>("powerIterations");

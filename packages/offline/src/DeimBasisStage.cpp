@@ -96,17 +96,25 @@ DeimBasis deimBasisInGroups(const Scene& scene, const TrainingResult& training, 
   return root.basis();
 }
 
-// Rank groups for the DEIM basis: as the training's, when it streams from the artifacts file,
-// splits the ranks, and the exact route has more than one chunk to share.
+// Rank groups for the DEIM basis (0: none), when the training streams from the artifacts file
+// and the exact route has chunks to share: options.groupSize ranks each, or (0) as many groups as
+// there are chunks, each of at least ceil(2n / kDeimRowsPerRank) ranks. Unlike a time step, a
+// chunk's POD is not bound by its communication (its steps are one QR per rank and one small
+// reduction), so groups are limited by memory: each holds the whole basis A (2n x 2k) and a
+// snapshot block, 2^18 state rows per rank at most (2k = 160: 335 MB of A per rank).
 int deimGroupSize(const RCP<const Comm>& comm, const TrainingResult& training, const MultiVector& A,
                   const HamiltonianSystem& reference, const DeimBasisOptions& opt) {
-  if (training.cachePath.empty() || training.groupSize <= 0 || training.groupSize >= comm->getSize() ||
-      opt.svd != "exact")
-    return 0;
+  GPHR_REQUIRE(opt.groupSize >= 0, InputError, "groupSize = ", opt.groupSize, "; allowed: 0 (automatic) or >= 1");
+  const int p = comm->getSize();
+  if (training.cachePath.empty() || p == 1 || opt.svd != "exact") return 0;
   const int maxRank = deimMaxRank(opt, static_cast<GO>(reference.nonlinearTerm().rowMap()->getGlobalNumElements()));
-  return deimChunks(training.snapshots, opt, static_cast<int>(A.getNumVectors()), maxRank).count() > 1
-             ? training.groupSize
-             : 0;
+  const long chunks = deimChunks(training.snapshots, opt, static_cast<int>(A.getNumVectors()), maxRank).count();
+  if (chunks <= 1) return 0;
+  if (opt.groupSize > 0) return opt.groupSize < p ? opt.groupSize : 0;
+  const long rows = static_cast<long>(A.getGlobalLength());
+  const long smallest = std::max<long>(1, (rows + kDeimRowsPerRank - 1) / kDeimRowsPerRank);
+  const long groups = std::min<long>(chunks, p / smallest);
+  return groups > 1 ? static_cast<int>(p / groups) : 0;
 }
 
 }  // namespace

@@ -165,7 +165,7 @@ TEST(DeimBasisStage, RankGroupsGiveTheBasisAllRanksGive) {
   o.parameters = {{0.9}, {0.95}, {1.0}, {1.05}, {1.1}};
   o.groupSize = 1;
   const ArtifactsCache cache(dir.file("a.h5"), comm, scene.name(), 128);
-  TrainingResult training = runTraining(scene, comm, o, &cache, "key");
+  const TrainingResult training = runTraining(scene, comm, o, &cache, "key");
   const auto inst = scene.instantiate(comm, training.parameters[0], true);
   BasisOptions b;
   b.k = 4;
@@ -173,8 +173,9 @@ TEST(DeimBasisStage, RankGroupsGiveTheBasisAllRanksGive) {
   DeimBasisOptions d;
   d.maxRank = 12;
   d.chunkSnapshots = 4;  // 55 snapshots: 14 chunks, shared by the groups
+  d.groupSize = 1;
   const DeimBasis grouped = runDeimBasisStage(scene, comm, training, *basis.A, *inst.system, d).basis;
-  training.groupSize = comm->getSize();  // one group: every chunk on all ranks
+  d.groupSize = comm->getSize();  // one group: every chunk on all ranks
   const DeimBasis together = runDeimBasisStage(scene, comm, training, *basis.A, *inst.system, d).basis;
   ASSERT_EQ(grouped.singularValues.size(), together.singularValues.size());
   const double s1 = together.singularValues[0];

@@ -24,6 +24,9 @@ struct DeimBasisOptions {
   /// exact: reduced-Jacobian snapshots per chunk of the hierarchical POD (DeimChunks); 0: about
   /// kChunkColumnsPerRank x maxRank columns per chunk, equal chunks.
   int chunkSnapshots = 0;
+  /// exact, in the offline stage with an artifacts cache: ranks per rank group POD'ing chunks side
+  /// by side; 0: automatic (offline/DeimBasisStage.hpp); >= the ranks: all ranks together.
+  int groupSize = 0;
   /// exact: the streaming POD (incremental TSQR + SVD); randomized: the range finder of HMT11
   /// (one streamed pass + powerIterations passes + one for B B^T), oversampling extra columns.
   std::string svd = "exact";
@@ -85,7 +88,10 @@ struct DeimChunkModes {
   int rank = 0;            ///< triplets kept
   double energy = 0.0;     ///< ||the chunk's snapshots||_F^2
   long snapshots = 0;      ///< snapshots POD'd
-  int tsqrSteps = 0, stackedSteps = 0, replicatedSteps = 0, treeSteps = 0;  ///< POD steps by route
+  /// POD steps by route
+  /// @{
+  int tsqrSteps = 0, stackedSteps = 0, replicatedSteps = 0, treeSteps = 0;
+  /// @}
 };
 /// The POD of the reduced-Jacobian snapshots in `range` (the exact route, maxRank triplets).
 /// Collective over the systems' communicator.
@@ -99,6 +105,7 @@ int deimMaxRank(const DeimBasisOptions& options, GO d);
 /// own maxRank triplets); the chunks' statistics are summed into the basis. Collective.
 class DeimRootPod {
  public:
+  /// A root on rowMap (the row map of G) keeping maxRank triplets; options: its podRoute.
   DeimRootPod(RCP<const Map> rowMap, const DeimBasisOptions& options, int maxRank);
   /// Chunk `stats`'s modes: the leading stats.rank columns of `modes` (on the row map).
   void add(const MultiVector& modes, const DeimChunkModes& stats);

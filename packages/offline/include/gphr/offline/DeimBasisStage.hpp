@@ -11,6 +11,10 @@
 
 namespace gphr {
 
+/// The most state rows per rank of a rank group of the DEIM basis stage (its memory bound: each
+/// group holds the whole basis A).
+constexpr long kDeimRowsPerRank = 1L << 18;
+
 /// A DEIM basis and where it came from.
 struct CachedDeimBasis {
   DeimBasis basis;              ///< The reduced-Jacobian DEIM basis.
