@@ -20,7 +20,7 @@ Machine constants, fitted on the 1-rank runs of the CSV (the model's p-dependenc
   q_step    seconds per reduced time step of a query, and the query process's fixed set-up.
 Communication (only for the extrapolated wall time; not measurable on one small machine):
   ALPHA = 2e-6 s per message, BETA = 1e-10 s per byte (10 GB/s): an InfiniBand-class cluster.
-The DEIM basis stage has no model yet (doc/scaling.md, "DEIM basis": TODO): measured only.
+The DEIM basis stage: its hierarchical POD's chunk PODs over rank groups and its root (deim_flops).
 """
 import csv
 import math
@@ -89,6 +89,55 @@ def basis_messages(s, p):
     return steps * 2 * math.ceil(math.log2(p)), steps * 2 * math.ceil(math.log2(p)) * 8.0 * nc * nc
 
 
+DEIM_ROWS_PER_RANK = 2 ** 18  # packages/offline: kDeimRowsPerRank, the DEIM stage's rank-group rule
+
+
+def deim_layout(s, p):
+    """The hierarchical POD of the DEIM basis (packages/hyper/src/DeimBasis.cpp, DeimChunks): N_s
+    reduced-Jacobian snapshots of d x 2k (d = n / 2 rows of G), R = max(m) + 32 triplets, chunks
+    of about 32 R columns (C of them, `per` snapshots each), steps of ceil(R / 2k) snapshots; the
+    stage's rank groups (packages/offline/src/DeimBasisStage.cpp): min(C, p / ceil(n / 2^18))
+    groups of p / G ranks, ceil(C / G) rounds."""
+    ns = s["points"] * (s["steps"] / s["every"] + 1)
+    r = 2 * s["k"]
+    ms = s["m"] if isinstance(s["m"], list) else [s["m"]]
+    R = max(ms) + 32
+    C = math.ceil(ns / math.ceil(32 * R / r))
+    per = math.ceil(ns / C)
+    smallest = max(1, math.ceil(state_rows(s) / DEIM_ROWS_PER_RANK))
+    G = min(C, p // smallest) if p > 1 and C > 1 else 1
+    G = max(G, 1)
+    return dict(ns=ns, r=r, R=R, C=C, per=per, block=math.ceil(R / r) * r, G=G, g=p // G,
+                rounds=math.ceil(C / G), d=state_rows(s) / 2)
+
+
+def deim_flops(s, p):
+    """The busiest rank's flops: ceil(C / G) chunk PODs on its group (pod_flops of d rows, per 2k
+    columns, R carried) and, on all p ranks, the root: one step per chunk of R carried + R new
+    columns (rank 0 does the tree's or the stack's replicated part)."""
+    L = deim_layout(s, p)
+    chunk = pod_flops(L["d"], L["per"] * L["r"], L["R"], L["block"], L["g"])
+    root = pod_flops(L["d"], L["C"] * L["R"], L["R"], L["R"], p)
+    return L["rounds"] * chunk + root
+
+
+def deim_messages(s, p):
+    """Per round one export of the round's modes (d G R numbers over p ranks) and the all-reduce of
+    its statistics; per root step as a basis step of R + R columns; per chunk step inside a group
+    of g > 1 ranks the stack's all-reduce."""
+    L = deim_layout(s, p)
+    nc = 2 * L["R"]
+    msgs = L["rounds"] * (2 + math.ceil(math.log2(max(p, 2))))
+    byts = L["rounds"] * 8.0 * L["d"] * L["G"] * L["R"] / p
+    if p < 8:
+        msgs += L["C"] * math.ceil(math.log2(max(p, 2)))
+        byts += L["C"] * 8.0 * p * nc * nc
+    else:
+        msgs += L["C"] * 2 * math.ceil(math.log2(p))
+        byts += L["C"] * 2 * math.ceil(math.log2(p)) * 8.0 * nc * nc
+    return msgs, byts
+
+
 def training_comm(s, p):
     """Seconds of messages of the busiest rank's training: inside a group of g > 1 ranks, per
     Newton-GMRES iteration two all-reduces (log2 g messages each) and a halo exchange (2); about
@@ -134,6 +183,8 @@ def fit(table, sizes):
              for x in builds]
     c["g_node"] = sum(u * t for u, t in units) / sum(u * u for u, t in units) if units else float("nan")
     for x in builds:
+        deim = sum(v for k, v in table[(x, 1)].items() if k.startswith("deim basis"))
+        c["F_deim_" + x] = deim_flops(sizes[x], 1) / deim if deim > 0 else float("nan")
         c["g_train_" + x] = table[(x, 1)]["training"] / training_units(sizes[x], 1)
         # the small stages (set-up, instance, header, gp-deim, write): a constant, not modelled
         c["rest_" + x] = sum(v for k, v in table[(x, 1)].items()
@@ -160,7 +211,9 @@ def predict(case, stage, s, p, c):
             return c["g_node"] * interpolation_units(s, p)
         if stage == "rest":
             return c["rest_" + case]
-        return None  # DEIM basis: TODO (doc/scaling.md)
+        if stage.startswith("deim basis"):
+            return deim_flops(s, p) / c["F_deim_" + case]
+        return None
     if case == "fom" and stage == "process":
         return c["g_fom"] * s["steps"] * state_rows(s) / p
     if case == "query" and stage == "process":
@@ -202,7 +255,7 @@ def main():
                     worst[(case, st)] = max(worst.get((case, st), (0.0, 1.0)), (abs(math.log(ratio)), ratio))
                 print(f"{case:<6} {st:<20} {p:>5} {meas:>11.3f} "
                       f"{('-' if pred is None else f'{pred:.3f}'):>11} {('-' if ratio is None else f'{ratio:.2f}'):>9}"
-                      + ("  (model: TODO, DEIM basis)" if st.startswith("deim basis") and p == ranks[0] else ""))
+                      )
     if worst:
         print("largest |pred/meas - 1| at p > 1 per stage: " + ", ".join(
             f"{c_}/{s_} {r - 1:+.0%}" for (c_, s_), (w, r) in worst.items()))
@@ -233,6 +286,8 @@ def extrapolate(sizes, c, total_rows):
             "training": lambda p: (c["g_train_" + case] * training_units(s, p), training_comm(s, p)),
             "basis": lambda p: (basis_flops(s, p) / c["F_dense"],
                                 basis_messages(s, p)[0] * ALPHA + basis_messages(s, p)[1] * BETA),
+            "deim basis": lambda p: (deim_flops(s, p) / c["F_deim_" + case],
+                                     deim_messages(s, p)[0] * ALPHA + deim_messages(s, p)[1] * BETA),
             "interpolation": lambda p: (c["g_node"] * interpolation_units(s, p),
                                         s["nodes"] * math.ceil(math.log2(max(p, 2))) * (ALPHA + BETA * 8 * (2 * s["k"]) ** 2)),
         }
@@ -253,11 +308,10 @@ def extrapolate(sizes, c, total_rows):
                   + (f"   efficiency < 50% from p = {dropped}" if dropped else ""))
             if dropped and (first is None or dropped < first[0]):
                 first = (dropped, f"{case} {name}")
-        print("    deim basis    model: TODO (doc/scaling.md, 'DEIM basis')")
     if first:
-        print(f"first to stop scaling (efficiency below 50%, DEIM basis not modelled): {first[1]} at p = {first[0]}")
+        print(f"first to stop scaling (efficiency below 50%): {first[1]} at p = {first[0]}")
     else:
-        print("no modelled stage falls below 50% efficiency up to p = 1024 (DEIM basis not modelled)")
+        print("no modelled stage falls below 50% efficiency up to p = 1024")
 
 
 if __name__ == "__main__":
