@@ -222,7 +222,7 @@ namespace {
 // The streaming POD of the reduced-Jacobian snapshots in `range`; `snapshots` gets their count.
 StreamingPod chunkPod(const std::vector<RCP<const HamiltonianSystem>>& systems, const SnapshotSet& states,
                       const MultiVector& A, const DeimBasisOptions& opt, int maxRank, SnapshotRange range,
-                      long& snapshots) {
+                      long& snapshots, ReducedStateCache* cache = nullptr) {
   const RCP<const Map> rowMap = systems[0]->nonlinearTerm().rowMap();
   const int r = static_cast<int>(A.getNumVectors());
   const LO nl = static_cast<LO>(rowMap->getNodeNumElements());
@@ -243,7 +243,7 @@ StreamingPod chunkPod(const std::vector<RCP<const HamiltonianSystem>>& systems, 
     for (LO i = 0; i < nl; ++i)
       for (int a = 0; a < r; ++a) b(i, static_cast<size_t>(filled) * r + a) = J[static_cast<size_t>(i) * r + a];
     if (++filled == perBlock) flush();
-  });
+  }, cache);
   flush();
   return pod;
 }
@@ -279,9 +279,10 @@ void addStatistics(DeimChunkModes& sum, const DeimChunkModes& c) {
 }  // namespace
 
 DeimChunkModes deimChunkModes(const std::vector<RCP<const HamiltonianSystem>>& systems, const SnapshotSet& states,
-                              const MultiVector& A, const DeimBasisOptions& opt, int maxRank, SnapshotRange range) {
+                              const MultiVector& A, const DeimBasisOptions& opt, int maxRank, SnapshotRange range,
+                              ReducedStateCache* cache) {
   long snapshots = 0;
-  const StreamingPod pod = chunkPod(systems, states, A, opt, maxRank, range, snapshots);
+  const StreamingPod pod = chunkPod(systems, states, A, opt, maxRank, range, snapshots, cache);
   DeimChunkModes out = statisticsOf(pod, snapshots);
   out.modes = rcp(new MultiVector(pod.leftVectors(), Teuchos::Copy));
   if (out.rank > 0) {
@@ -318,9 +319,9 @@ DeimBasis computeDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& syst
     return basisOf(pod, statisticsOf(pod, snapshots));
   }
   DeimRootPod root(rowMap, opt, maxRank);
-  const SnapshotSet blocks = states.keepingLastBlock();  // consecutive chunks share blocks: read each once
+  ReducedStateCache blocks;  // consecutive chunks share blocks: each read once
   for (int q = 0; q < chunks.count(); ++q) {
-    const DeimChunkModes c = deimChunkModes(systems, blocks, A, opt, maxRank, chunks.range(q));
+    const DeimChunkModes c = deimChunkModes(systems, states, A, opt, maxRank, chunks.range(q), &blocks);
     root.add(*c.modes, c);
   }
   return root.basis();

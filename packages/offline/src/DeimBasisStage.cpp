@@ -58,13 +58,14 @@ DeimChunkModes getStatistics(const double* f) {
 DeimBasis deimBasisInGroups(const Scene& scene, const TrainingResult& training, const MultiVector& A,
                             const HamiltonianSystem& reference, const DeimBasisOptions& opt, const RankGroups& groups) {
   const auto systems = trainingSystems(scene, groups.sub(), training);
-  const SnapshotSet states = trainingSnapshotsOn(training, groups.sub(), systems[0]->space()).keepingLastBlock();
+  const SnapshotSet states = trainingSnapshotsOn(training, groups.sub(), systems[0]->space());
   const RCP<MultiVector> Ag = groups.toGroup(A, systems[0]->map());
   const RCP<const Map> rowMap = reference.nonlinearTerm().rowMap(), groupRows = systems[0]->nonlinearTerm().rowMap();
   const int maxRank = deimMaxRank(opt, static_cast<GO>(rowMap->getGlobalNumElements()));
   const DeimChunks chunks = deimChunks(training.snapshots, opt, static_cast<int>(A.getNumVectors()), maxRank);
   const int count = chunks.count(), G = groups.count();
   DeimRootPod root(rowMap, opt, maxRank);
+  ReducedStateCache blocks;  // a group's chunks q, q + G: a block longer than G chunks is cut by both
   Teuchos::Time clock("chunks");
   clock.start();
   for (int first = 0; first < count; first += G) {
@@ -72,7 +73,7 @@ DeimBasis deimBasisInGroups(const Scene& scene, const TrainingResult& training, 
     DeimChunkModes mine;
     std::vector<double> stats(static_cast<size_t>(inRound) * kChunkFields, 0.0), all(stats.size());
     if (q < count) {
-      mine = deimChunkModes(systems, states, *Ag, opt, maxRank, chunks.range(q));
+      mine = deimChunkModes(systems, states, *Ag, opt, maxRank, chunks.range(q), &blocks);
       if (groups.leader()) putStatistics(mine, stats.data() + static_cast<size_t>(q - first) * kChunkFields);
     }
     Teuchos::reduceAll(*groups.world(), Teuchos::REDUCE_SUM, static_cast<int>(stats.size()), stats.data(), all.data());

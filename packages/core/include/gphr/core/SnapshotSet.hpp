@@ -7,7 +7,6 @@
 /// the basis, the DEIM basis and the term-weight fits read the snapshots this way.
 #include <functional>
 #include <initializer_list>
-#include <memory>
 #include <utility>
 #include <vector>
 
@@ -37,27 +36,6 @@ class SnapshotSet {
   size_t numColumns(size_t j) const { return columns_.at(j); }
   /// Block j: held, or read now (a streamed block lives as long as the caller keeps it).
   RCP<const MultiVector> operator[](size_t j) const { return load_ ? load_(j) : blocks_.at(j); }
-
-  /// The same blocks, a streamed set keeping the block read last until another is asked for: for a
-  /// stage that visits each block several times in a row (the hierarchical POD's chunks cut the
-  /// blocks), one read per run of visits, and still one block held at a time. Held sets: *this.
-  SnapshotSet keepingLastBlock() const {
-    if (!load_) return *this;
-    struct Last {
-      size_t j = static_cast<size_t>(-1);
-      RCP<const MultiVector> block;
-    };
-    auto last = std::make_shared<Last>();
-    Loader load = load_;
-    return SnapshotSet(columns_, [load, last](size_t j) {
-      if (last->j != j) {
-        last->block = Teuchos::null;  // released before the next is read: one block at a time
-        last->block = load(j);
-        last->j = j;
-      }
-      return last->block;
-    });
-  }
 
   /// Visits the blocks in order, each read once (streamed: one in memory at a time).
   class Iterator {

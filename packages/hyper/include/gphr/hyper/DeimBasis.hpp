@@ -93,10 +93,12 @@ struct DeimChunkModes {
   int tsqrSteps = 0, stackedSteps = 0, replicatedSteps = 0, treeSteps = 0;
   /// @}
 };
-/// The POD of the reduced-Jacobian snapshots in `range` (the exact route, maxRank triplets).
+/// The POD of the reduced-Jacobian snapshots in `range` (the exact route, maxRank triplets); with
+/// `cache`, shared by the calls for consecutive chunks, a block cut by two chunks is read once.
 /// Collective over the systems' communicator.
 DeimChunkModes deimChunkModes(const std::vector<RCP<const HamiltonianSystem>>& systems, const SnapshotSet& states,
-                              const MultiVector& A, const DeimBasisOptions& options, int maxRank, SnapshotRange range);
+                              const MultiVector& A, const DeimBasisOptions& options, int maxRank, SnapshotRange range,
+                              ReducedStateCache* cache = nullptr);
 /// The largest DEIM rank the options keep for a row map of d rows (options.maxRank, or the default, at most d).
 int deimMaxRank(const DeimBasisOptions& options, GO d);
 

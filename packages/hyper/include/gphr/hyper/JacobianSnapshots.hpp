@@ -24,6 +24,14 @@ struct SnapshotRange {
   long last = std::numeric_limits<long>::max();     ///< past the last one
 };
 
+/// The reduced states z = A^T y of the block read last (2k x its states): visits of the same block
+/// one after another (the hierarchical POD's chunks cut the blocks) then read it once, and nothing
+/// of the block's size stays alive between them.
+struct ReducedStateCache {
+  size_t block = static_cast<size_t>(-1);  ///< the block Z belongs to
+  RCP<MultiVector> Z;                      ///< A^T y for its states
+};
+
 /// The number of snapshots forEachJacobianSnapshot visits: ceil(columns_j / every) summed over the blocks.
 inline long usedSnapshotCount(const SnapshotSet& states, int every) {
   long used = 0;
@@ -34,11 +42,12 @@ inline long usedSnapshotCount(const SnapshotSet& states, int every) {
 /// Calls fn(jac, index) -- or fn(jac, index, kernel), when fn takes the evaluated kernel too -- for
 /// every used snapshot in `range`, jac = this rank's rows of J_G(y0_j + A A^T y_s) A (row-major,
 /// local rows x 2k); a block with none of the range's snapshots is not read. Returns the number of
-/// snapshots visited. Collective.
+/// snapshots visited. With `cache`, a block's reduced states are kept there for the next call.
+/// Collective.
 template <class Fn>
 long forEachJacobianSnapshotIn(const std::vector<RCP<const HamiltonianSystem>>& systems,
                                const SnapshotSet& states, const MultiVector& A, int every, SnapshotRange range,
-                               std::vector<Scalar>& jac, Fn&& fn) {
+                               std::vector<Scalar>& jac, Fn&& fn, ReducedStateCache* cache = nullptr) {
   const RCP<const Map> rowMap = systems[0]->nonlinearTerm().rowMap();
   const int r = static_cast<int>(A.getNumVectors());
   auto local = rcp(new Map(r, 0, rowMap->getComm(), Tpetra::LocallyReplicated));
@@ -53,9 +62,14 @@ long forEachJacobianSnapshotIn(const std::vector<RCP<const HamiltonianSystem>>& 
     GPHR_REQUIRE(sys.nonlinearTerm().rowMap()->isSameAs(*rowMap), InputError, "training system ", j,
                  " has another row map of G");
     ReducedRowKernel kernel(sys.nonlinearTermPtr(), ownedRowSample(sys, A), sys.space().comm());
-    MultiVector Z(local, states.numColumns(j));
-    Z.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, A, *states[j], 0.0);  // z = A^T y_s (the block read once)
-    auto zv = Z.getLocalViewHost(Tpetra::Access::ReadOnly);
+    ReducedStateCache own;
+    ReducedStateCache& zc = cache ? *cache : own;
+    if (zc.block != j || zc.Z.is_null()) {
+      zc.Z = rcp(new MultiVector(local, states.numColumns(j)));
+      zc.Z->multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, A, *states[j], 0.0);  // z = A^T y_s (the block read once)
+      zc.block = j;
+    }
+    auto zv = zc.Z->getLocalViewHost(Tpetra::Access::ReadOnly);
     Teuchos::SerialDenseVector<int, double> z(r);
     for (size_t c = 0; c < states.numColumns(j); c += every, ++index) {
       if (index < range.first || index >= range.last) continue;
