@@ -98,7 +98,8 @@ def deim_layout(s, p):
     of about 32 R columns (C of them, `per` snapshots each), steps of ceil(R / 2k) snapshots; the
     stage's rank groups (packages/offline/src/DeimBasisStage.cpp): min(C, p / ceil(n / 2^18))
     groups of p / G ranks, ceil(C / G) rounds."""
-    ns = s["points"] * (s["steps"] / s["every"] + 1)
+    # every hyper-th stored state of each parameter (hyper.snapshotEvery, default 1)
+    ns = s["points"] * math.ceil((s["steps"] / s["every"] + 1) / s.get("hyper", 1))
     r = 2 * s["k"]
     ms = s["m"] if isinstance(s["m"], list) else [s["m"]]
     R = max(ms) + 32

@@ -90,16 +90,20 @@ DeimBasis deimBasisInGroups(const Scene& scene, const TrainingResult& training, 
     const RCP<MultiVector> modes = groups.toWorld(ours, rowMap);
     for (int c = 0; c < inRound; ++c)  // a chunk of rank 0 adds its statistics only
       root.add(round[c].rank > 0 ? *modes->subView(Teuchos::Range1D(offset[c], offset[c + 1] - 1)) : *modes, round[c]);
-    if (groups.world()->getRank() == 0)
-      std::fprintf(stderr, "[gphr] deim basis: chunks %d-%d of %d POD'd by %d group(s) side by side, %.1f s\n", first + 1,
+    if (groups.world()->getRank() == 0 && inRound == 1)
+      std::fprintf(stderr, "[gphr] deim basis: chunk %d of %d POD'd, %.1f s\n", first + 1, count, clock.totalElapsedTime(true));
+    else if (groups.world()->getRank() == 0)
+      std::fprintf(stderr, "[gphr] deim basis: chunks %d-%d of %d POD'd by %d groups side by side, %.1f s\n", first + 1,
                    first + inRound, count, G, clock.totalElapsedTime(true));
   }
   return root.basis();
 }
 
-// Rank groups for the DEIM basis (0: none), when the training streams from the artifacts file
-// and the exact route has chunks to share: options.groupSize ranks each, or (0) as many groups as
-// there are chunks, each of at least ceil(2n / kDeimRowsPerRank) ranks. Unlike a time step, a
+// Rank groups for the DEIM basis (0: none, computeDeimBasis on all ranks), when the training
+// streams from the artifacts file and the exact route has more than one chunk: options.groupSize
+// ranks each, or (0) as many groups as there are chunks, each of at least ceil(2n /
+// kDeimRowsPerRank) ranks; one group of all ranks where that makes one (the same rounds, a
+// progress line per chunk). Unlike a time step, a
 // chunk's POD is not bound by its communication (its steps are one QR per rank and one small
 // reduction), so groups are limited by memory: each holds the whole basis A (2n x 2k) and a
 // snapshot block, 2^18 state rows per rank at most (2k = 160: 335 MB of A per rank).
@@ -107,15 +111,15 @@ int deimGroupSize(const RCP<const Comm>& comm, const TrainingResult& training, c
                   const HamiltonianSystem& reference, const DeimBasisOptions& opt) {
   GPHR_REQUIRE(opt.groupSize >= 0, InputError, "groupSize = ", opt.groupSize, "; allowed: 0 (automatic) or >= 1");
   const int p = comm->getSize();
-  if (training.cachePath.empty() || p == 1 || opt.svd != "exact") return 0;
+  if (training.cachePath.empty() || opt.svd != "exact") return 0;
   const int maxRank = deimMaxRank(opt, static_cast<GO>(reference.nonlinearTerm().rowMap()->getGlobalNumElements()));
   const long chunks = deimChunks(training.snapshots, opt, static_cast<int>(A.getNumVectors()), maxRank).count();
   if (chunks <= 1) return 0;
-  if (opt.groupSize > 0) return opt.groupSize < p ? opt.groupSize : 0;
+  if (opt.groupSize > 0) return std::min(opt.groupSize, p);
   const long rows = static_cast<long>(A.getGlobalLength());
   const long smallest = std::max<long>(1, (rows + kDeimRowsPerRank - 1) / kDeimRowsPerRank);
   const long groups = std::min<long>(chunks, p / smallest);
-  return groups > 1 ? static_cast<int>(p / groups) : 0;
+  return groups > 1 ? static_cast<int>(p / groups) : p;
 }
 
 }  // namespace
