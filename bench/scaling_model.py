@@ -29,6 +29,7 @@ from collections import OrderedDict, defaultdict
 
 ALPHA, BETA = 2e-6, 1e-10
 ROWS_PER_RANK = 4096  # packages/offline: kTrainingRowsPerRank, the rank-group rule
+MAX_ROWS_PER_RANK = 2 ** 18  # packages/offline: kMaxTrainingRowsPerRank
 
 
 def sizes_of(text):
@@ -46,11 +47,19 @@ def state_rows(s):
 
 # ---- work of the busiest rank, per stage (doc/scaling.md has the derivations) -------------------
 
-def training_units(s, p):
-    """State rows x time steps that the busiest rank integrates: rank groups of g ranks (at least
-    4096 rows per rank), G = p // g groups, ceil(P / G) parameters per group."""
+def training_group(s, p):
+    """packages/offline trainingGroupSize: p / P ranks per group, at most ceil(rows / 4096), at
+    least ceil(rows / 2^18)."""
     rows = state_rows(s)
-    g = max(1, min(p, math.ceil(rows / ROWS_PER_RANK)))
+    share = max(1, p // int(s["points"]))
+    return max(1, min(p, max(math.ceil(rows / MAX_ROWS_PER_RANK), min(share, math.ceil(rows / ROWS_PER_RANK)))))
+
+
+def training_units(s, p):
+    """State rows x time steps that the busiest rank integrates: rank groups of g ranks
+    (training_group), G = p // g groups, ceil(P / G) parameters per group."""
+    rows = state_rows(s)
+    g = training_group(s, p)
     groups = max(1, p // g)
     return math.ceil(s["points"] / groups) * s["steps"] * rows / g
 
@@ -145,7 +154,7 @@ def training_comm(s, p):
     30 such iterations per step (the order gphr run reports for the SWE IMR). Groups of one rank
     send nothing."""
     rows = state_rows(s)
-    g = max(1, min(p, math.ceil(rows / ROWS_PER_RANK)))
+    g = training_group(s, p)
     if g == 1:
         return 0.0
     per_group = math.ceil(s["points"] / max(1, p // g))

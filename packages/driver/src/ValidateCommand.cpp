@@ -90,7 +90,7 @@ FomResult fullModel(const RunContext& ctx, const Scene& scene, const ReducedMode
 }
 
 // The full models of the points whose results are not in DIR/points, over rank groups
-// (trainingGroupSize: a system worth splitting over all ranks stays on all ranks): group g runs
+// (trainingGroupSize: a group per point, as many as the points' system size allows): group g runs
 // points g, g + G, ... on its own ranks into DIR/fom/<point>.h5 (one file per point, so groups
 // never share a writer); the points' evaluations then read them back on all ranks. The full
 // model's time in the report is then its time on its group's ranks.
@@ -98,7 +98,8 @@ void fullModelsOverGroups(const RunContext& ctx, const ReducedModel& rm, const s
                           const std::vector<char>& reused) {
   const auto& d = rm.data();
   const long fullDim = rm.scene().instantiate(ctx.comm, points.front().mu, true).system->space().fullDim();
-  const int size = trainingGroupSize(fullDim, ctx.comm->getSize()), groups = ctx.comm->getSize() / size;
+  const int size = trainingGroupSize(fullDim, ctx.comm->getSize(), static_cast<long>(points.size()));
+  const int groups = ctx.comm->getSize() / size;
   if (groups < 2 || std::count(reused.begin(), reused.end(), 0) == 0) return;  // on all ranks, or nothing to run
   const int group = std::min(ctx.comm->getRank() / size, groups - 1);
   RunContext sub = ctx;

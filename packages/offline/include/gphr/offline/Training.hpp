@@ -28,10 +28,13 @@ struct TrainingOptions {
   int groupSize = 0;
 };
 
-/// The group size worth taking for a state of fullDim rows on `ranks` ranks: groups of at least
-/// kTrainingRowsPerRank rows per rank (a smaller system is mostly communication), at most all ranks.
-int trainingGroupSize(long fullDim, int ranks);
+/// The group size for `parameters` systems of fullDim state rows on `ranks` ranks: ranks /
+/// parameters (a group per parameter), but at most the ranks that keep kTrainingRowsPerRank rows
+/// each (a smaller share is mostly communication) and at least those that keep at most
+/// kMaxTrainingRowsPerRank each (memory); 1 .. ranks.
+int trainingGroupSize(long fullDim, int ranks, long parameters);
 constexpr long kTrainingRowsPerRank = 4096;  ///< The fewest state rows per rank worth splitting a system over.
+constexpr long kMaxTrainingRowsPerRank = 1L << 18;  ///< The most state rows per rank a group's system may put on one.
 
 /// The training options of a `gphr` configuration's sections time (T, dt), training (values or
 /// points, snapshotEvery) and integrator, the parameters checked against `box`.
