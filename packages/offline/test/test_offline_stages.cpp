@@ -72,6 +72,18 @@ TEST(TrainingGrid, TensorGridFirstParameterFastest) {
   EXPECT_THROW(trainingGrid(box, {0, 2}), InputError);
 }
 
+// The default training group size is the documented rule: ranks / parameters, at most the ranks
+// that keep 4096 state rows each, at least those that keep 2^18 each (Training.hpp).
+TEST(TrainingGrid, GroupSizeOnePerParameterWithinTheRowBounds) {
+  EXPECT_EQ(trainingGroupSize(4096, 16, 5), 1);       // NLS n = 2048: a system is not worth splitting
+  EXPECT_EQ(trainingGroupSize(196608, 16, 4), 4);     // SWE 256^2: a group of 4 per parameter
+  EXPECT_EQ(trainingGroupSize(196608, 2, 4), 1);      // fewer ranks than parameters: one rank each
+  EXPECT_EQ(trainingGroupSize(196608, 16, 1), 16);    // one parameter: all ranks (48 would be worth it)
+  EXPECT_EQ(trainingGroupSize(3L << 18, 16, 25), 3);  // 3 x 2^18 rows: no group holds it on fewer than 3
+  EXPECT_EQ(trainingGroupSize(1L << 30, 16, 25), 16); // more than 16 x 2^18 rows: all ranks, the most there are
+  EXPECT_EQ(trainingGroupSize(100, 1, 3), 1);
+}
+
 TEST(ArtifactsCache, ADatasetCountsOnlyWithItsKeyAndMark) {
   auto comm = Tpetra::getDefaultComm();
   TempDir dir;
