@@ -48,11 +48,18 @@ def state_rows(s):
 # ---- work of the busiest rank, per stage (doc/scaling.md has the derivations) -------------------
 
 def training_group(s, p):
-    """packages/offline trainingGroupSize: p / P ranks per group, at most ceil(rows / 4096), at
-    least ceil(rows / 2^18)."""
-    rows = state_rows(s)
-    share = max(1, p // int(s["points"]))
-    return max(1, min(p, max(math.ceil(rows / MAX_ROWS_PER_RANK), min(share, math.ceil(rows / ROWS_PER_RANK)))))
+    """packages/offline trainingGroupSize: p / G for the group count G with the least
+    ceil(P / G) / floor(p / G) among those keeping 4096 .. 2^18 rows per rank (ties: more groups)."""
+    rows, P = state_rows(s), int(s["points"])
+    worth, hold = math.ceil(rows / ROWS_PER_RANK), math.ceil(rows / MAX_ROWS_PER_RANK)
+    most, fewest = max(1, min(P, p // hold)), math.ceil(p / worth)
+    if fewest > most:
+        return max(1, min(p, p // min(fewest, p)))
+    best = most
+    for G in range(most, fewest - 1, -1):
+        if math.ceil(P / G) * (p // best) < math.ceil(P / best) * (p // G):
+            best = G
+    return max(1, min(p, p // best))
 
 
 def training_units(s, p):

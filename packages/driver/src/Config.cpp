@@ -34,8 +34,9 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
   setIntParameter(tr, "snapshotEvery", 1, 1, 1000000, "keep every N-th state of each training run");
   setIntParameter(tr, "groupSize", 0, 0, 1000000,
                   "ranks per training group: the ranks split into groups that integrate their own training "
-                  "parameters side by side; 0: a group per parameter (ranks / parameters ranks each), but none "
-                  "splitting a system below 4096 or above 2^18 state rows per rank; the snapshots are the same to round-off");
+                  "parameters side by side; 0: the group count with the fewest rounds per rank of a group (a group "
+                  "per parameter where the ranks allow), none splitting a system below 4096 or above 2^18 state rows per rank; the "
+                  "snapshots are the same to round-off");
   auto& red = pl.sublist("reduction");
   setChoiceParameter(red, "method", "psd", Teuchos::tuple<std::string>("psd", "cotangent"),
                      "symplectic basis: psd (complex SVD, the paper's) or cotangent lift");

@@ -113,15 +113,24 @@ RCP<MultiVector> integrate(const SceneInstance& inst, const TrainingOptions& o) 
 
 }  // namespace
 
-// Groups of p / P ranks (every parameter its own group, the work divides without any
-// communication), at most the ranks a system is worth splitting over, at least the ranks that hold
-// it. On the SWE 256^2 (196,608 rows) with 4 parameters: 1 rank per group on 2 ranks (one group of
-// 2 integrated 1.44x faster than 1 rank), 4 on 16; on the NLS (4096 rows) always 1.
+// The group count G that finishes the P parameters soonest with ideal scaling inside a group:
+// the least ceil(P / G) rounds per floor(p / G) ranks (ties: more groups, less communication), among the G whose groups hold a system (p / G >= ceil(rows / 2^18) ranks) and do
+// not split it below 4096 rows per rank (p / G <= ceil(rows / 4096)); where no G does both, the
+// groups of ceil(rows / 4096) ranks. SWE 256^2 (196,608 rows), 4 parameters: 2 groups of 1 on 2
+// ranks (training 1.95x; one group of 2: 1.44x), 4 of 4 on 16; the NLS (4096 rows): groups of 1;
+// 10^8 rows, 5 parameters on 1024 ranks: one group (two of 512 take 3 rounds: 3 / 512 > 5 / 1024).
 int trainingGroupSize(long fullDim, int ranks, long parameters) {
-  const long worth = (fullDim + kTrainingRowsPerRank - 1) / kTrainingRowsPerRank;  // ranks one system may use
-  const long hold = (fullDim + kMaxTrainingRowsPerRank - 1) / kMaxTrainingRowsPerRank;  // ranks it needs
-  const long share = std::max<long>(1, ranks / std::max<long>(parameters, 1));  // a group per parameter
-  return static_cast<int>(std::clamp<long>(std::max(hold, std::min(share, worth)), 1, ranks));
+  const long p = ranks, P = std::max<long>(parameters, 1);
+  const long worth = (fullDim + kTrainingRowsPerRank - 1) / kTrainingRowsPerRank;     // most ranks per system
+  const long hold = (fullDim + kMaxTrainingRowsPerRank - 1) / kMaxTrainingRowsPerRank;  // fewest ranks per system
+  const long most = std::max<long>(1, std::min(P, p / hold)), fewest = (p + worth - 1) / worth;
+  if (fewest > most) return static_cast<int>(std::clamp<long>(p / std::min(fewest, p), 1, p));
+  // Time ~ ceil(P / G) rounds / (p / G ranks): compared as fractions, a / b < c / d <=> a d < c b.
+  auto rounds = [&](long G) { return (P + G - 1) / G; };
+  long best = most;
+  for (long G = most; G >= fewest; --G)
+    if (rounds(G) * (p / best) < rounds(best) * (p / G)) best = G;
+  return static_cast<int>(std::clamp<long>(p / best, 1, p));
 }
 
 namespace {

@@ -28,10 +28,11 @@ struct TrainingOptions {
   int groupSize = 0;
 };
 
-/// The group size for `parameters` systems of fullDim state rows on `ranks` ranks: ranks /
-/// parameters (a group per parameter), but at most the ranks that keep kTrainingRowsPerRank rows
-/// each (a smaller share is mostly communication) and at least those that keep at most
-/// kMaxTrainingRowsPerRank each (memory); 1 .. ranks.
+/// The group size for `parameters` systems of fullDim state rows on `ranks` ranks: ranks / G for
+/// the group count G with the least ceil(parameters / G) / floor(ranks / G) (rounds per rank of a
+/// group; ties: more groups)
+/// among those whose groups keep at least kTrainingRowsPerRank rows per rank (a smaller share is
+/// mostly communication) and at most kMaxTrainingRowsPerRank (memory); 1 .. ranks.
 int trainingGroupSize(long fullDim, int ranks, long parameters);
 constexpr long kTrainingRowsPerRank = 4096;  ///< The fewest state rows per rank worth splitting a system over.
 constexpr long kMaxTrainingRowsPerRank = 1L << 18;  ///< The most state rows per rank a group's system may put on one.
