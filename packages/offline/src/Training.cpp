@@ -116,7 +116,7 @@ RCP<MultiVector> integrate(const SceneInstance& inst, const TrainingOptions& o) 
 // The group count G that finishes the P parameters soonest with ideal scaling inside a group:
 // the least ceil(P / G) rounds per floor(p / G) ranks (ties: more groups, less communication), among the G whose groups hold a system (p / G >= ceil(rows / 2^18) ranks) and do
 // not split it below 4096 rows per rank (p / G <= ceil(rows / 4096)); where no G does both, the
-// groups of ceil(rows / 4096) ranks. SWE 256^2 (196,608 rows), 4 parameters: 2 groups of 1 on 2
+// groups of ceil(rows / 4096) ranks. SWE 256^2 (131,072 rows), 4 parameters: 2 groups of 1 on 2
 // ranks (training 1.95x; one group of 2: 1.44x), 4 of 4 on 16; the NLS (4096 rows): groups of 1;
 // 10^8 rows, 5 parameters on 1024 ranks: one group (two of 512 take 3 rounds: 3 / 512 > 5 / 1024).
 int trainingGroupSize(long fullDim, int ranks, long parameters) {

@@ -76,15 +76,15 @@ TEST(TrainingGrid, TensorGridFirstParameterFastest) {
 // ceil(P / G) / floor(p / G) among the groups keeping 4096 .. 2^18 state rows per rank (Training.hpp).
 TEST(TrainingGrid, GroupSizeOnePerParameterWithinTheRowBounds) {
   EXPECT_EQ(trainingGroupSize(4096, 16, 5), 1);       // NLS n = 2048: a system is not worth splitting
-  EXPECT_EQ(trainingGroupSize(196608, 16, 4), 4);     // SWE 256^2: a group of 4 per parameter
-  EXPECT_EQ(trainingGroupSize(196608, 2, 4), 1);      // fewer ranks than parameters: one rank each
-  EXPECT_EQ(trainingGroupSize(196608, 16, 1), 16);    // one parameter: all ranks (48 would be worth it)
+  EXPECT_EQ(trainingGroupSize(131072, 16, 4), 4);     // SWE 256^2: a group of 4 per parameter
+  EXPECT_EQ(trainingGroupSize(131072, 2, 4), 1);      // fewer ranks than parameters: one rank each
+  EXPECT_EQ(trainingGroupSize(131072, 16, 1), 16);    // one parameter: all ranks (32 would be worth it)
   EXPECT_EQ(trainingGroupSize(3L << 18, 15, 5), 3);   // 3 x 2^18 rows: 5 groups of 3 tie 1 of 15; more groups
   EXPECT_EQ(trainingGroupSize(3L << 18, 16, 25), 16); // 25 rounds on 16 ranks beat 5 rounds on 3 (1.56 < 1.67)
   EXPECT_EQ(trainingGroupSize(1L << 30, 16, 25), 16); // more than 16 x 2^18 rows: all ranks, the most there are
   EXPECT_EQ(trainingGroupSize(100, 1, 3), 1);
   EXPECT_EQ(trainingGroupSize(100000000, 1024, 5), 1024);  // 2 groups of 512: 3 rounds, 3 / 512 > 5 / 1024
-  EXPECT_EQ(trainingGroupSize(196608, 12, 8), 3);  // 4 groups of 3, 2 rounds (2 / 3), not 8 of 1 (1 / 1)
+  EXPECT_EQ(trainingGroupSize(131072, 12, 8), 3);  // 4 groups of 3, 2 rounds (2 / 3), not 8 of 1 (1 / 1)
 }
 
 TEST(ArtifactsCache, ADatasetCountsOnlyWithItsKeyAndMark) {
