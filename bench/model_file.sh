@@ -14,9 +14,12 @@
 #               its size (training shared with nls-queries and nls-box).
 #   nls-box     NLS over the box [0.9, 1.1]: 21 test points, the ROM and GP-DEIM (2k = 160,
 #               m = 130): max and mean E_L2 over the box (gphr validate).
-#   threads     16 NLS queries (n = 1024, T = 20, 2k = 40, m = 60) by one process with --threads 1 and
-#               --threads 2, alternating, three times each: queries per second (the median of each)
-#               side by side, and the results of both compared bit for bit (h5diff).
+#   threads     64 NLS queries (n = 1024, T = 20, 2k = 40, m = 60) by one process with --threads 1 and
+#               --threads 2, in five alternating pairs: queries per second (the median of each), the
+#               median of the five pairs' ratios (a pair's two runs are seconds apart, so a slow spell
+#               of a shared machine falls on both), and the results compared bit for bit (h5diff);
+#               beside them the machine's own ceiling: two one-thread processes of 32 queries each,
+#               side by side (what two cores give two independent programs).
 # nls-queries and nls-box share their training, basis and model file (bench-out/model_nls).
 # usage: bash bench/model_file.sh CASE [BUILD_DIR]   (CASE: swe, nls-queries, swe-scaling, nls-file, nls-box, threads)
 set -euo pipefail
@@ -86,24 +89,38 @@ PY
     out=bench-out/model_threads; mkdir -p $out
     printf 'gphr:\n  scene: {name: nls1d, n: 1024}\n  time: {T: 5.0, dt: 0.01}\n  training: {points: [5]}\n  pipeline: {methods: [gp-deim], k: [20], m: [60]}\n  hyper: {snapshotEvery: 5}\n' > $out/build.yaml
     "$gphr" build $out/build.yaml --model $out/nls.h5 --output $out/art > $out/build.log 2>&1
-    printf 'queries:\n  defaults: {T: 20.0, dt: 0.01, saveEvery: 100}\n  grid: {eps: [0.9, 1.1, 16]}\n' > $out/q.yaml
-    for rep in 1 2 3; do
+    printf 'queries:\n  defaults: {T: 20.0, dt: 0.01, saveEvery: 100}\n  grid: {eps: [0.9, 1.1, 64]}\n' > $out/q.yaml
+    printf 'queries:\n  defaults: {T: 20.0, dt: 0.01, saveEvery: 100}\n  grid: {eps: [0.9, 1.1, 32]}\n' > $out/q32.yaml
+    rm -f $out/qps_t1 $out/qps_t2 $out/qps_pp
+    for rep in 1 2 3 4 5; do
       for t in 1 2; do
         rm -rf $out/t$t  # a fresh run: finished queries would be reused
         "$gphr" query $out/nls.h5 $out/q.yaml --output $out/t$t --threads $t > $out/t${t}_$rep.log 2>&1
         echo "$(json $out/t$t/query_summary.json "d['queries_per_s']")" >> $out/qps_t$t
       done
       h5diff $out/t1/results.h5 $out/t2/results.h5 > /dev/null || { echo "results differ between 1 and 2 threads"; exit 1; }
+      # the machine's own ceiling: two one-thread processes side by side, 32 queries each
+      rm -rf $out/p1 $out/p2
+      "$gphr" query $out/nls.h5 $out/q32.yaml --output $out/p1 --threads 1 > $out/p1_$rep.log 2>&1 &
+      "$gphr" query $out/nls.h5 $out/q32.yaml --output $out/p2 --threads 1 > $out/p2_$rep.log 2>&1
+      wait
+      echo "$(json $out/p1/query_summary.json "64 / max(d['wall_s'], $(json $out/p2/query_summary.json "d['wall_s']"))")" >> $out/qps_pp
     done
-    python3 - $out/qps_t1 $out/qps_t2 <<PY
+    python3 - $out/qps_t1 $out/qps_t2 $out/qps_pp <<PY
 import statistics, sys
-q1, q2 = ([float(x) for x in open(p).read().split()[-3:]] for p in sys.argv[1:])
-print(f"16 NLS queries (n=1024, T=20, 2k=40, m=60), one process: --threads 1 {statistics.median(q1):.2f} queries/s, "
-      f"--threads 2 {statistics.median(q2):.2f} queries/s (medians of {q1} and {q2}): "
-      f"{statistics.median(q2) / statistics.median(q1):.2f}x; results.h5 identical (h5diff) in every pair; "
-      f"load at the end {open('/proc/loadavg').read().split()[0]}")
+q1, q2, pp = ([float(x) for x in open(p).read().split()] for p in sys.argv[1:])
+ratios = sorted(b / a for a, b in zip(q1, q2))
+ceiling = sorted(b / a for a, b in zip(q1, pp))
+print(f"64 NLS queries (n=1024, T=20, 2k=40, m=60), one process: --threads 1 {statistics.median(q1):.2f} queries/s, "
+      f"--threads 2 {statistics.median(q2):.2f} queries/s (medians of {[round(x, 2) for x in q1]} and "
+      f"{[round(x, 2) for x in q2]}); pair ratios {[round(x, 2) for x in ratios]}, median "
+      f"{statistics.median(ratios):.2f}x; results.h5 identical (h5diff) in every pair")
+print(f"the machine's ceiling, two one-thread processes of 32 queries side by side: {statistics.median(pp):.2f} "
+      f"queries/s (of {[round(x, 2) for x in pp]}), against --threads 1 {statistics.median(ceiling):.2f}x "
+      f"(pairs {[round(x, 2) for x in ceiling]}); --threads 2 against it "
+      f"{statistics.median(q2) / statistics.median(pp):.2f}; load at the end {open('/proc/loadavg').read().split()[0]}")
 PY
-    rm -f $out/qps_t1 $out/qps_t2
+    rm -f $out/qps_t1 $out/qps_t2 $out/qps_pp
     ;;
   nls-queries)
     nls_model; out=bench-out/model_nls

@@ -34,7 +34,10 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_
 export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
 
 describe=$(git describe --always --dirty 2>/dev/null || echo "not a git checkout")
-echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $cores cores, $(free -m | awk '/Mem/ {printf "%.1f", $2 / 1024}') GiB; $(date -u '+%F %H:%M UTC'); gphr $describe; SIZE=$SIZE, RANKS=\"$RANKS\""
+# physical cores and hardware threads: ranks on the two threads of one core share its FPU and caches
+topology=$(lscpu 2>/dev/null | awk -F: '/^Thread\(s\) per core/ {t = $2} /^Core\(s\) per socket/ {c = $2}
+  /^Socket\(s\)/ {s = $2} END {gsub(/ /, "", t); gsub(/ /, "", c); gsub(/ /, "", s); if (c) printf "%d core(s) x %d thread(s)", c * s, t}')
+echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $cores cores (${topology:-topology unknown}), $(free -m | awk '/Mem/ {printf "%.1f", $2 / 1024}') GiB; $(date -u '+%F %H:%M UTC'); gphr $describe; SIZE=$SIZE, RANKS=\"$RANKS\""
 for p in $RANKS; do
   [ "$p" -gt "$cores" ] && echo "note: $p ranks on $cores cores run oversubscribed: wall seconds include waiting for a core; compare compute seconds"
 done
@@ -107,6 +110,13 @@ for c in $CASES; do
           || { tail -20 "$d/log"; exit 1; }
         sizes=nls_sizes; [ $c = swe ] && sizes=swe_sizes
         rows "$c" "$p" "${!sizes}" "$d/art/stages.csv" "$d"/process.*
+        # on one rank, each training parameter's seconds from the progress lines (the cost model
+        # deals them to rank groups as the training does)
+        [ "$p" = 1 ] && awk -v c="$c" -v z="$SIZE" -v s="${!sizes}" \
+          '/train: parameter [0-9]+\/[0-9]+ .* done, [0-9.]+ s elapsed/ {
+             split($4, ij, "/"); for (i = 1; i <= NF; ++i) if ($i == "elapsed,") t = $(i - 2)
+             printf "%s,%s,1,0,training parameter %d,%.3f,,,,,,%s\n", c, z, ij[1], t - last, s; last = t }' \
+          "$d/log" >> "$OUT_CSV.tmp"
         [ $c = nls ] && [ -z "$model" ] && model=$d/model.h5 ;;
       fom)
         mpi "$p" "$d" "$G" run "$work/fom.yaml" --output "$d/out" > "$d/log" 2>&1 || { tail -20 "$d/log"; exit 1; }
@@ -143,7 +153,8 @@ for case in OrderedDict.fromkeys(r["case"] for r in rows):
     print(f"{'ranks':>5} {'stage':<20} {'wall max':>9} {'comp max':>9} {'comp mean':>9} {'cpu max':>9} "
           f"{'MB max':>8} {'wall x':>7} {'comp x':>7}")
     ranks = list(OrderedDict.fromkeys(int(r["ranks"]) for r in mine))
-    stages = list(OrderedDict.fromkeys(r["stage"] for r in mine if r["stage"] != "process"))
+    stages = list(OrderedDict.fromkeys(r["stage"] for r in mine
+                                       if r["stage"] != "process" and not r["stage"].startswith("training parameter")))
     if any(r["compute_s"] for r in mine if r["stage"] != "process"):
         stages.append("stages total")
     stages.append("process")
@@ -154,7 +165,7 @@ for case in OrderedDict.fromkeys(r["case"] for r in rows):
             if st == "stages total":  # per rank, the sum of its stages
                 per = {}
                 for r in at:
-                    if r["stage"] != "process" and r["compute_s"]:
+                    if r["stage"] != "process" and r["compute_s"] and not r["stage"].startswith("training parameter"):
                         a = per.setdefault(r["rank"], [0.0] * 4)
                         a[0] += float(r["wall_s"]); a[1] += float(r["compute_s"]); a[2] += float(r["cpu_s"])
                         a[3] = max(a[3], float(r["peak_rss_mb"]))

@@ -71,20 +71,37 @@ def training_units(s, p):
     return math.ceil(s["points"] / groups) * s["steps"] * rows / g
 
 
+def svd_flops(m, n):
+    """LAPACK GESDD of an m x n matrix with its thin singular vectors, counted as 4 (max + min)
+    min^2: 8 c^3 for a c x c triangle, (8 + 4 (p - 1)) c^3 for a p c x c stack (bench/pod_tree_micro.cpp's
+    count: the QR of the taller matrix and its Q applied, then the c x c SVD)."""
+    big, small = max(m, n), min(m, n)
+    return 4.0 * (big + small) * small * small
+
+
 def pod_flops(rows, cols, carried, block, p):
     """Streaming POD (packages/reduction/src/StreamingPod.cpp) of a rows x cols matrix, blocks of
-    `block` columns, `carried` triplets kept: per step nc = carried + block columns; each rank's QR
-    and ORMQR of its rows (about 4 (rows/p) nc^2, divided by p); the replicated part: the stacked
-    route (p < 8) an SVD of the (p nc) x nc stack (~ 6 p nc^3), the tree route (p >= 8)
-    ceil(log2 p) QRs of 2nc x nc and their ORMQRs (~ 8 nc^3 each) and one nc x nc SVD (~ 6 nc^3)."""
-    steps = math.ceil(cols / block)
-    nc = carried + block
-    local = 4.0 * (rows / p) * nc * nc
-    if p < 8:
-        replicated = 6.0 * min(p * nc, rows) * nc * nc
-    else:
-        replicated = 8.0 * math.ceil(math.log2(p)) * nc ** 3 + 6.0 * nc ** 3
-    return steps * (local + replicated)
+    `block` columns, at most `carried` triplets kept, step by step (the first steps are narrower:
+    nothing carried yet). Per step of nc = carried + new columns, on the busiest rank (rank 0):
+    its own rows' GEQRF and ORMQR, 4 (rows / p) nc k with k = min(rows / p, nc) (a rank may hold
+    fewer rows than columns: its R factor is k x nc); then the replicated part: the stacked route
+    (p < 8) a GESDD of the stack of the p R factors (min(p k, rows) x nc, on every rank); the tree
+    route (p >= 8) ceil(log2 p) levels of a 2 nc x nc GEQRF and its ORMQR on the way down
+    (22/3 nc^3) and one GESDD of the root's nc x nc factor."""
+    local_rows = rows / p
+    total, done, kept = 0.0, 0, 0
+    while done < cols:
+        new = min(block, cols - done)
+        nc = kept + new
+        k = min(local_rows, nc)
+        total += 4.0 * local_rows * nc * k
+        if p < 8:
+            total += svd_flops(min(p * k, rows), nc)
+        else:
+            total += math.ceil(math.log2(p)) * 22.0 / 3.0 * nc ** 3 + svd_flops(min(rows, nc), nc)
+        kept = min(carried, nc, rows)
+        done += new
+    return total
 
 
 def basis_flops(s, p):
@@ -168,6 +185,26 @@ def training_comm(s, p):
     return per_group * s["steps"] * 30 * (2 * math.ceil(math.log2(g)) + 2) * ALPHA
 
 
+def parameter_seconds(t1):
+    """Each training parameter's seconds on one rank (bench/scaling.sh's "training parameter J"
+    rows, from the progress lines), in parameter order; [] where the CSV has none."""
+    per = sorted((int(k.split()[-1]), v) for k, v in t1.items() if k.startswith("training parameter "))
+    return [v for _, v in per]
+
+
+def training_share(s, p, seconds):
+    """The busiest rank's share of the 1-rank training work: group j of the G = p / g groups
+    integrates parameters j, j + G, ... (packages/offline/src/Training.cpp, trainInGroups), each
+    parameter costing what it cost on one rank, split ideally over the group's g ranks. Without
+    per-parameter seconds every parameter costs the mean."""
+    g = training_group(s, p)
+    groups = max(1, p // g)
+    P = int(s["points"])
+    seconds = seconds if len(seconds) == P else [1.0] * P
+    busiest = max(sum(seconds[j::groups]) for j in range(groups))
+    return busiest / sum(seconds) / g
+
+
 def interpolation_units(s, p):
     """Parameter nodes x state rows per rank: each node instantiates the scene and projects L, f
     and the reference rows on the basis (O(n k) per node)."""
@@ -203,6 +240,8 @@ def fit(table, sizes):
         deim = sum(v for k, v in table[(x, 1)].items() if k.startswith("deim basis"))
         c["F_deim_" + x] = deim_flops(sizes[x], 1) / deim if deim > 0 else float("nan")
         c["g_train_" + x] = table[(x, 1)]["training"] / training_units(sizes[x], 1)
+        c["training_" + x] = table[(x, 1)]["training"]
+        c["parameters_" + x] = parameter_seconds(table[(x, 1)])
         # the small stages (set-up, instance, header, gp-deim, write): a constant, not modelled
         c["rest_" + x] = sum(v for k, v in table[(x, 1)].items()
                              if k in ("setup", "instance", "header", "write") or k.startswith("gp-deim"))
@@ -221,7 +260,7 @@ def predict(case, stage, s, p, c):
     """Predicted compute seconds of the busiest rank, or None where the model has none."""
     if case in ("nls", "swe"):
         if stage == "training":
-            return c["g_train_" + case] * training_units(s, p)
+            return c["training_" + case] * training_share(s, p, c["parameters_" + case])
         if stage == "basis":
             return basis_flops(s, p) / c["F_dense"]
         if stage.startswith("interpolation"):
@@ -242,7 +281,7 @@ def main():
     table, sizes = load(sys.argv[1])
     c = fit(table, sizes)
     print("machine constants (1-rank runs): " + ", ".join(
-        f"{k} = {v:.3e}" for k, v in c.items() if not k.startswith("rest")))
+        f"{k} = {v:.3e}" for k, v in c.items() if not k.startswith(("rest", "training_", "parameters_"))))
     print(f"{'case':<6} {'stage':<20} {'ranks':>5} {'measured s':>11} {'predicted s':>11} {'pred/meas':>9}")
     worst = {}
     for case in OrderedDict.fromkeys(k[0] for k in table):
@@ -252,7 +291,7 @@ def main():
             for st in table[(case, p)]:
                 if case in ("nls", "swe") and (st in ("setup", "instance", "header", "write") or st.startswith("gp-deim")):
                     stages["rest"] = None
-                elif case in ("nls", "swe") and st == "process":
+                elif case in ("nls", "swe") and (st == "process" or st.startswith("training parameter")):
                     continue
                 elif case in ("fom", "query") and st != "process":
                     continue
