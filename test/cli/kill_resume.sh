@@ -5,8 +5,8 @@
 # usage: kill_resume.sh GPHR
 set -u
 gphr=$1
-work=$(mktemp -d); trap '[ $pid -gt 0 ] && kill -9 $pid 2>/dev/null; rm -rf "$work"' EXIT
-pid=0
+. "$(dirname "$0")/kill_after.sh"
+work=$(mktemp -d); trap '[ $kill_pid -gt 0 ] && kill -9 $kill_pid 2>/dev/null; rm -rf "$work"' EXIT
 cat > "$work/c.yaml" <<'YAML'
 gphr:
   scene: {name: nls1d, n: 384}
@@ -18,14 +18,8 @@ gphr:
 YAML
 fail() { echo "FAIL: $*"; for f in "$work"/*.err; do echo "--- $f"; cat "$f"; done; exit 1; }
 # 1. Start, wait for parameter 1 to be reported complete, kill -9.
-"$gphr" run "$work/c.yaml" --output "$work/killed" 2> "$work/first.err" > /dev/null &
-pid=$!
-for _ in $(seq 1 1200); do
-  grep -q "parameter 1/3 .* done" "$work/first.err" 2>/dev/null && break
-  sleep 0.05
-done
-grep -q "parameter 1/3 .* done" "$work/first.err" || fail "parameter 1 never finished"
-kill -9 $pid; wait $pid 2>/dev/null; pid=0  # reaped: the EXIT trap must not signal a reused pid
+kill_after "parameter 1/3 .* done" "$work/first.err" "$gphr" run "$work/c.yaml" --output "$work/killed" \
+  || fail "parameter 1 never finished"
 grep -q "parameter 2/3" "$work/first.err" && fail "killed too late: parameter 2 had finished"
 [ -f "$work/killed/summary.json" ] && fail "a killed run left summary.json"
 # 2. Restart: parameter 1 is reused, the run completes.

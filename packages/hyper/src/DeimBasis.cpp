@@ -304,6 +304,12 @@ void DeimRootPod::add(const MultiVector& modes, const DeimChunkModes& stats) {
 
 DeimBasis DeimRootPod::basis() const { return basisOf(pod_, sum_); }
 
+void DeimRootPod::restore(const StreamingPod::State& state, const DeimChunkModes& statistics) {
+  pod_.restore(state);
+  sum_ = statistics;
+  sum_.modes = Teuchos::null;
+}
+
 DeimBasis computeDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& systems,
                            const SnapshotSet& states, const MultiVector& A,
                            const DeimBasisOptions& opt) {

@@ -48,6 +48,61 @@ DeimChunkModes getStatistics(const double* f) {
   return c;
 }
 
+// The root's checkpoint (a long DEIM stage killed mid-way, by a job's time limit say, goes on from
+// the last finished round): after each round but the last, the root POD's state and the number of
+// chunks it holds, sealed like any dataset. Two slots, written in turn, so that a kill while one is
+// written leaves the other; the key names the chunks, so a checkpoint of other chunks is not taken.
+struct RootCheckpoint {
+  const ArtifactsCache* cache = nullptr;  // none: no checkpoints
+  std::string name, key;                  // the basis dataset's name; its key and the chunks
+  double before = 0.0;                    // compute seconds of the rounds a resumed run reused
+  std::string slot(int i) const { return name + "_root" + std::to_string(i); }
+};
+
+void writeRootCheckpoint(const RootCheckpoint& cp, const DeimRootPod& root, int chunksDone, int slot, double seconds) {
+  const StreamingPod::State st = root.state();
+  const auto f = cp.cache->open();
+  const std::string name = cp.slot(slot);
+  ArtifactsCache::clear(*f, name);
+  f->writeColumns(name, *st.U);
+  std::vector<double> stats(kChunkFields);
+  putStatistics(root.statistics(), stats.data());
+  f->setAttribute(name, "singularValues", st.sigma);
+  f->setAttribute(name, "chunks", std::vector<double>{double(chunksDone)});
+  f->setAttribute(name, "seconds", std::vector<double>{cp.before + seconds});
+  f->setAttribute(name, "statistics", stats);
+  f->setAttribute(name, "pod", std::vector<double>{st.energy, double(st.columns), double(st.tsqrSteps),
+                                                   double(st.replicatedSteps), double(st.stackedSteps),
+                                                   double(st.treeSteps)});
+  ArtifactsCache::seal(*f, name, cp.key);
+}
+
+// The chunks done by the latest complete checkpoint (0: none), the root restored to it.
+int readRootCheckpoint(RootCheckpoint& cp, DeimRootPod& root, const RCP<const Map>& rowMap, int count) {
+  if (!cp.cache) return 0;
+  const auto f = cp.cache->open();
+  int best = -1, done = 0;
+  for (int i = 0; i < 2; ++i) {
+    if (!ArtifactsCache::holds(*f, cp.slot(i), cp.key)) continue;
+    const int chunks = static_cast<int>(f->doubleAttribute(cp.slot(i), "chunks").at(0));
+    if (chunks > done && chunks < count) best = i, done = chunks;
+  }
+  if (best < 0) return 0;
+  const std::string name = cp.slot(best);
+  StreamingPod::State st;
+  st.U = f->readColumns(name, rowMap);
+  st.sigma = f->doubleAttribute(name, "singularValues");
+  const auto pod = f->doubleAttribute(name, "pod"), stats = f->doubleAttribute(name, "statistics");
+  GPHR_REQUIRE(pod.size() == 6 && stats.size() == static_cast<size_t>(kChunkFields), InputError, cp.cache->path(), ": ",
+               name, " holds ", pod.size(), " POD and ", stats.size(), " chunk figures (allowed: 6 and ", kChunkFields,
+               "); remove the file or the dataset to start the DEIM basis afresh");
+  st.energy = pod[0], st.columns = static_cast<long>(pod[1]);
+  st.tsqrSteps = int(pod[2]), st.replicatedSteps = int(pod[3]), st.stackedSteps = int(pod[4]), st.treeSteps = int(pod[5]);
+  root.restore(st, getStatistics(stats.data()));
+  cp.before = f->doubleAttribute(name, "seconds").at(0);
+  return done;
+}
+
 // The hierarchical POD (DeimChunks) over the training's rank groups, in rounds: in round t group
 // g PODs chunk t G + g on its own ranks (from its own systems, the snapshots streamed on its
 // communicator and its own copy of A); the round's modes then meet on all ranks (RankGroups::
@@ -56,7 +111,8 @@ DeimChunkModes getStatistics(const double* f) {
 // Only the chunk PODs' replicated SVDs were the stage's time that no rank count divided (the NLS
 // at the paper's size: ~2/3 of each step); G groups divide them by G.
 DeimBasis deimBasisInGroups(const Scene& scene, const TrainingResult& training, const MultiVector& A,
-                            const HamiltonianSystem& reference, const DeimBasisOptions& opt, const RankGroups& groups) {
+                            const HamiltonianSystem& reference, const DeimBasisOptions& opt, const RankGroups& groups,
+                            RootCheckpoint& checkpoint) {
   const auto systems = trainingSystems(scene, groups.sub(), training);
   const SnapshotSet states = trainingSnapshotsOn(training, groups.sub(), systems[0]->space());
   const RCP<MultiVector> Ag = groups.toGroup(A, systems[0]->map());
@@ -65,10 +121,14 @@ DeimBasis deimBasisInGroups(const Scene& scene, const TrainingResult& training, 
   const DeimChunks chunks = deimChunks(training.snapshots, opt, static_cast<int>(A.getNumVectors()), maxRank);
   const int count = chunks.count(), G = groups.count();
   DeimRootPod root(rowMap, opt, maxRank);
+  checkpoint.key += detail::concat(", chunks of ", chunks.perChunk, " snapshots");
+  const int resumed = readRootCheckpoint(checkpoint, root, rowMap, count);
+  if (resumed > 0 && groups.world()->getRank() == 0)
+    std::fprintf(stderr, "[gphr] deim basis: chunks 1-%d of %d reused from file\n", resumed, count);
   ReducedStateCache blocks;  // a group's chunks q, q + G: a block longer than G chunks is cut by both
   Teuchos::Time clock("chunks");
   clock.start();
-  for (int first = 0; first < count; first += G) {
+  for (int first = resumed, rounds = 0; first < count; first += G, ++rounds) {
     const int q = first + groups.group(), inRound = std::min(G, count - first);
     DeimChunkModes mine;
     std::vector<double> stats(static_cast<size_t>(inRound) * kChunkFields, 0.0), all(stats.size());
@@ -95,6 +155,8 @@ DeimBasis deimBasisInGroups(const Scene& scene, const TrainingResult& training, 
     else if (groups.world()->getRank() == 0)
       std::fprintf(stderr, "[gphr] deim basis: chunks %d-%d of %d POD'd by %d groups side by side, %.1f s\n", first + 1,
                    first + inRound, count, G, clock.totalElapsedTime(true));
+    if (checkpoint.cache && first + inRound < count)
+      writeRootCheckpoint(checkpoint, root, first + inRound, rounds % 2, clock.totalElapsedTime(true));
   }
   return root.basis();
 }
@@ -135,15 +197,21 @@ CachedDeimBasis runDeimBasisStage(const Scene& scene, const RCP<const Comm>& com
   CachedDeimBasis out;
   if (cache) readDeimBasis(*cache->open(), name, fullKey, reference, out);  // closed again: the snapshots stream from it
   if (!out.cached) {
+    RootCheckpoint checkpoint{cache, name, fullKey};
     try {
       const int groupSize = deimGroupSize(comm, training, A, reference, options);
-      out.basis = groupSize > 0 ? deimBasisInGroups(scene, training, A, reference, options, RankGroups(comm, groupSize))
-                                : computeDeimBasis(trainingSystems(scene, comm, training), training.snapshots, A, options);
+      out.basis = groupSize > 0
+                      ? deimBasisInGroups(scene, training, A, reference, options, RankGroups(comm, groupSize), checkpoint)
+                      : computeDeimBasis(trainingSystems(scene, comm, training), training.snapshots, A, options);
     } catch (const InputError& e) {  // e.g. podRoute 'tsqr' on too few rows per rank: name the section
       throw InputError(detail::concat(section, ": ", e.what()));
     }
-    out.computeSeconds = clock.totalElapsedTime(true);
-    if (cache) writeDeimBasis(*cache->open(), name, fullKey, out);
+    out.computeSeconds = clock.totalElapsedTime(true) + checkpoint.before;
+    if (cache) {
+      const auto f = cache->open();
+      writeDeimBasis(*f, name, fullKey, out);
+      for (int i = 0; i < 2; ++i) ArtifactsCache::clear(*f, checkpoint.slot(i));  // its work is in the basis now
+    }
   }
   out.seconds = clock.stop();
   if (comm->getRank() == 0)

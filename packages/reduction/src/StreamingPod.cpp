@@ -65,6 +65,31 @@ void StreamingPod::add(const MultiVector& X) {
   }
 }
 
+StreamingPod::State StreamingPod::state() const {
+  State s;
+  s.U = rcp(new MultiVector(*U_, Teuchos::Copy));
+  s.sigma = sigma_, s.energy = energy_, s.columns = columns_;
+  s.tsqrSteps = tsqrSteps_, s.replicatedSteps = replicatedSteps_, s.stackedSteps = stackedSteps_, s.treeSteps = treeSteps_;
+  return s;
+}
+
+void StreamingPod::restore(const State& s) {
+  const size_t r = s.sigma.size();
+  GPHR_REQUIRE(s.U && s.U->getMap()->isSameAs(*map_) && s.U->getNumVectors() == std::max<size_t>(r, 1) &&
+                   static_cast<int>(r) <= maxRank_,
+               InputError, "streaming POD: a saved state of ", r, " singular values and ",
+               s.U ? s.U->getNumVectors() : 0, " vectors of ", s.U ? s.U->getGlobalLength() : 0,
+               " rows does not fit this POD (allowed: at most maxRank = ", maxRank_, " values, as many vectors, ",
+               map_->getGlobalNumElements(), " rows)");
+  for (size_t j = 0; j < r; ++j)
+    GPHR_REQUIRE(std::isfinite(s.sigma[j]) && s.sigma[j] > 0.0 && (j == 0 || s.sigma[j] <= s.sigma[j - 1]), InputError,
+                 "streaming POD: saved singular value ", j + 1, " is ", s.sigma[j],
+                 " (allowed: finite, positive, not above the one before)");
+  U_ = rcp(new MultiVector(*s.U, Teuchos::Copy));
+  sigma_ = s.sigma, energy_ = s.energy, columns_ = s.columns;
+  tsqrSteps_ = s.tsqrSteps, replicatedSteps_ = s.replicatedSteps, stackedSteps_ = s.stackedSteps, treeSteps_ = s.treeSteps;
+}
+
 namespace {
 // Thin SVD of the m x n column-major matrix a (overwritten): S (min(m, n)) and the leading
 // min(m, n) left singular vectors W (m x min(m, n), column-major). LAPACK GESVD.

@@ -210,6 +210,50 @@ TEST_F(Routes, AllRoutesAgreeUnderTruncation) {
   }
 }
 
+// A POD stopped after some blocks and restored into a fresh one (a checkpoint, as the DEIM stage
+// keeps its root's) goes on bit for bit: the next blocks see the same U, sigma and counts, so
+// every later step is the same arithmetic. Exact equality is the claim, so no tolerance.
+TEST_F(Routes, RestoredStateGoesOnBitForBit) {
+  const MultiVector X = knownSvdData(map_, 96, linearSpectrum(48, 1.0 / 64.0));
+  const auto first = X.subView(Teuchos::Range1D(0, 39)), rest = X.subView(Teuchos::Range1D(40, 95));
+  for (PodRoute route : {PodRoute::Replicated, PodRoute::Stacked, PodRoute::Tree}) {
+    StreamingPod whole(map_, 16, 8, 1e-8, route), stopped(map_, 16, 8, 1e-8, route), resumed(map_, 16, 8, 1e-8, route);
+    whole.add(*first), whole.add(*rest);
+    stopped.add(*first);
+    resumed.restore(stopped.state());
+    resumed.add(*rest);
+    ASSERT_EQ(resumed.rank(), whole.rank());
+    EXPECT_EQ(resumed.singularValues(), whole.singularValues());
+    EXPECT_EQ(resumed.totalEnergy(), whole.totalEnergy());
+    EXPECT_EQ(resumed.columnsAdded(), 96);
+    EXPECT_EQ(resumed.stackedSteps() + resumed.treeSteps() + resumed.replicatedSteps(), 12);
+    const auto a = whole.leftVectors().getLocalViewHost(Tpetra::Access::ReadOnly);
+    const auto b = resumed.leftVectors().getLocalViewHost(Tpetra::Access::ReadOnly);
+    long differ = 0;
+    for (size_t i = 0; i < a.extent(0); ++i)
+      for (size_t j = 0; j < a.extent(1); ++j) differ += a(i, j) != b(i, j);
+    EXPECT_EQ(differ, 0) << "entries of U that differ";
+  }
+  // A state that is no POD's: rejected, naming the value.
+  StreamingPod pod(map_, 16, 8);
+  pod.add(*first);
+  StreamingPod::State bad = pod.state();
+  std::swap(bad.sigma[0], bad.sigma[1]);
+  try {
+    StreamingPod(map_, 16, 8).restore(bad);
+    FAIL() << "a state with increasing singular values was taken";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("singular value 2"), std::string::npos) << e.what();
+  }
+  bad = pod.state();
+  try {
+    StreamingPod(map_, 8, 8).restore(bad);  // 16 values for a maxRank of 8
+    FAIL() << "a state above maxRank was taken";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("maxRank = 8"), std::string::npos) << e.what();
+  }
+}
+
 // 10 rows on every rank; steps of 6 columns: the first (6) fits, the second (6 carried + 6 new)
 // does not. 'tsqr' refuses it naming the numbers; 'auto' takes both by the stacked route and
 // agrees with 'replicated'.

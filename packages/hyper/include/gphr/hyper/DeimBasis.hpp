@@ -112,6 +112,11 @@ class DeimRootPod {
   /// Chunk `stats`'s modes: the leading stats.rank columns of `modes` (on the row map).
   void add(const MultiVector& modes, const DeimChunkModes& stats);
   DeimBasis basis() const;  ///< The DEIM basis of the chunks added so far.
+  /// A checkpoint of the chunks added so far: the root POD's state and the chunks' summed
+  /// statistics (modes unset); restore(state(), statistics()) goes on bit for bit.
+  StreamingPod::State state() const { return pod_.state(); }
+  const DeimChunkModes& statistics() const { return sum_; }  ///< The chunks' summed statistics.
+  void restore(const StreamingPod::State& state, const DeimChunkModes& statistics);  ///< Collective.
 
  private:
   StreamingPod pod_;

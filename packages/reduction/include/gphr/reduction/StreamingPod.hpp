@@ -54,6 +54,22 @@ class StreamingPod {
                PodRoute route = PodRoute::Auto);
 
   void add(const MultiVector& X);  ///< collective; X on map()
+  /// Where a POD stood after some steps, enough to go on from there (a checkpoint): the left vectors
+  /// (map x sigma.size()), the singular values, the energy and columns added, the steps by route.
+  struct State {
+    RCP<const MultiVector> U;   ///< left vectors, map x max(sigma.size(), 1)
+    std::vector<double> sigma;  ///< singular values, descending
+    double energy = 0.0;        ///< ||all columns added||_F^2
+    long columns = 0;           ///< columns added
+    /// steps taken by each route
+    /// @{
+    int tsqrSteps = 0, replicatedSteps = 0, stackedSteps = 0, treeSteps = 0;
+    /// @}
+  };
+  State state() const;  ///< This POD's state (U copied).
+  /// Goes on from `s` (a state of a POD of the same map and maxRank): the next add gives what the
+  /// POD that held `s` would give, bit for bit. Collective.
+  void restore(const State& s);
   const RCP<const Map>& map() const { return map_; }  ///< The row map of the matrix.
   int rank() const { return static_cast<int>(sigma_.size()); }  ///< Current rank r (singular triplets held).
   /// Left singular vectors (map x rank(); an empty MultiVector of one zero column while rank() == 0).
