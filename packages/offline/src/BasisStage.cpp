@@ -1,9 +1,11 @@
 #include "gphr/offline/BasisStage.hpp"
 
 #include <Teuchos_Time.hpp>
+#include <cstdio>
 #include <ctime>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/offline/PodCheckpoint.hpp"
 
 namespace gphr {
 
@@ -53,8 +55,29 @@ BasisStageResult runBasisStage(const TrainingResult& training, const PhaseSpace&
     }
   }
   if (!out.cached) {
-    out.basis = computeSymplecticBasis(training.snapshots, space, options);
-    if (cache) writeBasis(*cache->open(), out.basis, space, sceneName, training, key);
+    // Checkpoints after each training parameter's block (PodCheckpoint.hpp): a restart goes on from
+    // the furthest, bit for bit. The key is the basis's: it names the training and the options.
+    PodCheckpoint checkpoint(cache, "/basis", key, &space);
+    BasisProgress resume;
+    const int count = static_cast<int>(training.snapshots.size());
+    const PodProgress at = checkpoint.read(basisPodMap(space, options), 1, count, resume.pod);
+    resume.blocks = static_cast<size_t>(at.progress);
+    if (at.progress > 0) {
+      resume.energy = at.extra[0];
+      if (space.comm()->getRank() == 0)
+        std::fprintf(stderr, "[gphr] basis: parameters 1-%d of %d reused from file\n", at.progress, count);
+    }
+    const auto save = [&](const BasisProgress& b) {  // the line after the checkpoint: what it says is kept
+      checkpoint.write(b.pod, PodProgress{static_cast<int>(b.blocks), {b.energy}});
+      if (space.comm()->getRank() == 0)
+        std::fprintf(stderr, "[gphr] basis: parameter %zu of %d POD'd, %.1f s\n", b.blocks, count,
+                     clock.totalElapsedTime(true));
+    };
+    out.basis = computeSymplecticBasis(training.snapshots, space, options, &resume, save);
+    if (cache) {
+      writeBasis(*cache->open(), out.basis, space, sceneName, training, key);
+      checkpoint.clear();  // their work is in the basis now
+    }
   }
   out.seconds = clock.stop();
   out.cpuSeconds = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;

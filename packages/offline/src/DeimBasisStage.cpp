@@ -8,6 +8,7 @@
 
 #include "gphr/core/Error.hpp"
 #include "gphr/core/RankGroups.hpp"
+#include "gphr/offline/PodCheckpoint.hpp"
 
 namespace gphr {
 
@@ -48,59 +49,25 @@ DeimChunkModes getStatistics(const double* f) {
   return c;
 }
 
-// The root's checkpoint (a long DEIM stage killed mid-way, by a job's time limit say, goes on from
-// the last finished round): after each round but the last, the root POD's state and the number of
-// chunks it holds, sealed like any dataset. Two slots, written in turn, so that a kill while one is
-// written leaves the other; the key names the chunks, so a checkpoint of other chunks is not taken.
-struct RootCheckpoint {
-  const ArtifactsCache* cache = nullptr;  // none: no checkpoints
-  std::string name, key;                  // the basis dataset's name; its key and the chunks
-  double before = 0.0;                    // compute seconds of the rounds a resumed run reused
-  std::string slot(int i) const { return name + "_root" + std::to_string(i); }
-};
-
-void writeRootCheckpoint(const RootCheckpoint& cp, const DeimRootPod& root, int chunksDone, int slot, double seconds) {
-  const StreamingPod::State st = root.state();
-  const auto f = cp.cache->open();
-  const std::string name = cp.slot(slot);
-  ArtifactsCache::clear(*f, name);
-  f->writeColumns(name, *st.U);
-  std::vector<double> stats(kChunkFields);
-  putStatistics(root.statistics(), stats.data());
-  f->setAttribute(name, "singularValues", st.sigma);
-  f->setAttribute(name, "chunks", std::vector<double>{double(chunksDone)});
-  f->setAttribute(name, "seconds", std::vector<double>{cp.before + seconds});
-  f->setAttribute(name, "statistics", stats);
-  f->setAttribute(name, "pod", std::vector<double>{st.energy, double(st.columns), double(st.tsqrSteps),
-                                                   double(st.replicatedSteps), double(st.stackedSteps),
-                                                   double(st.treeSteps)});
-  ArtifactsCache::seal(*f, name, cp.key);
+// The root's checkpoints (PodCheckpoint.hpp): after each round but the last, the root POD's state,
+// the chunks done, the chunks' summed statistics and the seconds so far. Restored, the root goes
+// on bit for bit; the key adds the chunk size, so that a checkpoint of other chunks is not taken.
+void saveRoot(PodCheckpoint& cp, const DeimRootPod& root, int chunksDone, double seconds) {
+  PodProgress at{chunksDone, std::vector<double>(kChunkFields + 1)};
+  putStatistics(root.statistics(), at.extra.data());
+  at.extra[kChunkFields] = seconds;
+  cp.write(root.state(), at);
 }
 
-// The chunks done by the latest complete checkpoint (0: none), the root restored to it.
-int readRootCheckpoint(RootCheckpoint& cp, DeimRootPod& root, const RCP<const Map>& rowMap, int count) {
-  if (!cp.cache) return 0;
-  const auto f = cp.cache->open();
-  int best = -1, done = 0;
-  for (int i = 0; i < 2; ++i) {
-    if (!ArtifactsCache::holds(*f, cp.slot(i), cp.key)) continue;
-    const int chunks = static_cast<int>(f->doubleAttribute(cp.slot(i), "chunks").at(0));
-    if (chunks > done && chunks < count) best = i, done = chunks;
-  }
-  if (best < 0) return 0;
-  const std::string name = cp.slot(best);
+// The chunks done by the furthest complete checkpoint (0: none), the root restored to it; `before`:
+// the seconds it had taken.
+int restoreRoot(PodCheckpoint& cp, DeimRootPod& root, const RCP<const Map>& rowMap, int count, double& before) {
   StreamingPod::State st;
-  st.U = f->readColumns(name, rowMap);
-  st.sigma = f->doubleAttribute(name, "singularValues");
-  const auto pod = f->doubleAttribute(name, "pod"), stats = f->doubleAttribute(name, "statistics");
-  GPHR_REQUIRE(pod.size() == 6 && stats.size() == static_cast<size_t>(kChunkFields), InputError, cp.cache->path(), ": ",
-               name, " holds ", pod.size(), " POD and ", stats.size(), " chunk figures (allowed: 6 and ", kChunkFields,
-               "); remove the file or the dataset to start the DEIM basis afresh");
-  st.energy = pod[0], st.columns = static_cast<long>(pod[1]);
-  st.tsqrSteps = int(pod[2]), st.replicatedSteps = int(pod[3]), st.stackedSteps = int(pod[4]), st.treeSteps = int(pod[5]);
-  root.restore(st, getStatistics(stats.data()));
-  cp.before = f->doubleAttribute(name, "seconds").at(0);
-  return done;
+  const PodProgress at = cp.read(rowMap, kChunkFields + 1, count, st);
+  if (at.progress == 0) return 0;
+  root.restore(st, getStatistics(at.extra.data()));
+  before = at.extra[kChunkFields];
+  return at.progress;
 }
 
 // The hierarchical POD (DeimChunks) over the training's rank groups, in rounds: in round t group
@@ -112,7 +79,8 @@ int readRootCheckpoint(RootCheckpoint& cp, DeimRootPod& root, const RCP<const Ma
 // at the paper's size: ~2/3 of each step); G groups divide them by G.
 DeimBasis deimBasisInGroups(const Scene& scene, const TrainingResult& training, const MultiVector& A,
                             const HamiltonianSystem& reference, const DeimBasisOptions& opt, const RankGroups& groups,
-                            RootCheckpoint& checkpoint) {
+                            const ArtifactsCache* cache, const std::string& name, const std::string& key,
+                            double& before) {
   const auto systems = trainingSystems(scene, groups.sub(), training);
   const SnapshotSet states = trainingSnapshotsOn(training, groups.sub(), systems[0]->space());
   const RCP<MultiVector> Ag = groups.toGroup(A, systems[0]->map());
@@ -121,14 +89,14 @@ DeimBasis deimBasisInGroups(const Scene& scene, const TrainingResult& training, 
   const DeimChunks chunks = deimChunks(training.snapshots, opt, static_cast<int>(A.getNumVectors()), maxRank);
   const int count = chunks.count(), G = groups.count();
   DeimRootPod root(rowMap, opt, maxRank);
-  checkpoint.key += detail::concat(", chunks of ", chunks.perChunk, " snapshots");
-  const int resumed = readRootCheckpoint(checkpoint, root, rowMap, count);
+  PodCheckpoint checkpoint(cache, name, detail::concat(key, ", chunks of ", chunks.perChunk, " snapshots"));
+  const int resumed = restoreRoot(checkpoint, root, rowMap, count, before);
   if (resumed > 0 && groups.world()->getRank() == 0)
     std::fprintf(stderr, "[gphr] deim basis: chunks 1-%d of %d reused from file\n", resumed, count);
   ReducedStateCache blocks;  // a group's chunks q, q + G: a block longer than G chunks is cut by both
   Teuchos::Time clock("chunks");
   clock.start();
-  for (int first = resumed, rounds = 0; first < count; first += G, ++rounds) {
+  for (int first = resumed; first < count; first += G) {
     const int q = first + groups.group(), inRound = std::min(G, count - first);
     DeimChunkModes mine;
     std::vector<double> stats(static_cast<size_t>(inRound) * kChunkFields, 0.0), all(stats.size());
@@ -150,13 +118,13 @@ DeimBasis deimBasisInGroups(const Scene& scene, const TrainingResult& training, 
     const RCP<MultiVector> modes = groups.toWorld(ours, rowMap);
     for (int c = 0; c < inRound; ++c)  // a chunk of rank 0 adds its statistics only
       root.add(round[c].rank > 0 ? *modes->subView(Teuchos::Range1D(offset[c], offset[c + 1] - 1)) : *modes, round[c]);
+    if (checkpoint.enabled() && first + inRound < count)  // before the line: what it says is kept
+      saveRoot(checkpoint, root, first + inRound, before + clock.totalElapsedTime(true));
     if (groups.world()->getRank() == 0 && inRound == 1)
       std::fprintf(stderr, "[gphr] deim basis: chunk %d of %d POD'd, %.1f s\n", first + 1, count, clock.totalElapsedTime(true));
     else if (groups.world()->getRank() == 0)
       std::fprintf(stderr, "[gphr] deim basis: chunks %d-%d of %d POD'd by %d groups side by side, %.1f s\n", first + 1,
                    first + inRound, count, G, clock.totalElapsedTime(true));
-    if (checkpoint.cache && first + inRound < count)
-      writeRootCheckpoint(checkpoint, root, first + inRound, rounds % 2, clock.totalElapsedTime(true));
   }
   return root.basis();
 }
@@ -197,20 +165,20 @@ CachedDeimBasis runDeimBasisStage(const Scene& scene, const RCP<const Comm>& com
   CachedDeimBasis out;
   if (cache) readDeimBasis(*cache->open(), name, fullKey, reference, out);  // closed again: the snapshots stream from it
   if (!out.cached) {
-    RootCheckpoint checkpoint{cache, name, fullKey};
+    double before = 0.0;  // seconds of the rounds a resumed run restored
     try {
       const int groupSize = deimGroupSize(comm, training, A, reference, options);
       out.basis = groupSize > 0
-                      ? deimBasisInGroups(scene, training, A, reference, options, RankGroups(comm, groupSize), checkpoint)
+                      ? deimBasisInGroups(scene, training, A, reference, options, RankGroups(comm, groupSize), cache,
+                                          name, fullKey, before)
                       : computeDeimBasis(trainingSystems(scene, comm, training), training.snapshots, A, options);
     } catch (const InputError& e) {  // e.g. podRoute 'tsqr' on too few rows per rank: name the section
       throw InputError(detail::concat(section, ": ", e.what()));
     }
-    out.computeSeconds = clock.totalElapsedTime(true) + checkpoint.before;
+    out.computeSeconds = clock.totalElapsedTime(true) + before;
     if (cache) {
-      const auto f = cache->open();
-      writeDeimBasis(*f, name, fullKey, out);
-      for (int i = 0; i < 2; ++i) ArtifactsCache::clear(*f, checkpoint.slot(i));  // its work is in the basis now
+      writeDeimBasis(*cache->open(), name, fullKey, out);
+      PodCheckpoint(cache, name, fullKey).clear();  // their work is in the basis now
     }
   }
   out.seconds = clock.stop();

@@ -113,8 +113,12 @@ void normalizePhase(const PhaseSpace& ps, MultiVector& E, int k, bool cotangent)
 
 }  // namespace
 
-ReducedBasis computeSymplecticBasis(const SnapshotSet& snapshots, const PhaseSpace& space,
-                                    const BasisOptions& opt) {
+RCP<const Map> basisPodMap(const PhaseSpace& space, const BasisOptions& opt) {
+  return opt.method == "cotangent" ? space.dofMap() : space.map();
+}
+
+ReducedBasis computeSymplecticBasis(const SnapshotSet& snapshots, const PhaseSpace& space, const BasisOptions& opt,
+                                    const BasisProgress* resume, const std::function<void(const BasisProgress&)>& save) {
   GPHR_REQUIRE(opt.method == "psd" || opt.method == "cotangent", InputError, "basis method '", opt.method,
                "' is not one of 'psd', 'cotangent'");
   GPHR_REQUIRE(!snapshots.empty(), InputError, "symplectic basis: no snapshots");
@@ -131,10 +135,18 @@ ReducedBasis computeSymplecticBasis(const SnapshotSet& snapshots, const PhaseSpa
   // J-pair (2 maxRank). cotangent: the plain POD of [Q, P] on the n dofs (real vectors phi, so
   // A = blockdiag(Phi, Phi) holds exactly, round-off directions included).
   // Every nonzero sigma is kept (tolerance 0): k is the user's choice, even into round-off.
-  StreamingPod pod(cot ? space.dofMap() : space.map(), static_cast<int>(cot ? maxRank : 2 * maxRank),
-                   2 * opt.blockColumns, 0.0, podRouteFromName(opt.podRoute));
+  StreamingPod pod(basisPodMap(space, opt), static_cast<int>(cot ? maxRank : 2 * maxRank), 2 * opt.blockColumns, 0.0,
+                   podRouteFromName(opt.podRoute));
   double energy = 0.0;
-  for (const auto& Ys : snapshots) {
+  size_t first = 0;
+  if (resume && resume->blocks > 0) {
+    GPHR_REQUIRE(resume->blocks < snapshots.size(), InputError, "symplectic basis: resuming after ", resume->blocks,
+                 " snapshot blocks of ", snapshots.size(), " (allowed: fewer than all)");
+    pod.restore(resume->pod);
+    energy = resume->energy, first = resume->blocks;
+  }
+  for (size_t block = first; block < snapshots.size(); ++block) {
+    const RCP<const MultiVector> Ys = snapshots[block];
     std::vector<double> nrm(Ys->getNumVectors());
     Ys->norm2(Teuchos::ArrayView<double>(nrm));
     for (double x : nrm) energy += x * x;
@@ -162,6 +174,7 @@ ReducedBasis computeSymplecticBasis(const SnapshotSet& snapshots, const PhaseSpa
                                         cot ? "" : " and per kept complex triplet", "): ", e.what()));
       }
     }
+    if (save && block + 1 < snapshots.size()) save(BasisProgress{block + 1, energy, pod.state()});
   }
   MultiVector E(space.map(), 1);
   std::vector<double> sigma;

@@ -12,11 +12,13 @@
 /// vectors in the small coordinates keeps one vector of each J-pair. Nothing n x N_snap is
 /// gathered and nothing n x n is formed; with all snapshots in one block it is the exact thin SVD.
 #include <Teuchos_ParameterList.hpp>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "gphr/core/PhaseSpace.hpp"
 #include "gphr/core/SnapshotSet.hpp"
+#include "gphr/reduction/StreamingPod.hpp"
 
 namespace gphr {
 
@@ -43,10 +45,25 @@ struct ReducedBasis {
   /// @}
 };
 
+/// Where a basis computation stood after whole snapshot blocks (a checkpoint the caller keeps):
+/// the blocks done, their energy ||D||_F^2 and the streaming POD's state.
+struct BasisProgress {
+  size_t blocks = 0;         ///< snapshot blocks (training parameters) done
+  double energy = 0.0;       ///< their energy
+  StreamingPod::State pod;   ///< the POD after them
+};
+
 /// Snapshots: columns of each MultiVector are states y on space.map() (shifted states when the
-/// model is shifted). Collective.
-ReducedBasis computeSymplecticBasis(const SnapshotSet& snapshots,
-                                    const PhaseSpace& space, const BasisOptions& options);
+/// model is shifted). With `resume` (blocks > 0) the computation goes on after its blocks from its
+/// state, bit for bit what it would have computed; `save`, if set, gets the progress after each
+/// block but the last. Collective.
+ReducedBasis computeSymplecticBasis(const SnapshotSet& snapshots, const PhaseSpace& space, const BasisOptions& options,
+                                    const BasisProgress* resume = nullptr,
+                                    const std::function<void(const BasisProgress&)>& save = {});
+
+/// The row map of the basis's streaming POD (the state map for psd, the dof map for cotangent):
+/// the map of a BasisProgress's POD state.
+RCP<const Map> basisPodMap(const PhaseSpace& space, const BasisOptions& options);
 
 /// The options of a `reduction` configuration section (validated: every key present) for a basis
 /// of half-size k (0: chosen by the energy tolerance).
