@@ -16,6 +16,7 @@
 #include "gphr/hyper/DeimBasis.hpp"
 #include "gphr/offline/DeimBasisStage.hpp"
 #include "gphr/offline/ModelFileBuild.hpp"
+#include "gphr/offline/PodCheckpoint.hpp"
 #include "gphr/reduction/SymplecticBasis.hpp"
 #include "gphr/online/ReducedModel.hpp"
 
@@ -105,6 +106,56 @@ TEST(ArtifactsCache, ADatasetCountsOnlyWithItsKeyAndMark) {
   EXPECT_NO_THROW(ArtifactsCache(dir.file("a.h5"), comm, "nls1d", 64));
   EXPECT_THROW(ArtifactsCache(dir.file("a.h5"), comm, "swe2d", 64), InputError);  // another scene
   EXPECT_THROW(ArtifactsCache(dir.file("a.h5"), comm, "nls1d", 80), InputError);  // another size
+}
+
+double maxDifference(const MultiVector& a, const MultiVector& b);
+
+// PodCheckpoint's rule: of two slots written in turn, a restart takes the complete one that got
+// furthest below the limit asked, its state read back exactly (the same doubles); a slot whose
+// mark is gone (a kill while it was rewritten) leaves the other; another key, none; clear() removes
+// the file. On 1-3 ranks (each rank its own rows of U).
+TEST(PodCheckpoint, TakesTheFurthestCompleteSlotExactly) {
+  auto comm = Tpetra::getDefaultComm();
+  TempDir dir;
+  const ArtifactsCache cache(dir.file("a.h5"), comm, "nls1d", 64);
+  const RCP<const Map> map = rcp(new Map(37, 0, comm));
+  auto stateAt = [&](int progress) {  // a state whose numbers say which progress it was saved at
+    StreamingPod::State st;
+    auto U = rcp(new MultiVector(map, 3));
+    U->randomize();
+    st.U = U;
+    st.sigma = {3.0 + progress, 2.0, 1.0 / 3.0};
+    st.energy = 10.0 * progress, st.columns = 8 * progress, st.stackedSteps = progress;
+    return st;
+  };
+  const StreamingPod::State one = stateAt(1), two = stateAt(2);
+  PodCheckpoint cp(&cache, "/stage/x", "key 1");
+  cp.write(one, PodProgress{1, {0.5}});
+  cp.write(two, PodProgress{2, {0.25}});
+  StreamingPod::State back;
+  PodProgress at = PodCheckpoint(&cache, "/stage/x", "key 1").read(map, 1, 5, back);
+  ASSERT_EQ(at.progress, 2);
+  EXPECT_EQ(at.extra, std::vector<double>{0.25});
+  EXPECT_EQ(back.sigma, two.sigma);
+  EXPECT_EQ(back.energy, two.energy);
+  EXPECT_EQ(back.columns, two.columns);
+  EXPECT_EQ(back.stackedSteps, 2);
+  EXPECT_EQ(maxDifference(*back.U, *two.U), 0.0);
+  // progress 2 is not below a limit of 2 (a result of 2 blocks is complete, not resumed)
+  EXPECT_EQ(PodCheckpoint(&cache, "/stage/x", "key 1").read(map, 1, 2, back).progress, 1);
+  EXPECT_EQ(PodCheckpoint(&cache, "/stage/x", "key 2").read(map, 1, 5, back).progress, 0);  // another key
+  {  // slot 1 (progress 2) loses its mark, as a kill while rewriting it would leave it
+    Hdf5File f(cp.path(), comm, Hdf5File::Mode::ReadWrite);
+    f.setAttribute("/slot1", "config", std::string("being rewritten"));
+  }
+  at = PodCheckpoint(&cache, "/stage/x", "key 1").read(map, 1, 5, back);
+  ASSERT_EQ(at.progress, 1);
+  EXPECT_EQ(back.sigma, one.sigma);
+  EXPECT_EQ(maxDifference(*back.U, *one.U), 0.0);
+  EXPECT_TRUE(std::filesystem::exists(cp.path()));
+  cp.clear();
+  EXPECT_FALSE(std::filesystem::exists(cp.path()));
+  EXPECT_EQ(PodCheckpoint(&cache, "/stage/x", "key 1").read(map, 1, 5, back).progress, 0);
 }
 
 double maxDifference(const MultiVector& a, const MultiVector& b) {
