@@ -19,7 +19,7 @@ namespace gphr {
 
 namespace {
 
-void checkInputs(const std::vector<RCP<const HamiltonianSystem>>& systems,
+void checkInputs(const SystemSet& systems,
                  const SnapshotSet& states, const DeimBasisOptions& opt) {
   GPHR_REQUIRE(!systems.empty() && systems.size() == states.size(), InputError, "DEIM basis: ", systems.size(),
                " systems for ", states.size(), " snapshot sets (need one per training parameter)");
@@ -106,7 +106,7 @@ Projection qrProjection(int cols, int r, int maxRank, Each&& each) {
 // Each pass regenerates the snapshots (cheap: one kernel evaluation each); nothing of size
 // d x (2k states) is held. A power pass and the Gram matrix each square sigma: values below ~1e-7
 // sigma_1 are then not resolved, far below the DEIM sizes worth using for a training basis.
-DeimBasis randomizedDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& systems,
+DeimBasis randomizedDeimBasis(const SystemSet& systems,
                               const SnapshotSet& states, const MultiVector& A,
                               const DeimBasisOptions& opt, int maxRank) {
   const RCP<const Map> rowMap = systems[0]->nonlinearTerm().rowMap();
@@ -220,7 +220,7 @@ DeimChunks deimChunks(const SnapshotSet& states, const DeimBasisOptions& opt, in
 namespace {
 
 // The streaming POD of the reduced-Jacobian snapshots in `range`; `snapshots` gets their count.
-StreamingPod chunkPod(const std::vector<RCP<const HamiltonianSystem>>& systems, const SnapshotSet& states,
+StreamingPod chunkPod(const SystemSet& systems, const SnapshotSet& states,
                       const MultiVector& A, const DeimBasisOptions& opt, int maxRank, SnapshotRange range,
                       long& snapshots, ReducedStateCache* cache = nullptr) {
   const RCP<const Map> rowMap = systems[0]->nonlinearTerm().rowMap();
@@ -278,7 +278,7 @@ void addStatistics(DeimChunkModes& sum, const DeimChunkModes& c) {
 
 }  // namespace
 
-DeimChunkModes deimChunkModes(const std::vector<RCP<const HamiltonianSystem>>& systems, const SnapshotSet& states,
+DeimChunkModes deimChunkModes(const SystemSet& systems, const SnapshotSet& states,
                               const MultiVector& A, const DeimBasisOptions& opt, int maxRank, SnapshotRange range,
                               ReducedStateCache* cache) {
   long snapshots = 0;
@@ -310,7 +310,7 @@ void DeimRootPod::restore(const StreamingPod::State& state, const DeimChunkModes
   sum_.modes = Teuchos::null;
 }
 
-DeimBasis computeDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& systems,
+DeimBasis computeDeimBasis(const SystemSet& systems,
                            const SnapshotSet& states, const MultiVector& A,
                            const DeimBasisOptions& opt) {
   checkInputs(systems, states, opt);

@@ -25,7 +25,7 @@ long countStates(const SnapshotSet& states, int every) {
   return n;
 }
 
-void checkOptions(const std::vector<RCP<const HamiltonianSystem>>& systems,
+void checkOptions(const SystemSet& systems,
                   const SnapshotSet& states, const QuadratureOptions& o) {
   GPHR_REQUIRE(!systems.empty() && systems.size() == states.size(), InputError, "empirical quadrature: ",
                systems.size(), " systems for ", states.size(), " snapshot sets (need one per training parameter)");
@@ -184,7 +184,7 @@ void requireTarget(const QuadratureTraining& t) {
 
 }  // namespace
 
-QuadratureTraining buildQuadratureTraining(const std::vector<RCP<const HamiltonianSystem>>& systems,
+QuadratureTraining buildQuadratureTraining(const SystemSet& systems,
                                            const SnapshotSet& states, const MultiVector& A,
                                            const QuadratureOptions& o) {
   checkOptions(systems, states, o);
@@ -341,7 +341,7 @@ QuadratureFit refitQuadrature(const QuadratureTraining& t, const std::vector<GO>
   return fit;
 }
 
-double exactRowsResidual(const std::vector<RCP<const HamiltonianSystem>>& systems,
+double exactRowsResidual(const SystemSet& systems,
                          const SnapshotSet& states, const MultiVector& A,
                          const QuadratureOptions& o, const QuadratureFit& fit) {
   checkOptions(systems, states, o);

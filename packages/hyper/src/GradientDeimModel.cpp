@@ -74,7 +74,7 @@ GradientDeimPair withReferenceGradient(GradientDeimPair pair, const HamiltonianS
   return pair;
 }
 
-RCP<MultiVector> gradientDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& systems,
+RCP<MultiVector> gradientDeimBasis(const SystemSet& systems,
                                    const SnapshotSet& states, const MultiVector& A,
                                    int maxRank, int snapshotEvery, GradientSnapshots kind,
                                    std::vector<double>* singularValues) {

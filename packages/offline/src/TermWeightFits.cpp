@@ -103,7 +103,7 @@ void TermWeightFits::store(const std::string& method, int m, const CachedFit& c)
   ArtifactsCache::seal(*f, n, key(method, m));
 }
 
-const std::vector<RCP<const HamiltonianSystem>>& TermWeightFits::systems() {
+const SystemSet& TermWeightFits::systems() {
   if (systems_.empty()) systems_ = trainingSystems(scene_, comm_, snapshots_);
   return systems_;
 }

@@ -262,11 +262,12 @@ SnapshotSet trainingSnapshotsOn(const TrainingResult& training, const RCP<const 
   });
 }
 
-std::vector<RCP<const HamiltonianSystem>> trainingSystems(const Scene& scene, const RCP<const Comm>& comm,
-                                                          const TrainingResult& training) {
-  std::vector<RCP<const HamiltonianSystem>> out;
-  for (const auto& mu : training.parameters) out.push_back(scene.instantiate(comm, mu, true).system);
-  return out;
+SystemSet trainingSystems(const Scene& scene, const RCP<const Comm>& comm, const TrainingResult& training) {
+  const Scene* s = &scene;
+  const auto parameters = training.parameters;
+  return SystemSet(parameters.size(), [s, comm, parameters](size_t j) -> RCP<const HamiltonianSystem> {
+    return s->instantiate(comm, parameters[j], true).system;
+  });
 }
 
 }  // namespace gphr

@@ -110,6 +110,34 @@ TEST(ArtifactsCache, ADatasetCountsOnlyWithItsKeyAndMark) {
 
 double maxDifference(const MultiVector& a, const MultiVector& b);
 
+// trainingSystems makes each system when asked for and keeps two alive (the first and the last
+// asked for): P of them held at once grew the DEIM stage's memory with the training set. Each made
+// system is the scene's instance at its parameter (the same gradient of G, exactly: the same
+// arithmetic). Liveness is read through weak references.
+TEST(TrainingSystems, MadeWhenAskedTwoAliveAtATime) {
+  auto comm = Tpetra::getDefaultComm();
+  const Nls1d scene(64);
+  TrainingResult t;
+  t.parameters = {{0.9}, {0.95}, {1.0}, {1.05}, {1.1}};
+  const SystemSet set = trainingSystems(scene, comm, t);
+  ASSERT_EQ(set.size(), 5u);
+  std::vector<RCP<const HamiltonianSystem>> weak;
+  for (size_t j = 0; j < set.size(); ++j) {
+    weak.push_back(set[j].create_weak());
+    const auto eager = scene.instantiate(comm, t.parameters[j], true).system;
+    Vector y(eager->map()), mine(eager->map()), theirs(eager->map());
+    y.randomize();
+    set[j]->nonlinearGradient(y, mine);
+    eager->nonlinearGradient(y, theirs);
+    theirs.update(-1.0, mine, 1.0);
+    EXPECT_EQ(theirs.normInf(), 0.0) << "system " << j;
+  }
+  std::vector<int> alive;
+  for (size_t j = 0; j < weak.size(); ++j) alive.push_back(weak[j].is_valid_ptr() ? 1 : 0);
+  EXPECT_EQ(alive, (std::vector<int>{1, 0, 0, 0, 1}));
+  EXPECT_EQ(set[0].get(), weak[0].get());  // the first is kept, not made again
+}
+
 // PodCheckpoint's rule: of two slots written in turn, a restart takes the complete one that got
 // furthest below the limit asked, its state read back exactly (the same doubles); a slot whose
 // mark is gone (a kill while it was rewritten) leaves the other; another key, none; clear() removes

@@ -143,18 +143,6 @@ void StreamingPod::replicatedStep(const MultiVector& Y) {
   }
 }
 
-namespace {
-// This rank's rows of Y, rows x nc column-major.
-std::vector<double> localColumns(const MultiVector& Y) {
-  const auto y = Y.getLocalViewHost(Tpetra::Access::ReadOnly);
-  const size_t rows = y.extent(0), nc = y.extent(1);
-  std::vector<double> a(rows * nc);
-  for (size_t j = 0; j < nc; ++j)
-    for (size_t i = 0; i < rows; ++i) a[i + rows * j] = y(i, j);
-  return a;
-}
-}  // namespace
-
 // U_p = Q_p [C; 0] for this rank's leaf QR and its block C of the small factor's left vectors.
 void StreamingPod::setLeftVectors(const HouseholderQr& leaf, const std::vector<double>& C, int keep) {
   U_ = rcp(new MultiVector(map_, std::max(keep, 1)));
@@ -174,12 +162,11 @@ void StreamingPod::setLeftVectors(const HouseholderQr& leaf, const std::vector<d
 // and the ORMQR (these divide with the ranks) plus the stack's SVD, min(d, p nc) nc^2 (replicated):
 // it scales while every rank holds several times nc rows, and where none does it costs about what
 // the replicated route costs, with stack rows instead of d.
-void StreamingPod::stackedStep(const MultiVector& Y) {
-  const int nc = static_cast<int>(Y.getNumVectors());
+void StreamingPod::stackedStep(std::vector<double> y, int nc) {
   const int rows = static_cast<int>(map_->getNodeNumElements());
   const auto& comm = *map_->getComm();
   const int p = comm.getSize(), me = comm.getRank();
-  const HouseholderQr leaf(rows, nc, localColumns(Y));
+  const HouseholderQr leaf(rows, nc, std::move(y));
   const int kp = leaf.k();
   // The stack: rank q's R factor at rows off[q] .. off[q] + k[q].
   std::vector<int> k(p, 0), off(p + 1, 0);
@@ -207,10 +194,9 @@ void StreamingPod::stackedStep(const MultiVector& Y) {
 // (every rank truncates alike) and its left vectors carried back down the tree's Q factors to each
 // rank's block. Beyond its own rows a rank does at most log2(p) small QRs and their ORMQRs, and
 // rank 0 one nc x nc SVD: none of it grows with p but the log2 p levels.
-void StreamingPod::treeStep(const MultiVector& Y) {
-  const int nc = static_cast<int>(Y.getNumVectors());
+void StreamingPod::treeStep(std::vector<double> y, int nc) {
   const auto& comm = *map_->getComm();
-  const HouseholderQr leaf(static_cast<int>(map_->getNodeNumElements()), nc, localColumns(Y));
+  const HouseholderQr leaf(static_cast<int>(map_->getNodeNumElements()), nc, std::move(y));
   TreeTsqr tree(comm, nc);
   int K = 0;
   std::vector<double> R = tree.reduce(leaf.r(), leaf.k(), &K);
@@ -231,6 +217,27 @@ void StreamingPod::treeStep(const MultiVector& Y) {
 
 void StreamingPod::step(const MultiVector& X, size_t c0, size_t c1) {
   const int r = rank(), b = static_cast<int>(c1 - c0), nc = r + b;
+  const PodRoute route = stepRoute(route_, map_->getComm()->getSize());
+  if (route == PodRoute::Stacked || route == PodRoute::Tree) {
+    // Y = [U diag(sigma), X(:, c0:c1)] straight into the column-major array the leaf QR factors in
+    // place: a MultiVector Y and its copy would be two more rows x nc arrays at the stage's peak.
+    const size_t rows = map_->getNodeNumElements();
+    std::vector<double> y(rows * nc);
+    {
+      auto u = U_->getLocalViewHost(Tpetra::Access::ReadOnly);
+      auto x = X.getLocalViewHost(Tpetra::Access::ReadOnly);
+      for (int j = 0; j < r; ++j)
+        for (size_t i = 0; i < rows; ++i) y[i + rows * j] = sigma_[j] * u(i, j);
+      for (int j = 0; j < b; ++j)
+        for (size_t i = 0; i < rows; ++i) y[i + rows * (r + j)] = x(i, c0 + j);
+    }
+    if (route == PodRoute::Stacked) {
+      ++stackedSteps_;
+      return stackedStep(std::move(y), nc);
+    }
+    ++treeSteps_;
+    return treeStep(std::move(y), nc);
+  }
   MultiVector Y(map_, nc);
   {
     auto y = Y.getLocalViewHost(Tpetra::Access::OverwriteAll);
@@ -240,15 +247,6 @@ void StreamingPod::step(const MultiVector& X, size_t c0, size_t c1) {
       for (int j = 0; j < r; ++j) y(i, j) = sigma_[j] * u(i, j);
       for (int j = 0; j < b; ++j) y(i, r + j) = x(i, c0 + j);
     }
-  }
-  const PodRoute route = stepRoute(route_, map_->getComm()->getSize());
-  if (route == PodRoute::Stacked) {
-    ++stackedSteps_;
-    return stackedStep(Y);
-  }
-  if (route == PodRoute::Tree) {
-    ++treeSteps_;
-    return treeStep(Y);
   }
   if (route == PodRoute::Replicated) {
     ++replicatedSteps_;

@@ -11,6 +11,7 @@
 
 #include "gphr/core/HamiltonianSystem.hpp"
 #include "gphr/core/SnapshotSet.hpp"
+#include "gphr/core/SystemSet.hpp"
 #include "gphr/hyper/JacobianSnapshots.hpp"
 #include "gphr/reduction/StreamingPod.hpp"
 
@@ -96,7 +97,7 @@ struct DeimChunkModes {
 /// The POD of the reduced-Jacobian snapshots in `range` (the exact route, maxRank triplets); with
 /// `cache`, shared by the calls for consecutive chunks, a block cut by two chunks is read once.
 /// Collective over the systems' communicator.
-DeimChunkModes deimChunkModes(const std::vector<RCP<const HamiltonianSystem>>& systems, const SnapshotSet& states,
+DeimChunkModes deimChunkModes(const SystemSet& systems, const SnapshotSet& states,
                               const MultiVector& A, const DeimBasisOptions& options, int maxRank, SnapshotRange range,
                               ReducedStateCache* cache = nullptr);
 /// The largest DEIM rank the options keep for a row map of d rows (options.maxRank, or the default, at most d).
@@ -125,7 +126,7 @@ class DeimRootPod {
 
 /// systems[j]: the (shifted) system at training parameter j; states[j]: its stored states in the
 /// system's own coordinates. A: the reduced basis (2n x 2k). Collective.
-DeimBasis computeDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& systems,
+DeimBasis computeDeimBasis(const SystemSet& systems,
                            const SnapshotSet& states, const MultiVector& A,
                            const DeimBasisOptions& options);
 

@@ -18,6 +18,7 @@
 
 #include "gphr/core/HamiltonianSystem.hpp"
 #include "gphr/core/SnapshotSet.hpp"
+#include "gphr/core/SystemSet.hpp"
 #include "gphr/hyper/GpDeimModel.hpp"
 
 namespace gphr {
@@ -54,7 +55,7 @@ struct QuadratureTraining {
 
 /// Builds C and b from the training systems' stored states (shifted coordinates), streaming the
 /// snapshots once. Collective. InputError: no training states, or the exact rows too large.
-QuadratureTraining buildQuadratureTraining(const std::vector<RCP<const HamiltonianSystem>>& systems,
+QuadratureTraining buildQuadratureTraining(const SystemSet& systems,
                                            const SnapshotSet& states, const MultiVector& A,
                                            const QuadratureOptions& options);
 
@@ -81,7 +82,7 @@ QuadratureFit refitQuadrature(const QuadratureTraining& training, const std::vec
 
 /// ||C xi - b|| / ||b|| of a fit on the exact training rows (streams the snapshots once more): what
 /// sketching the rows costs. Collective.
-double exactRowsResidual(const std::vector<RCP<const HamiltonianSystem>>& systems,
+double exactRowsResidual(const SystemSet& systems,
                          const SnapshotSet& states, const MultiVector& A,
                          const QuadratureOptions& options, const QuadratureFit& fit);
 

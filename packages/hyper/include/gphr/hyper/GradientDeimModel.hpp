@@ -14,6 +14,7 @@
 /// hold a sampled entry (its own sample mesh).
 #include "gphr/hyper/SampleMesh.hpp"
 #include "gphr/core/SnapshotSet.hpp"
+#include "gphr/core/SystemSet.hpp"
 
 namespace gphr {
 
@@ -44,7 +45,7 @@ enum class GradientSnapshots {
 
 /// POD (StreamingPod, maxRank columns) of the grad N snapshots of `kind` over every snapshotEvery-th
 /// training state of each training system (shifted: state 0 is its y0).
-RCP<MultiVector> gradientDeimBasis(const std::vector<RCP<const HamiltonianSystem>>& systems,
+RCP<MultiVector> gradientDeimBasis(const SystemSet& systems,
                                    const SnapshotSet& states, const MultiVector& A,
                                    int maxRank, int snapshotEvery, GradientSnapshots kind,
                                    std::vector<double>* singularValues = nullptr);

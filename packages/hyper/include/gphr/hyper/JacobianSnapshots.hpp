@@ -12,6 +12,7 @@
 
 #include "gphr/core/Error.hpp"
 #include "gphr/core/SnapshotSet.hpp"
+#include "gphr/core/SystemSet.hpp"
 #include "gphr/core/HamiltonianSystem.hpp"
 #include "gphr/reduction/ReducedRowKernel.hpp"
 
@@ -45,7 +46,7 @@ inline long usedSnapshotCount(const SnapshotSet& states, int every) {
 /// snapshots visited. With `cache`, a block's reduced states are kept there for the next call.
 /// Collective.
 template <class Fn>
-long forEachJacobianSnapshotIn(const std::vector<RCP<const HamiltonianSystem>>& systems,
+long forEachJacobianSnapshotIn(const SystemSet& systems,
                                const SnapshotSet& states, const MultiVector& A, int every, SnapshotRange range,
                                std::vector<Scalar>& jac, Fn&& fn, ReducedStateCache* cache = nullptr) {
   const RCP<const Map> rowMap = systems[0]->nonlinearTerm().rowMap();
@@ -90,7 +91,7 @@ long forEachJacobianSnapshotIn(const std::vector<RCP<const HamiltonianSystem>>& 
 /// every used snapshot, jac = this rank's rows of J_G(y0_j + A A^T y_s) A (row-major, local rows x
 /// 2k). Returns the number of snapshots used. Collective.
 template <class Fn>
-long forEachJacobianSnapshot(const std::vector<RCP<const HamiltonianSystem>>& systems,
+long forEachJacobianSnapshot(const SystemSet& systems,
                              const SnapshotSet& states, const MultiVector& A, int every,
                              std::vector<Scalar>& jac, Fn&& fn) {
   return forEachJacobianSnapshotIn(systems, states, A, every, SnapshotRange{}, jac, std::forward<Fn>(fn));

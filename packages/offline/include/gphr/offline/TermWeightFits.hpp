@@ -49,7 +49,7 @@ class TermWeightFits {
   std::string key(const std::string& method, int m) const;
   bool read(const std::string& method, int m, CachedFit& out) const;
   void store(const std::string& method, int m, const CachedFit& c) const;
-  const std::vector<RCP<const HamiltonianSystem>>& systems();
+  const SystemSet& systems();
   const QuadratureTraining& training();
 
   const Scene& scene_;
@@ -63,7 +63,7 @@ class TermWeightFits {
   DeimTerms deimTerms_;
   std::optional<ArtifactsCache> cache_;  // a copy: the caller's may go first
   std::string nnlsKey_, refitKey_;
-  std::vector<RCP<const HamiltonianSystem>> systems_;
+  SystemSet systems_;
   QuadratureTraining training_;
   double trainingSeconds_ = 0.0;
   std::map<int, QuadratureFit> computed_;  // fits of the current path not yet returned

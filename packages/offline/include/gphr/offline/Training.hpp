@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "gphr/core/SnapshotSet.hpp"
+#include "gphr/core/SystemSet.hpp"
 #include "gphr/models/Scene.hpp"
 #include "gphr/offline/ArtifactsCache.hpp"
 
@@ -74,8 +75,8 @@ TrainingResult runTraining(const Scene& scene, const RCP<const Comm>& comm, cons
 /// InputError when the training holds its snapshots in memory.
 SnapshotSet trainingSnapshotsOn(const TrainingResult& training, const RCP<const Comm>& comm, const PhaseSpace& space);
 
-/// The shifted systems of the training parameters (cheap to build: the kernels differ by mu).
-std::vector<RCP<const HamiltonianSystem>> trainingSystems(const Scene& scene, const RCP<const Comm>& comm,
-                                                          const TrainingResult& training);
+/// The shifted systems of the training parameters, each instantiated on `comm` when asked for
+/// (SystemSet: two alive at a time). `scene` must outlive the set.
+SystemSet trainingSystems(const Scene& scene, const RCP<const Comm>& comm, const TrainingResult& training);
 
 }  // namespace gphr

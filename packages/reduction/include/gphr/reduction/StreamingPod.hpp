@@ -86,8 +86,8 @@ class StreamingPod {
  private:
   void step(const MultiVector& X, size_t c0, size_t c1);
   void replicatedStep(const MultiVector& Y);
-  void stackedStep(const MultiVector& Y);
-  void treeStep(const MultiVector& Y);
+  void stackedStep(std::vector<double> y, int nc);  // y: this rank's rows of Y, column-major
+  void treeStep(std::vector<double> y, int nc);
   void setLeftVectors(const HouseholderQr& leaf, const std::vector<double>& C, int keep);
   int truncate(const std::vector<double>& S, int nc);
   RCP<const Map> map_;
