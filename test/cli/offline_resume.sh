@@ -4,7 +4,8 @@
 # basis stage after its 5th of 48 chunks, then restarted to the end. Each restart reuses what the
 # progress lines before the kill said was done (and does not redo it); the basis, the DEIM basis
 # and their singular values equal an uninterrupted run's bit for bit; no checkpoint is left. A
-# damaged checkpoint file is said and the stage computed afresh.
+# damaged checkpoint file is said and the stage computed afresh; a leftover one beside results read
+# from the cache is removed.
 # usage: offline_resume.sh GPHR
 set -u
 gphr=$1
@@ -47,6 +48,10 @@ grep -q "chunk 1 of 48 POD'd" "$work/damaged.err" || fail "the DEIM basis did no
 grep -q "deim basis: chunks 1-5 of 48 reused from file" "$work/third.err" || fail "the DEIM basis did not resume after chunk 5"
 grep -q "chunk [1-5] of 48 POD'd" "$work/third.err" && fail "the DEIM basis POD'd a chunk of the first five again"
 ls "$work/killed" | grep -q "ckpt" && fail "checkpoint files outlived the bases"
+# A leftover checkpoint file beside results read from the cache goes.
+echo leftover > "$work/killed/artifacts.h5.ckpt_basis"; echo leftover > "$work/killed/artifacts.h5.ckpt_deim_k20"
+"$gphr" build "${args[@]}" --output "$work/killed" 2> "$work/cached.err" > /dev/null || fail "the cached rerun failed"
+ls "$work/killed" | grep -q "ckpt" && fail "leftover checkpoint files stayed beside cached results"
 # 4. An uninterrupted run: the same bases and singular values, bit for bit.
 "$gphr" build "${args[@]}" --output "$work/clean" 2> "$work/clean.err" > /dev/null || fail "the uninterrupted run failed"
 for d in /basis /deim/k20; do

@@ -50,6 +50,7 @@ BasisStageResult runBasisStage(const TrainingResult& training, const PhaseSpace&
     if (ArtifactsCache::holds(*f, "/basis", key)) {
       out.basis = readBasis(*f, space);
       out.cached = true;
+      PodCheckpoint(cache, "/basis", key).clear();  // a leftover of another run's basis, if any
       GPHR_REQUIRE(options.k == 0 || options.k == out.basis.k, InputError, "basis in '", cache->path(), "' has k = ",
                    out.basis.k, " but the config asks for k = ", options.k);
     }

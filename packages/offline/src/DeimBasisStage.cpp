@@ -164,6 +164,7 @@ CachedDeimBasis runDeimBasisStage(const Scene& scene, const RCP<const Comm>& com
   clock.start();
   CachedDeimBasis out;
   if (cache) readDeimBasis(*cache->open(), name, fullKey, reference, out);  // closed again: the snapshots stream from it
+  if (out.cached) PodCheckpoint(cache, name, fullKey).clear();  // a leftover of another run's basis, if any
   if (!out.cached) {
     double before = 0.0;  // seconds of the rounds a resumed run restored
     try {
