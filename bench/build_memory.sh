@@ -18,7 +18,7 @@ cat > "$work/peak.py" <<'PY'
 import os, resource, subprocess, sys
 rc = subprocess.call(sys.argv[2:])
 with open(sys.argv[1] + "." + os.environ.get("OMPI_COMM_WORLD_RANK", "0"), "w") as f:
-    f.write(str(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss))
+    f.write(str(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss) + "\n")  # one line per rank for sort
 sys.exit(rc)
 PY
 peak=()
