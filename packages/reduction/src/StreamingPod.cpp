@@ -67,7 +67,7 @@ void StreamingPod::add(const MultiVector& X) {
 
 StreamingPod::State StreamingPod::state() const {
   State s;
-  s.U = rcp(new MultiVector(*U_, Teuchos::Copy));
+  s.U = U_;  // shared, not copied: every step makes a new U_ and never writes into the one before
   s.sigma = sigma_, s.energy = energy_, s.columns = columns_;
   s.tsqrSteps = tsqrSteps_, s.replicatedSteps = replicatedSteps_, s.stackedSteps = stackedSteps_, s.treeSteps = treeSteps_;
   return s;

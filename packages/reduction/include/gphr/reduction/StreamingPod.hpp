@@ -66,7 +66,7 @@ class StreamingPod {
     int tsqrSteps = 0, replicatedSteps = 0, stackedSteps = 0, treeSteps = 0;
     /// @}
   };
-  State state() const;  ///< This POD's state (U copied).
+  State state() const;  ///< This POD's state (U shared: later steps replace the POD's U, never overwrite it).
   /// Goes on from `s` (a state of a POD of the same map and maxRank): the next add gives what the
   /// POD that held `s` would give, bit for bit. Collective.
   void restore(const State& s);
