@@ -9,6 +9,8 @@
 #          per step and GMRES iterations per Newton iteration, beside GPHR's loop's
 #          (speedup: paper_s / NOX's wall_s)
 #   reuse: linearSolver.preconditionerRecomputeEvery in {1, 5, 20, 100}, SWE IMR T = 0.5 and NLS AVF T = 2
+#   pc:    preconditioners at the paper sizes (AVF, T = 2), then on the training run of bench/scaling.sh's
+#          SWE case (256^2, IMR with the lagged Jacobian, T = 0.4) on 1 and 2 ranks: the SWE's default
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}; part=${2:-all}
@@ -17,10 +19,11 @@ out=bench-out; mkdir -p "$out"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=1
 echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores, $(free -g | awk '/Mem/{print $2}') GiB; $(date -u +%F)"
 
-run() {  # run NAME CONFIG RANKS [INTEGRATOR_LINE] [TIME_LINE]: replace those lines of CONFIG
-  local name=$1 cfg=$2 np=$3 integ=${4:-} time=${5:-}
+run() {  # run NAME CONFIG RANKS [INTEGRATOR_LINE] [TIME_LINE] [SCENE_LINE]: replace those lines of CONFIG
+  local name=$1 cfg=$2 np=$3 integ=${4:-} time=${5:-} scene=${6:-}
   local c=$out/$name.yaml
   cp "$cfg" "$c"
+  [ -n "$scene" ] && sed -i "s|^  scene:.*|  scene: $scene|" "$c"
   [ -n "$integ" ] && sed -i "s|^  integrator:.*|  integrator: $integ|" "$c"
   [ -n "$time" ] && sed -i "s|^  time:.*|  time: $time|" "$c"
   local TIMEFORMAT='%U %S'  # CPU seconds (user, system) of the run, all ranks: $out/NAME.cpu
@@ -77,4 +80,12 @@ for pc in RILUK AMESOS2 RELAXATION none; do
   row nls_pc_$pc -
   run swe_pc_$pc bench/configs/swe_paper.yaml 1 "{scheme: avf, linearSolver: {preconditioner: $pc, maxIterations: 2000}}" "{T: 2.0, dt: 0.005}"
   row swe_pc_$pc -
+done
+echo "preconditioner comparison on the training run of bench/scaling.sh's SWE case (256^2, IMR, lagged Jacobian, T = 0.4):"
+for pc in RILUK RELAXATION none; do
+  for np in 1 2; do
+    run swe256_pc_${pc}_np$np bench/configs/swe_paper.yaml $np \
+      "{scheme: imr, jacobianLag: true, linearSolver: {preconditioner: $pc}}" "{T: 0.4, dt: 0.005}" "{name: swe2d, nx: 256}"
+    row swe256_pc_${pc}_np$np -
+  done
 done

@@ -18,13 +18,14 @@
 # fom a "time loop" row (summary.json t_online_s) and query a "queries" row (query_summary.json).
 # Environment: RANKS (default "1 2 4 8"), SIZE (issue | small), CASES (default "nls swe fom query"),
 # G (the gphr binary; default build/packages/driver/gphr), OUT_CSV (default
-# bench-out/scaling/scaling-SIZE.csv), MPIRUN (default mpirun). Runs with rank counts above the core
-# count are oversubscribed (said in the output); mpirun --bind-to none, OPENBLAS_NUM_THREADS=1.
+# bench-out/scaling/scaling-SIZE.csv), MPIRUN (default mpirun), BIND (mpirun --bind-to: none, the
+# default and the issue's, or core). Runs with rank counts above the core count are oversubscribed
+# (said in the output); OPENBLAS_NUM_THREADS=1.
 # usage: [RANKS="1 2 4 8"] [SIZE=small] bash bench/scaling.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 RANKS=${RANKS:-"1 2 4 8"}; SIZE=${SIZE:-issue}; CASES=${CASES:-"nls swe fom query"}
-G=${G:-$PWD/build/packages/driver/gphr}; MPIRUN=${MPIRUN:-mpirun}
+G=${G:-$PWD/build/packages/driver/gphr}; MPIRUN=${MPIRUN:-mpirun}; BIND=${BIND:-none}
 case $SIZE in issue|small) ;; *) echo "SIZE=$SIZE; allowed: issue, small" >&2; exit 2 ;; esac
 [ -x "$G" ] || { echo "no gphr binary at '$G' (set G)" >&2; exit 2; }
 work=bench-out/scaling/$SIZE; mkdir -p "$work"
@@ -37,7 +38,7 @@ describe=$(git describe --always --dirty 2>/dev/null || echo "not a git checkout
 # physical cores and hardware threads: ranks on the two threads of one core share its FPU and caches
 topology=$(lscpu 2>/dev/null | awk -F: '/^Thread\(s\) per core/ {t = $2} /^Core\(s\) per socket/ {c = $2}
   /^Socket\(s\)/ {s = $2} END {gsub(/ /, "", t); gsub(/ /, "", c); gsub(/ /, "", s); if (c) printf "%d core(s) x %d thread(s)", c * s, t}')
-echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $cores cores (${topology:-topology unknown}), $(free -m | awk '/Mem/ {printf "%.1f", $2 / 1024}') GiB; $(date -u '+%F %H:%M UTC'); gphr $describe; SIZE=$SIZE, RANKS=\"$RANKS\""
+echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $cores cores (${topology:-topology unknown}), $(free -m | awk '/Mem/ {printf "%.1f", $2 / 1024}') GiB; $(date -u '+%F %H:%M UTC'); gphr $describe; SIZE=$SIZE, RANKS=\"$RANKS\", mpirun --bind-to $BIND"
 for p in $RANKS; do
   [ "$p" -gt "$cores" ] && echo "note: $p ranks on $cores cores run oversubscribed: wall seconds include waiting for a core; compare compute seconds"
 done
@@ -98,7 +99,7 @@ rows() {
 mpi() {
   local p=$1 dir=$2; shift 2
   rm -f "$dir"/process.*
-  GPHR_PROCESS_CLOCKS="$dir/process" "$MPIRUN" --bind-to none -np "$p" "$@"
+  GPHR_PROCESS_CLOCKS="$dir/process" "$MPIRUN" --bind-to "$BIND" -np "$p" "$@"
 }
 model=""
 for c in $CASES; do

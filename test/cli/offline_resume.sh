@@ -5,7 +5,8 @@
 # progress lines before the kill said was done (and does not redo it); the basis, the DEIM basis
 # and their singular values equal an uninterrupted run's bit for bit; no checkpoint is left. A
 # damaged checkpoint file is said and the stage computed afresh; a leftover one beside results read
-# from the cache is removed.
+# from the cache is removed. With the default interval (output.checkpointSeconds: 60) a stage of
+# seconds writes none.
 # usage: offline_resume.sh GPHR
 set -u
 gphr=$1
@@ -19,17 +20,19 @@ gphr:
   reduction: {k: 20}
   pipeline: {methods: [gp-deim], m: [40]}
   hyper: {snapshotEvery: 2, chunkSnapshots: 21}
-  output: {progressSeconds: 0.0}
+  output: {progressSeconds: 0.0, checkpointSeconds: 0.0}
 YAML
+# The uninterrupted run below keeps the default interval (60 s): this small build writes no checkpoint.
+sed 's/, checkpointSeconds: 0.0//' "$work/c.yaml" > "$work/default.yaml"
 export OPENBLAS_NUM_THREADS=1
 fail() { echo "FAIL: $*"; for f in "$work"/*.err; do echo "--- $f"; tail -12 "$f"; done; exit 1; }
 args=("$work/c.yaml" --model "$work/m.h5")
 # 1. Killed in the basis stage.
-kill_after "basis: parameter 2 of 5 POD'd" "$work/first.err" "$gphr" build "${args[@]}" --output "$work/killed" || fail "the basis never reached parameter 2 of 5"
+kill_after "basis: parameter 2 of 5 POD'd, [0-9.]* s, checkpointed" "$work/first.err" "$gphr" build "${args[@]}" --output "$work/killed" || fail "the basis never reached parameter 2 of 5"
 grep -q "basis: parameter 4 of 5" "$work/first.err" && fail "killed too late: the basis had gone on"
 [ -f "$work/killed/artifacts.h5.ckpt_basis" ] || fail "no checkpoint file of the basis"
 # 2. Restarted, killed in the DEIM basis stage.
-kill_after "chunk 5 of 48 POD'd" "$work/second.err" "$gphr" build "${args[@]}" --output "$work/killed" \
+kill_after "chunk 5 of 48 POD'd, [0-9.]* s, checkpointed" "$work/second.err" "$gphr" build "${args[@]}" --output "$work/killed" \
   || fail "the DEIM basis never reached chunk 5 of 48"
 grep -q "basis: parameters 1-2 of 5 reused from file" "$work/second.err" || fail "the basis did not resume after parameter 2"
 grep -q "basis: parameter [12] of 5 POD'd" "$work/second.err" && fail "the basis POD'd parameter 1 or 2 again"
@@ -53,7 +56,10 @@ echo leftover > "$work/killed/artifacts.h5.ckpt_basis"; echo leftover > "$work/k
 "$gphr" build "${args[@]}" --output "$work/killed" 2> "$work/cached.err" > /dev/null || fail "the cached rerun failed"
 ls "$work/killed" | grep -q "ckpt" && fail "leftover checkpoint files stayed beside cached results"
 # 4. An uninterrupted run: the same bases and singular values, bit for bit.
-"$gphr" build "${args[@]}" --output "$work/clean" 2> "$work/clean.err" > /dev/null || fail "the uninterrupted run failed"
+"$gphr" build "$work/default.yaml" --model "$work/m.h5" --output "$work/clean" 2> "$work/clean.err" > /dev/null \
+  || fail "the uninterrupted run failed"
+grep -q "POD'd" "$work/clean.err" || fail "the uninterrupted run printed no progress lines"
+grep -q "checkpointed" "$work/clean.err" && fail "the default interval (60 s) wrote a checkpoint of a seconds-long stage"
 for d in /basis /deim/k20; do
   h5diff --exclude-attribute $d "$work/damaged/artifacts.h5" "$work/clean/artifacts.h5" $d $d > /dev/null 2>&1 \
     || fail "$d differs after a damaged checkpoint"

@@ -25,6 +25,7 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
   pl.sublist("parameters") = sceneParameterValidParameters(scene);
   pl.sublist("time") = sceneTimeValidParameters(scene);
   pl.sublist("integrator") = integratorValidParameters();
+  sceneLinearSolverDefaults(scene, pl.sublist("integrator").sublist("linearSolver"));
   auto& tr = pl.sublist("training");
   const bool nls = scene == "nls1d";
   tr.set("points", Teuchos::Array<int>(nls ? 1 : 2, 3),
@@ -128,6 +129,10 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
   auto& out = pl.sublist("output");
   setIntParameter(out, "saveEvery", 10, 1, 1000000000, "keep every N-th state of the trajectory in artifacts.h5");
   setDoubleParameter(out, "progressSeconds", 2.0, 0.0, 1e9, "seconds between progress lines on stderr (0: none)");
+  setDoubleParameter(out, "checkpointSeconds", 60.0, 0.0, 1e9,
+                     "seconds of a stage's work between checkpoints of the basis and DEIM basis PODs in "
+                     "artifacts.h5.ckpt_* (0: after every training parameter / round of chunks); a killed build "
+                     "loses at most about this much of a stage");
   out.set("plots", true, "draw PNG plots with gnuplot (skipped with a note if gnuplot is missing)");
   out.set("xdmf", false,
           "write fields.xdmf (XDMF 2, for ParaView's XDMF Reader) over artifacts.h5: the full model's saved states "

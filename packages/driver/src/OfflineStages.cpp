@@ -56,7 +56,9 @@ ModelBuildKeys cacheKeys(const Teuchos::ParameterList& cfg) {
 }
 
 ArtifactsCache artifactsCache(const RunContext& ctx, long fullDim) {
-  return ArtifactsCache(ctx.artifactsPath(), ctx.comm, ctx.scene->name(), fullDim);
+  ArtifactsCache cache(ctx.artifactsPath(), ctx.comm, ctx.scene->name(), fullDim);
+  cache.setCheckpointSeconds(ctx.config.sublist("output").get<double>("checkpointSeconds"));
+  return cache;
 }
 
 RomStages runOfflineStages(const RunContext& ctx) {

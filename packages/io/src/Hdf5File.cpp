@@ -100,19 +100,22 @@ hid_t Hdf5File::openDataset(const std::string& name) const {
 }
 
 namespace {
-// File-space selection of this rank's entries of `count` states: columns [a, a+m) and
-// [n+a, n+a+m). HDF5 orders the selected elements row-major, which is the local layout
+// Rows 0, every, 2 every, ... of `count`: how many.
+hsize_t everyNth(hsize_t count, hsize_t every) { return (count + every - 1) / every; }
+
+// File-space selection of this rank's entries of rows 0, every, ... of `count` states: columns
+// [a, a+m) and [n+a, n+a+m). HDF5 orders the selected elements row-major, which is the local layout
 // (q block then p block) of each state.
-void selectLocal(hid_t space, hsize_t count, const PhaseSpace& ps) {
+void selectLocal(hid_t space, hsize_t count, hsize_t every, const PhaseSpace& ps) {
   const hsize_t m = ps.numLocalDofs(), a = ps.firstLocalDof(), n = ps.n();
   if (m == 0 || count == 0) {
     H5Sselect_none(space);
     return;
   }
-  hsize_t start[2] = {0, a}, cnt[2] = {count, m};
-  H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, cnt, nullptr);
+  hsize_t start[2] = {0, a}, stride[2] = {every, 1}, cnt[2] = {everyNth(count, every), m};
+  H5Sselect_hyperslab(space, H5S_SELECT_SET, start, stride, cnt, nullptr);
   start[1] = n + a;
-  H5Sselect_hyperslab(space, H5S_SELECT_OR, start, nullptr, cnt, nullptr);
+  H5Sselect_hyperslab(space, H5S_SELECT_OR, start, stride, cnt, nullptr);
 }
 }  // namespace
 
@@ -129,7 +132,7 @@ void Hdf5File::writeDistributed(const std::string& name, const MultiVector& X, h
   auto v = X.getLocalViewHost(Tpetra::Access::ReadOnly);
   for (hsize_t j = 0; j < count; ++j)
     for (hsize_t i = 0; i < local; ++i) buf[j * local + i] = v(i, j);
-  select(fspace.id, count);
+  select(fspace.id, count, 1);
   hsize_t mdims[1] = {std::max<hsize_t>(count * local, 1)};
   Id mspace{H5Screate_simple(1, mdims, nullptr), H5Sclose};
   if (count * local == 0) H5Sselect_none(mspace.id);
@@ -139,7 +142,7 @@ void Hdf5File::writeDistributed(const std::string& name, const MultiVector& X, h
 }
 
 RCP<MultiVector> Hdf5File::readDistributed(const std::string& name, const RCP<const Map>& map, hsize_t N,
-                                           const Selector& select, const char* what) const {
+                                           const Selector& select, const char* what, hsize_t every) const {
   Id dset{openDataset(name), H5Dclose};
   Id fspace{H5Dget_space(dset.id), H5Sclose};
   hsize_t dims[2] = {0, 0};
@@ -148,9 +151,10 @@ RCP<MultiVector> Hdf5File::readDistributed(const std::string& name, const RCP<co
   H5Sget_simple_extent_dims(fspace.id, dims, nullptr);
   GPHR_REQUIRE(dims[1] == N, InputError, "HDF5 file '", path_, "': dataset '", name, "' holds ", what,
                "s of size ", dims[1], " but the model has size ", N);
-  const hsize_t count = dims[0], local = map->getNodeNumElements();
+  GPHR_REQUIRE(every >= 1, InputError, "reading dataset '", name, "': every ", every, " th row; allowed: >= 1");
+  const hsize_t count = everyNth(dims[0], every), local = map->getNodeNumElements();
   std::vector<double> buf(std::max<hsize_t>(count * local, 1));
-  select(fspace.id, count);
+  select(fspace.id, dims[0], every);
   hsize_t mdims[1] = {std::max<hsize_t>(count * local, 1)};
   Id mspace{H5Screate_simple(1, mdims, nullptr), H5Sclose};
   if (count * local == 0) H5Sselect_none(mspace.id);
@@ -165,36 +169,44 @@ RCP<MultiVector> Hdf5File::readDistributed(const std::string& name, const RCP<co
 }
 
 void Hdf5File::writeStates(const std::string& name, const MultiVector& states, const PhaseSpace& ps) {
-  writeDistributed(name, states, ps.fullDim(), [&](hid_t sp, hsize_t count) { selectLocal(sp, count, ps); });
+  writeDistributed(name, states, ps.fullDim(),
+                   [&](hid_t sp, hsize_t count, hsize_t every) { selectLocal(sp, count, every, ps); });
 }
 
 RCP<MultiVector> Hdf5File::readStates(const std::string& name, const PhaseSpace& ps) const {
-  return readDistributed(name, ps.map(), ps.fullDim(), [&](hid_t sp, hsize_t count) { selectLocal(sp, count, ps); },
-                         "state");
+  return readStates(name, ps, 1);
+}
+
+RCP<MultiVector> Hdf5File::readStates(const std::string& name, const PhaseSpace& ps, hsize_t every) const {
+  return readDistributed(name, ps.map(), ps.fullDim(),
+                         [&](hid_t sp, hsize_t count, hsize_t ev) { selectLocal(sp, count, ev, ps); }, "state", every);
 }
 
 namespace {
-void selectContiguous(hid_t space, hsize_t count, const Map& map) {
+void selectContiguous(hid_t space, hsize_t count, hsize_t every, const Map& map) {
   const hsize_t m = map.getNodeNumElements();
   if (m == 0 || count == 0) {
     H5Sselect_none(space);
     return;
   }
-  hsize_t start[2] = {0, static_cast<hsize_t>(map.getMinGlobalIndex() - map.getMinAllGlobalIndex())}, cnt[2] = {count, m};
-  H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, cnt, nullptr);
+  hsize_t start[2] = {0, static_cast<hsize_t>(map.getMinGlobalIndex() - map.getMinAllGlobalIndex())};
+  hsize_t stride[2] = {every, 1}, cnt[2] = {everyNth(count, every), m};
+  H5Sselect_hyperslab(space, H5S_SELECT_SET, start, stride, cnt, nullptr);
 }
 }  // namespace
 
 void Hdf5File::writeColumns(const std::string& name, const MultiVector& X) {
   const Map& map = *X.getMap();
   GPHR_REQUIRE(map.isContiguous(), InputError, "writeColumns '", name, "': the map must be contiguous");
-  writeDistributed(name, X, map.getGlobalNumElements(), [&](hid_t sp, hsize_t count) { selectContiguous(sp, count, map); });
+  writeDistributed(name, X, map.getGlobalNumElements(),
+                   [&](hid_t sp, hsize_t count, hsize_t every) { selectContiguous(sp, count, every, map); });
 }
 
 RCP<MultiVector> Hdf5File::readColumns(const std::string& name, const RCP<const Map>& map) const {
   GPHR_REQUIRE(map->isContiguous(), InputError, "readColumns '", name, "': the map must be contiguous");
   return readDistributed(name, map, map->getGlobalNumElements(),
-                         [&](hid_t sp, hsize_t count) { selectContiguous(sp, count, *map); }, "row");
+                         [&](hid_t sp, hsize_t count, hsize_t every) { selectContiguous(sp, count, every, *map); },
+                         "row");
 }
 
 void Hdf5File::writeArray(const std::string& name, const std::vector<double>& data, size_t rows, size_t cols) {

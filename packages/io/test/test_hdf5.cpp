@@ -11,6 +11,7 @@
 
 #include "TestUtils.hpp"
 #include "gphr/core/Error.hpp"
+#include "gphr/core/SnapshotSet.hpp"
 #include "gphr/io/Hdf5File.hpp"
 
 using namespace gphr;
@@ -105,6 +106,37 @@ TEST(Hdf5, StatesRoundTripBitForBit) {
     const double expected = std::sin(1.3 * g + 0.7 * 2 + 0.1 * double(g) * g / (1.0 + g)) * 3.0;
     EXPECT_DOUBLE_EQ(raw[2 * cols + g], expected);
   }
+}
+
+// Every N-th state read alone (the DEIM basis uses every hyper.snapshotEvery-th): states 0, N, 2N,
+// ... bit for bit, for N dividing the count and not; SnapshotSet::everyNth of held blocks gives the
+// same columns.
+TEST(Hdf5, EveryNthStateReadAlone) {
+  PhaseSpace ps(23, test::comm());
+  MultiVector states(ps.map(), 7);
+  for (size_t j = 0; j < 7; ++j) test::fillByGid(*states.getVectorNonConst(j), 1.0 + j, j);
+  const std::string path = tmpName("strided");
+  {
+    Hdf5File f(path, test::comm(), Hdf5File::Mode::Create);
+    f.writeStates("traj", states, ps);
+  }
+  Hdf5File f(path, test::comm(), Hdf5File::Mode::ReadOnly);
+  const SnapshotSet held({rcp(new MultiVector(states, Teuchos::Copy))});
+  for (size_t every : {1, 2, 3, 7, 9}) {
+    const auto back = f.readStates("traj", ps, every);
+    const auto view = held.everyNth(0, every);
+    const size_t used = (7 + every - 1) / every;
+    ASSERT_EQ(back->getNumVectors(), used) << "every " << every;
+    ASSERT_EQ(view->getNumVectors(), used) << "every " << every;
+    for (size_t u = 0; u < used; ++u) {
+      Vector d(*back->getVector(u), Teuchos::Copy);
+      d.update(-1.0, *states.getVector(u * every), 1.0);
+      EXPECT_EQ(d.normInf(), 0.0) << "every " << every << ", state " << u * every;
+      d.update(1.0, *view->getVector(u), -1.0, *back->getVector(u), 1.0);  // d = 0 + view - back
+      EXPECT_EQ(d.normInf(), 0.0) << "held view, every " << every << ", state " << u * every;
+    }
+  }
+  EXPECT_THROW(f.readStates("traj", ps, 0), InputError);
 }
 
 TEST(Hdf5, BadFilesNameTheFile) {

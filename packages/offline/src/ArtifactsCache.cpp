@@ -51,4 +51,10 @@ void ArtifactsCache::clear(Hdf5File& file, const std::string& name) {
     if (!file.exists(name.substr(0, slash))) file.createGroup(name.substr(0, slash));
 }
 
+void ArtifactsCache::setCheckpointSeconds(double seconds) {
+  GPHR_REQUIRE(seconds >= 0.0 && seconds < 1e9, InputError, "checkpoint interval ", seconds,
+               " s; allowed: 0 (after every block) to 1e9 seconds");
+  checkpointSeconds_ = seconds;
+}
+
 }  // namespace gphr

@@ -49,14 +49,15 @@ DeimChunkModes getStatistics(const double* f) {
   return c;
 }
 
-// The root's checkpoints (PodCheckpoint.hpp): after each round but the last, the root POD's state,
+// The root's checkpoints (PodCheckpoint.hpp): after a round but the last, at most every
+// checkpointSeconds() of the cache, the root POD's state,
 // the chunks done, the chunks' summed statistics and the seconds so far. Restored, the root goes
 // on bit for bit; the key adds the chunk size, so that a checkpoint of other chunks is not taken.
-void saveRoot(PodCheckpoint& cp, const DeimRootPod& root, int chunksDone, double seconds) {
+bool saveRoot(PodCheckpoint& cp, const DeimRootPod& root, int chunksDone, double seconds) {
   PodProgress at{chunksDone, std::vector<double>(kChunkFields + 1)};
   putStatistics(root.statistics(), at.extra.data());
   at.extra[kChunkFields] = seconds;
-  cp.write(root.state(), at);
+  return cp.write(root.state(), at);
 }
 
 // The chunks done by the furthest complete checkpoint (0: none), the root restored to it; `before`:
@@ -118,13 +119,15 @@ DeimBasis deimBasisInGroups(const Scene& scene, const TrainingResult& training, 
     const RCP<MultiVector> modes = groups.toWorld(ours, rowMap);
     for (int c = 0; c < inRound; ++c)  // a chunk of rank 0 adds its statistics only
       root.add(round[c].rank > 0 ? *modes->subView(Teuchos::Range1D(offset[c], offset[c + 1] - 1)) : *modes, round[c]);
-    if (checkpoint.enabled() && first + inRound < count)  // before the line: what it says is kept
-      saveRoot(checkpoint, root, first + inRound, before + clock.totalElapsedTime(true));
+    const bool kept = checkpoint.enabled() && first + inRound < count &&  // before the line: what it says is kept
+                      saveRoot(checkpoint, root, first + inRound, before + clock.totalElapsedTime(true));
+    const char* tail = kept ? ", checkpointed" : "";
     if (groups.world()->getRank() == 0 && inRound == 1)
-      std::fprintf(stderr, "[gphr] deim basis: chunk %d of %d POD'd, %.1f s\n", first + 1, count, clock.totalElapsedTime(true));
+      std::fprintf(stderr, "[gphr] deim basis: chunk %d of %d POD'd, %.1f s%s\n", first + 1, count,
+                   clock.totalElapsedTime(true), tail);
     else if (groups.world()->getRank() == 0)
-      std::fprintf(stderr, "[gphr] deim basis: chunks %d-%d of %d POD'd by %d groups side by side, %.1f s\n", first + 1,
-                   first + inRound, count, G, clock.totalElapsedTime(true));
+      std::fprintf(stderr, "[gphr] deim basis: chunks %d-%d of %d POD'd by %d groups side by side, %.1f s%s\n",
+                   first + 1, first + inRound, count, G, clock.totalElapsedTime(true), tail);
   }
   return root.basis();
 }

@@ -11,7 +11,9 @@
 namespace gphr {
 
 PodCheckpoint::PodCheckpoint(const ArtifactsCache* cache, std::string name, std::string key, const PhaseSpace* space)
-    : cache_(cache), name_(std::move(name)), key_(std::move(key)), space_(space) {}
+    : cache_(cache), name_(std::move(name)), key_(std::move(key)), space_(space) {
+  sinceWrite_.start();
+}
 
 std::string PodCheckpoint::path() const {
   std::string tail = name_;
@@ -35,8 +37,11 @@ bool asStates(const Map& map, const PhaseSpace* space) {
 }
 }  // namespace
 
-void PodCheckpoint::write(const StreamingPod::State& pod, const PodProgress& at) {
-  if (!cache_) return;
+bool PodCheckpoint::write(const StreamingPod::State& pod, const PodProgress& at) {
+  if (!cache_) return false;
+  int due = sinceWrite_.totalElapsedTime(true) >= cache_->checkpointSeconds();
+  Teuchos::broadcast(*cache_->comm(), 0, Teuchos::outArg(due));  // every rank writes, or none
+  if (!due) return false;
   // a file that could not be read (a kill while it was first created, say) is made anew
   const auto f = std::make_unique<Hdf5File>(path(), cache_->comm(),
                                             exists() && !unreadable_ ? Hdf5File::Mode::ReadWrite : Hdf5File::Mode::Create);
@@ -53,6 +58,9 @@ void PodCheckpoint::write(const StreamingPod::State& pod, const PodProgress& at)
   f->setAttribute(name, "extra", at.extra);
   ArtifactsCache::seal(*f, name, key_);
   next_ = 1 - next_;
+  sinceWrite_.reset();
+  sinceWrite_.start();
+  return true;
 }
 
 PodProgress PodCheckpoint::read(const RCP<const Map>& map, size_t extraSize, int limit, StreamingPod::State& pod) {

@@ -156,44 +156,32 @@ void storeInCache(const ArtifactsCache& cache, size_t j, const MultiVector& snap
   ArtifactsCache::seal(*f, datasetName(j), key);
 }
 
-std::string groupFile(const ArtifactsCache& cache, int group) { return cache.path() + ".group" + std::to_string(group); }
-
-// Rank groups (TrainingOptions::groupSize): group g integrates parameters g, g + groups, ... on its
-// own ranks into a file of its own (each its own parallel HDF5 file: two groups cannot share one
-// writer), then every rank copies them into the cache in order, one parameter at a time.
+// Rank groups (TrainingOptions::groupSize), in rounds: in round t group g integrates parameter
+// t G + g on its own ranks; then each of the round's parameters moves from its group to all ranks
+// (RankGroups::fromGroup: memory to memory, only that group's rows) and goes into the cache in
+// parameter order, sealed. A round's parameters are kept when a later round is killed. (Each group
+// writing a parallel HDF5 file of its own, copied into the cache at the end, moved every snapshot
+// through the file system twice more: 0.68 s of the 7.4 s training of SWE 256^2 on 16 ranks.)
 void trainInGroups(const Scene& scene, const RCP<const Comm>& comm, const TrainingOptions& o, const ArtifactsCache& cache,
                    const std::string& key, const std::vector<char>& done, int size, const PhaseSpace& ps) {
   const RankGroups split(comm, size);
-  const int groups = split.count(), group = split.group();
-  const RCP<const Comm>& sub = split.sub();
+  const size_t groups = static_cast<size_t>(split.count()), count = o.parameters.size();
+  const size_t columns = static_cast<size_t>(o.steps / o.snapshotEvery + 1);
   Progress progress(o.progress && comm->getRank() == 0);
-  {
-    Hdf5File f(groupFile(cache, group), sub, Hdf5File::Mode::Create);
-    f.createGroup("/training");
-    size_t computed = 0;
-    for (size_t j = group; j < o.parameters.size(); j += groups) {
-      if (done[j]) continue;
-      const auto inst = scene.instantiate(sub, o.parameters[j], true);
-      f.writeStates(datasetName(j), *integrate(inst, o), inst.system->space());
-      progress.done(j, o.parameters.size(), ++computed, o.parameters[j], false);  // group 0's, on rank 0
+  size_t computed = 0;
+  for (size_t first = 0; first < count; first += groups) {
+    const size_t j = first + static_cast<size_t>(split.group()), last = std::min(first + groups, count);
+    RCP<MultiVector> mine;
+    if (j < count && !done[j]) mine = integrate(scene.instantiate(split.sub(), o.parameters[j], true), o);
+    for (size_t c = first; c < last; ++c) {
+      if (!done[c])
+        storeInCache(cache, c, *split.fromGroup(static_cast<int>(c - first), mine.get(), ps.map(), columns), ps,
+                     o.parameters[c], key);
+      progress.done(c, count, done[c] ? computed : ++computed, o.parameters[c], done[c]);
     }
   }
-  comm->barrier();
-  for (size_t j = 0; j < o.parameters.size(); ++j) {
-    if (done[j]) continue;
-    RCP<const MultiVector> snaps;
-    {
-      Hdf5File f(groupFile(cache, static_cast<int>(j % groups)), comm, Hdf5File::Mode::ReadOnly);
-      snaps = f.readStates(datasetName(j), ps);
-    }
-    storeInCache(cache, j, *snaps, ps, o.parameters[j], key);
-  }
-  comm->barrier();
-  if (comm->getRank() == 0)
-    for (int g = 0; g < groups; ++g) std::remove(groupFile(cache, g).c_str());
-  comm->barrier();  // gone for every rank when training returns
   if (o.progress && comm->getRank() == 0)
-    std::fprintf(stderr, "[gphr] train: %d groups of %d rank(s) integrated side by side\n", groups, size);
+    std::fprintf(stderr, "[gphr] train: %zu groups of %d rank(s) integrated side by side\n", groups, size);
 }
 
 }  // namespace
@@ -240,10 +228,11 @@ TrainingResult runTraining(const Scene& scene, const RCP<const Comm>& comm, cons
   }
   const std::string path = cache->path();
   const RCP<const HamiltonianSystem> system = probe.system;  // keeps the phase space of the blocks
-  res.snapshots = SnapshotSet(std::vector<size_t>(count, columns), [path, comm, system](size_t j) -> RCP<const MultiVector> {
-    Hdf5File f(path, comm, Hdf5File::Mode::ReadOnly);
-    return f.readStates(datasetName(j), system->space());
-  });
+  res.snapshots = SnapshotSet(std::vector<size_t>(count, columns),
+                              [path, comm, system](size_t j, size_t every) -> RCP<const MultiVector> {
+                                Hdf5File f(path, comm, Hdf5File::Mode::ReadOnly);
+                                return f.readStates(datasetName(j), system->space(), every);
+                              });
   res.seconds = clock.stop();
   return res;
 }
@@ -256,9 +245,9 @@ SnapshotSet trainingSnapshotsOn(const TrainingResult& training, const RCP<const 
   for (size_t j = 0; j < training.snapshots.size(); ++j) columns.push_back(training.snapshots.numColumns(j));
   const std::string path = training.cachePath;
   const PhaseSpace* ps = &space;  // the caller's system keeps it alive while the set is used
-  return SnapshotSet(columns, [path, comm, ps](size_t j) -> RCP<const MultiVector> {
+  return SnapshotSet(columns, [path, comm, ps](size_t j, size_t every) -> RCP<const MultiVector> {
     Hdf5File f(path, comm, Hdf5File::Mode::ReadOnly);
-    return f.readStates(datasetName(j), *ps);
+    return f.readStates(datasetName(j), *ps, every);
   });
 }
 

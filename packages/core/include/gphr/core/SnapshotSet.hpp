@@ -17,8 +17,9 @@ namespace gphr {
 /// The snapshot blocks of the training parameters (see the file's description).
 class SnapshotSet {
  public:
-  /// Reads block j (collective over the blocks' communicator when it reads a file).
-  using Loader = std::function<RCP<const MultiVector>(size_t j)>;
+  /// Reads block j's states 0, every, 2 every, ... (collective over the blocks' communicator when
+  /// it reads a file).
+  using Loader = std::function<RCP<const MultiVector>(size_t j, size_t every)>;
   SnapshotSet() = default;
   /// Blocks held in memory (implicit: every stage also takes a plain vector of blocks).
   SnapshotSet(std::vector<RCP<const MultiVector>> blocks) : blocks_(std::move(blocks)) {  // NOLINT
@@ -35,7 +36,10 @@ class SnapshotSet {
   /// The number of states in block j, without reading it.
   size_t numColumns(size_t j) const { return columns_.at(j); }
   /// Block j: held, or read now (a streamed block lives as long as the caller keeps it).
-  RCP<const MultiVector> operator[](size_t j) const { return load_ ? load_(j) : blocks_.at(j); }
+  RCP<const MultiVector> operator[](size_t j) const { return load_ ? load_(j, 1) : blocks_.at(j); }
+  /// Block j's states 0, every, 2 every, ... (ceil(numColumns(j) / every) columns): a view of a
+  /// held block, or only those states read (a stage that uses every N-th state reads 1/N of them).
+  RCP<const MultiVector> everyNth(size_t j, size_t every) const;
 
   /// Visits the blocks in order, each read once (streamed: one in memory at a time).
   class Iterator {
@@ -60,5 +64,13 @@ class SnapshotSet {
   std::vector<RCP<const MultiVector>> blocks_;
   Loader load_;
 };
+
+inline RCP<const MultiVector> SnapshotSet::everyNth(size_t j, size_t every) const {
+  if (every <= 1) return (*this)[j];
+  if (load_) return load_(j, every);
+  std::vector<size_t> cols;
+  for (size_t c = 0; c < columns_.at(j); c += every) cols.push_back(c);
+  return blocks_[j]->subView(Teuchos::ArrayView<const size_t>(cols));
+}
 
 }  // namespace gphr

@@ -30,7 +30,7 @@ struct SnapshotRange {
 /// of the block's size stays alive between them.
 struct ReducedStateCache {
   size_t block = static_cast<size_t>(-1);  ///< the block Z belongs to
-  RCP<MultiVector> Z;                      ///< A^T y for its states
+  RCP<MultiVector> Z;                      ///< A^T y for its used states (every every-th)
 };
 
 /// The number of snapshots forEachJacobianSnapshot visits: ceil(columns_j / every) summed over the blocks.
@@ -65,16 +65,16 @@ long forEachJacobianSnapshotIn(const SystemSet& systems,
     ReducedRowKernel kernel(sys.nonlinearTermPtr(), ownedRowSample(sys, A), sys.space().comm());
     ReducedStateCache own;
     ReducedStateCache& zc = cache ? *cache : own;
-    if (zc.block != j || zc.Z.is_null()) {
-      zc.Z = rcp(new MultiVector(local, states.numColumns(j)));
-      zc.Z->multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, A, *states[j], 0.0);  // z = A^T y_s (the block read once)
+    if (zc.block != j || zc.Z.is_null()) {  // z = A^T y_s of the used states only (only they are read)
+      zc.Z = rcp(new MultiVector(local, static_cast<size_t>(inBlock)));
+      zc.Z->multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, A, *states.everyNth(j, static_cast<size_t>(every)), 0.0);
       zc.block = j;
     }
     auto zv = zc.Z->getLocalViewHost(Tpetra::Access::ReadOnly);
     Teuchos::SerialDenseVector<int, double> z(r);
-    for (size_t c = 0; c < states.numColumns(j); c += every, ++index) {
+    for (long u = 0; u < inBlock; ++u, ++index) {
       if (index < range.first || index >= range.last) continue;
-      for (int i = 0; i < r; ++i) z(i) = zv(i, c);
+      for (int i = 0; i < r; ++i) z(i) = zv(i, u);
       kernel.evaluate(z, true, false);
       kernel.reducedJacobian(jac.data());
       if constexpr (std::is_invocable_v<Fn, std::vector<Scalar>&, long, ReducedRowKernel&>)

@@ -39,6 +39,8 @@ class Hdf5File {
   void writeStates(const std::string& name, const MultiVector& states, const PhaseSpace& space);
   /// The states written by writeStates(), distributed on space.map().
   RCP<MultiVector> readStates(const std::string& name, const PhaseSpace& space) const;
+  /// Rows 0, every, 2 every, ... of a (count, 2n) dataset of states: ceil(count / every) columns.
+  RCP<MultiVector> readStates(const std::string& name, const PhaseSpace& space, hsize_t every) const;
   /// Columns of a MultiVector on a contiguous map (e.g.\ the DEIM basis on the rows of G) as rows
   /// of dataset `name` (shape (cols, global length)), each rank its own hyperslab.
   void writeColumns(const std::string& name, const MultiVector& X);
@@ -59,10 +61,10 @@ class Hdf5File {
   std::vector<double> doubleAttribute(const std::string& object, const std::string& key) const;
 
  private:
-  using Selector = std::function<void(hid_t, hsize_t)>;
+  using Selector = std::function<void(hid_t, hsize_t count, hsize_t every)>;  // rows 0, every, ... of count
   void writeDistributed(const std::string& name, const MultiVector& X, hsize_t N, const Selector& select);
   RCP<MultiVector> readDistributed(const std::string& name, const RCP<const Map>& map, hsize_t N,
-                                   const Selector& select, const char* what) const;
+                                   const Selector& select, const char* what, hsize_t every = 1) const;
   hid_t openDataset(const std::string& name) const;
   std::string path_;
   RCP<const Comm> comm_;

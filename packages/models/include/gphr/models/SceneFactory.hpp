@@ -16,6 +16,9 @@ Teuchos::ParameterList sceneValidParameters(const std::string& name);
 Teuchos::ParameterList sceneParameterValidParameters(const std::string& name);
 /// Valid `time` section (T, dt) with the paper's defaults for the scene.
 Teuchos::ParameterList sceneTimeValidParameters(const std::string& name);
+/// The scene's defaults in a valid `integrator.linearSolver` section (its preconditioner: RELAXATION
+/// on the SWE, where it is faster than the general default RILUK(1); doc/design.md).
+void sceneLinearSolverDefaults(const std::string& name, Teuchos::ParameterList& linearSolver);
 
 /// The scene of a validated `scene` section.
 std::shared_ptr<Scene> makeScene(const Teuchos::ParameterList& sceneSection);

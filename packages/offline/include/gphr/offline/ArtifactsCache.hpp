@@ -31,10 +31,16 @@ class ArtifactsCache {
   static void seal(Hdf5File& file, const std::string& name, const std::string& key);
   /// Removes `name` and creates its parent groups if missing: the dataset can be written anew.
   static void clear(Hdf5File& file, const std::string& name);
+  /// Seconds of a stage's work between two checkpoints of its streaming POD (PodCheckpoint; 0:
+  /// after every block). A kill loses at most about this much of a stage's work.
+  double checkpointSeconds() const { return checkpointSeconds_; }
+  /// Sets checkpointSeconds() (>= 0; an InputError naming the value otherwise).
+  void setCheckpointSeconds(double seconds);
 
  private:
   std::string path_;
   RCP<const Comm> comm_;
+  double checkpointSeconds_ = 60.0;
 };
 
 }  // namespace gphr

@@ -9,7 +9,9 @@
 /// removed when the stage's result is written): HDF5 1.10 does not reclaim a removed dataset's
 /// space, so slots rewritten in artifacts.h5 would leave it larger by two checkpoints per stage.
 /// Two slots are written in turn, so that a kill while one is written leaves the other; a restart
-/// takes the complete one that got furthest.
+/// takes the complete one that got furthest. Written at most every ArtifactsCache::checkpointSeconds()
+/// of the stage's work (default 60): each costs a write of the POD's U (151 MB at SWE 256^2).
+#include <Teuchos_Time.hpp>
 #include <string>
 #include <vector>
 
@@ -32,8 +34,10 @@ class PodCheckpoint {
   /// as columns (Hdf5File::writeColumns); one on the state map of `space` as states.
   PodCheckpoint(const ArtifactsCache* cache, std::string name, std::string key, const PhaseSpace* space = nullptr);
   bool enabled() const { return cache_ != nullptr; }  ///< Whether there is a file to write to.
-  /// Writes a checkpoint into the slot not written last. Collective over the cache's ranks.
-  void write(const StreamingPod::State& pod, const PodProgress& at);
+  /// Writes a checkpoint into the slot not written last, when the cache's checkpointSeconds() have
+  /// passed since this object was made or last wrote (rank 0's clock decides for all); returns
+  /// whether it wrote. Collective over the cache's ranks.
+  bool write(const StreamingPod::State& pod, const PodProgress& at);
   /// The complete checkpoint that got furthest with progress below `limit` (the rows of its U on
   /// `map`) into `pod`, or progress 0 where there is none; `extraSize`: the figures expected. A
   /// file that cannot be read, or holds other figures, counts as none (said on stderr; the next
@@ -48,6 +52,7 @@ class PodCheckpoint {
   const ArtifactsCache* cache_;
   std::string name_, key_;
   const PhaseSpace* space_;
+  Teuchos::Time sinceWrite_{"checkpoint"};  // since made or last written
   int next_ = 0;             // the slot the next write goes to
   bool unreadable_ = false;  // the file was found unreadable: the next write creates it anew
 };
