@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # Training killed with SIGKILL after the first of three parameters has finished, then restarted,
 # gives an artifacts.h5 whose snapshots equal an uninterrupted run's bit for bit (h5diff with no
-# tolerance), and the restart reuses the finished parameter.
-# usage: kill_resume.sh GPHR
+# tolerance), and the restart reuses the finished parameter. The same on 2 ranks in rank groups of
+# one rank (training.groupSize: 1): killed after the first round (parameters 1 and 2, one per
+# group) was stored, the restart reuses both and integrates parameter 3 only.
+# usage: kill_resume.sh GPHR MPIEXEC
 set -u
-gphr=$1
+gphr=$1; mpiexec=$2
 . "$(dirname "$0")/kill_after.sh"
 work=$(mktemp -d); trap '[ $kill_pid -gt 0 ] && kill -9 $kill_pid 2>/dev/null; rm -rf "$work"' EXIT
 cat > "$work/c.yaml" <<'YAML'
@@ -33,4 +35,21 @@ for p in p0 p1 p2; do
     || { cat "$work/diff.txt"; fail "snapshots /training/$p differ"; }
 done
 h5diff "$work/killed/artifacts.h5" "$work/clean/artifacts.h5" /basis /basis > /dev/null || fail "bases differ"
-echo "ok: killed after parameter 1, resumed, snapshots bit-for-bit equal"
+# 4. Two rank groups of one rank: killed after the first round, restarted, equal to an uninterrupted
+# grouped run bit for bit (each parameter integrated on one rank, the same arithmetic every time).
+sed 's/snapshotEvery: 4}/snapshotEvery: 4, groupSize: 1}/' "$work/c.yaml" > "$work/g.yaml"
+np2=("$mpiexec" --allow-run-as-root --oversubscribe -np 2 "$gphr" run "$work/g.yaml")
+kill_after "parameter 2/3 .* done" "$work/g_first.err" "${np2[@]}" --output "$work/g_killed" \
+  || fail "the grouped training never finished its first round"
+grep -q "parameter 3/3" "$work/g_first.err" && fail "killed too late: the second round had finished"
+"${np2[@]}" --output "$work/g_killed" 2> "$work/g_second.err" > /dev/null || fail "grouped restart failed"
+grep -q "parameter 1/3 (0.9) reused from file" "$work/g_second.err" || fail "grouped restart did not reuse parameter 1"
+grep -q "parameter 2/3 (1) reused from file" "$work/g_second.err" || fail "grouped restart did not reuse parameter 2"
+grep -q "parameter 3/3 (1.1) done" "$work/g_second.err" || fail "grouped restart did not compute parameter 3"
+grep -q "2 groups of 1 rank" "$work/g_second.err" || fail "the training did not run in two groups"
+"${np2[@]}" --output "$work/g_clean" 2> "$work/g_clean.err" > /dev/null || fail "grouped clean run failed"
+for p in p0 p1 p2; do
+  h5diff "$work/g_killed/artifacts.h5" "$work/g_clean/artifacts.h5" /training/$p /training/$p > "$work/diff.txt" 2>&1 \
+    || { cat "$work/diff.txt"; fail "grouped snapshots /training/$p differ"; }
+done
+echo "ok: killed after parameter 1 (1 rank) and after the first round of two rank groups, resumed, snapshots bit-for-bit equal"
