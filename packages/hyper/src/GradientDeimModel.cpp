@@ -84,15 +84,14 @@ RCP<MultiVector> gradientDeimBasis(const SystemSet& systems,
   StreamingPod pod(map, static_cast<int>(std::min<GO>(maxRank, map->getGlobalNumElements())), 64);
   Vector zero(map), g0(map);
   for (size_t j = 0; j < systems.size(); ++j) {
-    std::vector<size_t> cols;
-    for (size_t c = 0; c < states.numColumns(j); c += snapshotEvery) cols.push_back(c);
-    auto Y = states[j]->subCopy(Teuchos::ArrayView<const size_t>(cols));
+    RCP<const MultiVector> Y = states.everyNth(j, static_cast<size_t>(snapshotEvery));  // only those states read
     if (projected) Y = projectOnto(A, *Y);
-    MultiVector G(map, cols.size());
-    for (size_t c = 0; c < cols.size(); ++c) systems[j]->nonlinearGradient(*Y->getVector(c), *G.getVectorNonConst(c));
+    const size_t used = Y->getNumVectors();
+    MultiVector G(map, used);
+    for (size_t c = 0; c < used; ++c) systems[j]->nonlinearGradient(*Y->getVector(c), *G.getVectorNonConst(c));
     if (!projected) {  // minus grad N at the training system's state 0 (its y0)
       systems[j]->nonlinearGradient(zero, g0);
-      for (size_t c = 0; c < cols.size(); ++c) G.getVectorNonConst(c)->update(-1.0, g0, 1.0);
+      for (size_t c = 0; c < used; ++c) G.getVectorNonConst(c)->update(-1.0, g0, 1.0);
     }
     pod.add(G);
   }

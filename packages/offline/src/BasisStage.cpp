@@ -57,7 +57,8 @@ BasisStageResult runBasisStage(const TrainingResult& training, const PhaseSpace&
   }
   if (!out.cached) {
     // Checkpoints after a training parameter's block, at most every cache->checkpointSeconds()
-    // (PodCheckpoint.hpp): a restart goes on from the furthest, bit for bit. The key is the basis's: it names the training and the options.
+    // (PodCheckpoint.hpp): a restart goes on from the furthest, bit for bit. The key is the
+    // basis's: it names the training and the options.
     PodCheckpoint checkpoint(cache, "/basis", key, &space);
     BasisProgress resume;
     const int count = static_cast<int>(training.snapshots.size());
@@ -68,7 +69,7 @@ BasisStageResult runBasisStage(const TrainingResult& training, const PhaseSpace&
       if (space.comm()->getRank() == 0)
         std::fprintf(stderr, "[gphr] basis: parameters 1-%d of %d reused from file\n", at.progress, count);
     }
-    const auto save = [&](const BasisProgress& b) {  // the line after the checkpoint: what it says is kept
+    const auto save = [&](const BasisProgress& b) {  // the line after the checkpoint: "checkpointed" is kept
       const bool kept = checkpoint.write(b.pod, PodProgress{static_cast<int>(b.blocks), {b.energy}});
       if (space.comm()->getRank() == 0)
         std::fprintf(stderr, "[gphr] basis: parameter %zu of %d POD'd, %.1f s%s\n", b.blocks, count,

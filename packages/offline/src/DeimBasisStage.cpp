@@ -119,7 +119,7 @@ DeimBasis deimBasisInGroups(const Scene& scene, const TrainingResult& training, 
     const RCP<MultiVector> modes = groups.toWorld(ours, rowMap);
     for (int c = 0; c < inRound; ++c)  // a chunk of rank 0 adds its statistics only
       root.add(round[c].rank > 0 ? *modes->subView(Teuchos::Range1D(offset[c], offset[c + 1] - 1)) : *modes, round[c]);
-    const bool kept = checkpoint.enabled() && first + inRound < count &&  // before the line: what it says is kept
+    const bool kept = checkpoint.enabled() && first + inRound < count &&  // before the line: "checkpointed" is kept
                       saveRoot(checkpoint, root, first + inRound, before + clock.totalElapsedTime(true));
     const char* tail = kept ? ", checkpointed" : "";
     if (groups.world()->getRank() == 0 && inRound == 1)
