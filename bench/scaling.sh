@@ -49,8 +49,11 @@ else
   nls_n=512 nls_T=2.0 nls_k=20 nls_m=40 swe_nx=64 fom_nx=128 q_T=2.0
 fi
 # The sizes the cost model needs (bench/scaling_model.py), one column of the CSV.
-nls_sizes="n=$nls_n;steps=$(python3 -c "print(round($nls_T / 0.01))");points=5;every=10;k=$nls_k;m=$nls_m;nodes=7"
-swe_sizes="nx=$swe_nx;steps=80;points=4;every=1;hyper=5;k=20;m=40+80;nodes=49"
+# treefrom, tplevel: the streaming POD's route rule of this gphr (podRoute auto takes the tree from
+# 2 ranks; its levels are TPQRT of two triangles), which the model reads per record.
+pod_rule="treefrom=2;tplevel=1"
+nls_sizes="n=$nls_n;steps=$(python3 -c "print(round($nls_T / 0.01))");points=5;every=10;k=$nls_k;m=$nls_m;nodes=7;$pod_rule"
+swe_sizes="nx=$swe_nx;steps=80;points=4;every=1;hyper=5;k=20;m=40+80;nodes=49;$pod_rule"
 fom_sizes="nx=$fom_nx;steps=40"
 q_sizes="n=$nls_n;steps=$(python3 -c "print(round($q_T / 0.01))");queries=64;k=$nls_k;m=$nls_m"
 

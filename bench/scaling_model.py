@@ -12,7 +12,9 @@ Machine constants, fitted on the 1-rank runs of the CSV (the model's p-dependenc
   F_dense   flop rate of the dense LAPACK kernels (QR, SVD) of the streaming POD: one rate for
             the basis stages of both build cases (least squares on their 1-rank compute seconds);
   g_node    seconds per state row and parameter node of the model file's interpolation (each node
-            a scene instance and its O(n k) projections): one value for both build cases;
+            a scene instance and its O(n k) to O(n k^2) projections), per scene: the NLS's nodes
+            project onto 2k = 160 columns, the SWE's onto 40, and a single value fitted on both
+            predicted the NLS's 1-rank stage at 0.25x;
   g_train   seconds per state row per time step of the training's integrator, per scene (NLS AVF
             and SWE IMR do different Newton and GMRES work per row);
   g_fom     the same for the full model case (SWE IMR with a fresh Jacobian every step), plus its
@@ -79,15 +81,32 @@ def svd_flops(m, n):
     return 4.0 * (big + small) * small * small
 
 
-def pod_flops(rows, cols, carried, block, p):
+# The streaming POD's route rule and tree levels, by the code that measured a record: its sizes
+# carry `treefrom` (the rank count from which podRoute auto takes the tree) and `tplevel` (1: the
+# tree's levels are the structured TPQRT of two triangles, about 3 nc^3 with its Q applied). Records
+# without them (gphr 408da5c and before) took the tree from 8 ranks, its levels a dense GEQRF/ORMQR of
+# the 2 nc x nc stack (22/3 nc^3). The extrapolation uses the current code's rule.
+TREE_FROM, TREE_LEVEL = 2, 3.0
+OLD_TREE_FROM, OLD_TREE_LEVEL = 8, 22.0 / 3.0
+
+
+def pod_rule(s):
+    """(tree_from, level_flops_per_nc3) of the code that measured sizes s (see TREE_FROM)."""
+    if s.get("tplevel", 0) >= 1:
+        return int(s.get("treefrom", TREE_FROM)), TREE_LEVEL
+    return int(s.get("treefrom", OLD_TREE_FROM)), OLD_TREE_LEVEL
+
+
+def pod_flops(rows, cols, carried, block, p, rule=(TREE_FROM, TREE_LEVEL)):
     """Streaming POD (packages/reduction/src/StreamingPod.cpp) of a rows x cols matrix, blocks of
     `block` columns, at most `carried` triplets kept, step by step (the first steps are narrower:
     nothing carried yet). Per step of nc = carried + new columns, on the busiest rank (rank 0):
     its own rows' GEQRF and ORMQR, 4 (rows / p) nc k with k = min(rows / p, nc) (a rank may hold
     fewer rows than columns: its R factor is k x nc); then the replicated part: the stacked route
-    (p < 8) a GESDD of the stack of the p R factors (min(p k, rows) x nc, on every rank); the tree
-    route (p >= 8) ceil(log2 p) levels of a 2 nc x nc GEQRF and its ORMQR on the way down
-    (22/3 nc^3) and one GESDD of the root's nc x nc factor."""
+    (p below rule[0]) a GESDD of the stack of the p R factors (min(p k, rows) x nc, on every rank);
+    the tree route ceil(log2 p) levels of rule[1] nc^3 (the QR of two stacked triangles and its Q
+    applied on the way down) and one GESDD of the root's nc x nc factor."""
+    tree_from, level = rule
     local_rows = rows / p
     total, done, kept = 0.0, 0, 0
     while done < cols:
@@ -95,10 +114,10 @@ def pod_flops(rows, cols, carried, block, p):
         nc = kept + new
         k = min(local_rows, nc)
         total += 4.0 * local_rows * nc * k
-        if p < 8:
+        if p < tree_from:
             total += svd_flops(min(p * k, rows), nc)
         else:
-            total += math.ceil(math.log2(p)) * 22.0 / 3.0 * nc ** 3 + svd_flops(min(rows, nc), nc)
+            total += math.ceil(math.log2(p)) * level * nc ** 3 + svd_flops(min(rows, nc), nc)
         kept = min(carried, nc, rows)
         done += new
     return total
@@ -108,7 +127,7 @@ def basis_flops(s, p):
     """PSD basis: the real form [D, J^T D] of the complex data: 2n rows, 2 N_s columns, blocks of
     2 x 128 columns, 2 (2k + 32) triplets carried (packages/offline/src/BasisStage.cpp)."""
     ns = s["points"] * (s["steps"] / s["every"] + 1)
-    return pod_flops(state_rows(s), 2 * ns, 2 * (2 * s["k"] + 32), 256, p)
+    return pod_flops(state_rows(s), 2 * ns, 2 * (2 * s["k"] + 32), 256, p, pod_rule(s))
 
 
 def basis_messages(s, p):
@@ -117,7 +136,7 @@ def basis_messages(s, p):
     ns = s["points"] * (s["steps"] / s["every"] + 1)
     steps = math.ceil(2 * ns / 256)
     nc = 2 * (2 * s["k"] + 32) + 256
-    if p < 8:
+    if p < pod_rule(s)[0]:
         return steps * math.ceil(math.log2(max(p, 2))), steps * 8.0 * p * nc * nc
     return steps * 2 * math.ceil(math.log2(p)), steps * 2 * math.ceil(math.log2(p)) * 8.0 * nc * nc
 
@@ -150,8 +169,8 @@ def deim_flops(s, p):
     columns, R carried) and, on all p ranks, the root: one step per chunk of R carried + R new
     columns (rank 0 does the tree's or the stack's replicated part)."""
     L = deim_layout(s, p)
-    chunk = pod_flops(L["d"], L["per"] * L["r"], L["R"], L["block"], L["g"])
-    root = pod_flops(L["d"], L["C"] * L["R"], L["R"], L["R"], p)
+    chunk = pod_flops(L["d"], L["per"] * L["r"], L["R"], L["block"], L["g"], pod_rule(s))
+    root = pod_flops(L["d"], L["C"] * L["R"], L["R"], L["R"], p, pod_rule(s))
     return L["rounds"] * chunk + root
 
 
@@ -163,7 +182,7 @@ def deim_messages(s, p):
     nc = 2 * L["R"]
     msgs = L["rounds"] * (2 + math.ceil(math.log2(max(p, 2))))
     byts = L["rounds"] * 8.0 * L["d"] * L["G"] * L["R"] / p
-    if p < 8:
+    if p < pod_rule(s)[0]:
         msgs += L["C"] * math.ceil(math.log2(max(p, 2)))
         byts += L["C"] * 8.0 * p * nc * nc
     else:
@@ -226,6 +245,11 @@ def load(path):
     return table, sizes
 
 
+def is_rest(stage):
+    """The small stages the model takes together as `rest`."""
+    return stage in ("setup", "instance", "header", "write") or stage.startswith("gp-deim")
+
+
 def fit(table, sizes):
     c = {}
     builds = [x for x in ("nls", "swe") if (x, 1) in table]
@@ -233,18 +257,26 @@ def fit(table, sizes):
     num = sum(basis_flops(sizes[x], 1) ** 2 for x in builds)
     den = sum(basis_flops(sizes[x], 1) * table[(x, 1)]["basis"] for x in builds)
     c["F_dense"] = num / den if den > 0 else float("nan")
-    units = [(interpolation_units(sizes[x], 1), sum(v for k, v in table[(x, 1)].items() if k.startswith("interpolation")))
-             for x in builds]
-    c["g_node"] = sum(u * t for u, t in units) / sum(u * u for u, t in units) if units else float("nan")
     for x in builds:
+        interp = sum(v for k, v in table[(x, 1)].items() if k.startswith("interpolation"))
+        c["g_node_" + x] = interp / interpolation_units(sizes[x], 1)
         deim = sum(v for k, v in table[(x, 1)].items() if k.startswith("deim basis"))
         c["F_deim_" + x] = deim_flops(sizes[x], 1) / deim if deim > 0 else float("nan")
         c["g_train_" + x] = table[(x, 1)]["training"] / training_units(sizes[x], 1)
         c["training_" + x] = table[(x, 1)]["training"]
         c["parameters_" + x] = parameter_seconds(table[(x, 1)])
-        # the small stages (set-up, instance, header, gp-deim, write): a constant, not modelled
-        c["rest_" + x] = sum(v for k, v in table[(x, 1)].items()
-                             if k in ("setup", "instance", "header", "write") or k.startswith("gp-deim"))
+        c["rest_" + x] = sum(v for k, v in table[(x, 1)].items() if is_rest(k))
+    # The small stages (set-up, instance, header, gp-deim, write): a fixed part per process (the
+    # Tpetra objects, the config, rank 0's header and write) plus row work that divides with the
+    # ranks (the scene's assembly, the instance, the DEIM indices): rest = a + b n / p, a and b from
+    # the two scenes' 1-rank runs (4096 and 131,072 state rows). A CSV with one scene cannot
+    # separate them: its 1-rank rest is held fixed (b = 0).
+    if len(builds) == 2:
+        (n1, t1), (n2, t2) = [(state_rows(sizes[x]), c["rest_" + x]) for x in builds]
+        b = (t2 - t1) / (n2 - n1)
+        c["rest_a"], c["rest_b"] = t1 - b * n1, b
+    elif builds:
+        c["rest_a"], c["rest_b"] = c["rest_" + builds[0]], 0.0
     if ("fom", 1) in table:
         s = sizes["fom"]
         c["g_fom"] = table[("fom", 1)]["process"] / (s["steps"] * state_rows(s))
@@ -264,9 +296,9 @@ def predict(case, stage, s, p, c):
         if stage == "basis":
             return basis_flops(s, p) / c["F_dense"]
         if stage.startswith("interpolation"):
-            return c["g_node"] * interpolation_units(s, p)
+            return c["g_node_" + case] * interpolation_units(s, p)
         if stage == "rest":
-            return c["rest_" + case]
+            return c["rest_a"] + c["rest_b"] * state_rows(s) / p
         if stage.startswith("deim basis"):
             return deim_flops(s, p) / c["F_deim_" + case]
         return None
@@ -289,7 +321,7 @@ def main():
         stages = OrderedDict()
         for p in ranks:
             for st in table[(case, p)]:
-                if case in ("nls", "swe") and (st in ("setup", "instance", "header", "write") or st.startswith("gp-deim")):
+                if case in ("nls", "swe") and is_rest(st):
                     stages["rest"] = None
                 elif case in ("nls", "swe") and (st == "process" or st.startswith("training parameter")):
                     continue
@@ -301,8 +333,7 @@ def main():
             for p in ranks:
                 t = table[(case, p)]
                 if st == "rest":
-                    meas = sum(v for k, v in t.items() if k in ("setup", "instance", "header", "write")
-                               or k.startswith("gp-deim"))
+                    meas = sum(v for k, v in t.items() if is_rest(k))
                 else:
                     meas = t.get(st)
                 pred = predict(case, st, sizes[case], p, c)
@@ -330,7 +361,7 @@ def extrapolate(sizes, c, total_rows):
     for case in ("nls", "swe"):
         if case not in sizes or "g_train_" + case not in c:
             continue
-        s = dict(sizes[case])
+        s = dict(sizes[case], treefrom=TREE_FROM, tplevel=1)  # the current code's POD route rule
         if total_rows is not None and "n" in s:
             s["n"] = 0.5 * total_rows
         elif total_rows is not None:
@@ -344,7 +375,7 @@ def extrapolate(sizes, c, total_rows):
                                 basis_messages(s, p)[0] * ALPHA + basis_messages(s, p)[1] * BETA),
             "deim basis": lambda p: (deim_flops(s, p) / c["F_deim_" + case],
                                      deim_messages(s, p)[0] * ALPHA + deim_messages(s, p)[1] * BETA),
-            "interpolation": lambda p: (c["g_node"] * interpolation_units(s, p),
+            "interpolation": lambda p: (c["g_node_" + case] * interpolation_units(s, p),
                                         s["nodes"] * math.ceil(math.log2(max(p, 2))) * (ALPHA + BETA * 8 * (2 * s["k"]) ** 2)),
         }
         print(f"  {case} ({', '.join(f'{k}={v:g}' for k, v in s.items() if not isinstance(v, list))}):")

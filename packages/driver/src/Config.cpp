@@ -48,7 +48,7 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
                   "singular triplets kept between incremental steps; 0: 2k + 32, or half the dofs per rank if k = 0");
   const auto routes = Teuchos::tuple<std::string>("auto", "tsqr", "stacked", "tree", "replicated");
   setChoiceParameter(red, "podRoute", "auto", routes,
-                     "incremental SVD step: auto (stacked on up to 7 ranks, tree from 8: the faster measured), tsqr "
+                     "incremental SVD step: auto (tree from 2 ranks: the faster measured), tsqr "
                      "(Tpetra's TSQR; refuses a step with more carried + new columns than rows on some rank), stacked "
                      "(a TSQR on LAPACK kernels: each rank's rows by GEQRF, the R factors stacked on every rank and "
                      "one SVD of the stack; any rank count, local work divides with the ranks), tree (as stacked, "

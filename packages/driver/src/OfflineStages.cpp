@@ -74,9 +74,9 @@ RomStages runOfflineStages(const RunContext& ctx) {
   st.basis = b.basis, st.basisCached = b.cached, st.basisSeconds = b.seconds, st.basisCpuSeconds = b.cpuSeconds;
   if (ctx.comm->getRank() == 0)
     std::fprintf(stderr, "[gphr] reduce: %s basis, 2k = %d, energy captured %.10f%s, %.1f s (%.1f s CPU; POD steps: "
-                 "%d tsqr, %d stacked, %d replicated)\n", st.basis.method.c_str(), 2 * st.basis.k,
+                 "%d tsqr, %d stacked, %d tree, %d replicated)\n", st.basis.method.c_str(), 2 * st.basis.k,
                  st.basis.energyCaptured, st.basisCached ? " (cached)" : "", st.basisSeconds, st.basisCpuSeconds,
-                 st.basis.tsqrSteps, st.basis.stackedSteps, st.basis.replicatedSteps);
+                 st.basis.tsqrSteps, st.basis.stackedSteps, st.basis.treeSteps, st.basis.replicatedSteps);
   return st;
 }
 

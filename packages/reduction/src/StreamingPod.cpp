@@ -25,9 +25,10 @@ PodRoute podRouteFromName(const std::string& name) {
   return PodRoute::Replicated;
 }
 
-// auto: on up to 4 ranks both routes' small factorizations cost the same within the noise of a
-// shared machine; from 8 on the tree's are 1.6-2x faster and the gap grows with p
-// (bench/pod_tree_micro.cpp kernels; doc/design.md, 'Symplectic bases and the streaming POD').
+// auto: the tree from 2 ranks on. With TPQRT at its levels its small factorizations cost 0.7x the
+// stacked route's GESDD at p = 2 and 0.4x at 4 on one core, and whole steps (2048 rows per rank,
+// c = 512) were 1.13-1.28x faster on 2 ranks, 1.52x on 3, 1.80x on 4 (bench/pod_tree_micro.cpp;
+// doc/design.md, 'Symplectic bases and the streaming POD'). One rank: both the same work.
 PodRoute stepRoute(PodRoute route, int ranks) {
   if (route != PodRoute::Auto) return route;
   return ranks >= kTreeRouteFromRanks ? PodRoute::Tree : PodRoute::Stacked;
@@ -189,8 +190,8 @@ void StreamingPod::stackedStep(std::vector<double> y, int nc) {
 }
 
 // The tree route (TSQR with a binary-tree reduction, TreeTsqr.hpp): each rank's rows by GEQRF as
-// in the stacked route, the R factors reduced to rank 0 over ceil(log2 p) levels of QRs of at most
-// 2 nc x nc, one GESDD of the root's R (at most nc x nc) on rank 0, its singular values broadcast
+// in the stacked route, the R factors reduced to rank 0 over ceil(log2 p) levels of QRs of two
+// stacked nc x nc triangles (TPQRT), one GESDD of the root's R (at most nc x nc) on rank 0, its singular values broadcast
 // (every rank truncates alike) and its left vectors carried back down the tree's Q factors to each
 // rank's block. Beyond its own rows a rank does at most log2(p) small QRs and their ORMQRs, and
 // rank 0 one nc x nc SVD: none of it grows with p but the log2 p levels.

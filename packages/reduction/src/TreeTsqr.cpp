@@ -7,6 +7,15 @@
 
 #include "gphr/core/Error.hpp"
 
+// LAPACK's triangle-pentagonal QR (3.4 on): Teuchos::LAPACK (Trilinos 13.2) does not wrap it.
+extern "C" {
+void dtpqrt_(const int* m, const int* n, const int* l, const int* nb, double* a, const int* lda, double* b,
+             const int* ldb, double* t, const int* ldt, double* work, int* info);
+void dtpmqrt_(const char* side, const char* trans, const int* m, const int* n, const int* k, const int* l,
+              const int* nb, const double* v, const int* ldv, const double* t, const int* ldt, double* a,
+              const int* lda, double* b, const int* ldb, double* work, int* info);
+}
+
 namespace gphr {
 
 HouseholderQr::HouseholderQr(int m, int n, std::vector<double> a) : m_(m), n_(n), a_(std::move(a)) {
@@ -50,6 +59,50 @@ std::vector<double> HouseholderQr::applyQ(const std::vector<double>& C, int cols
 }
 
 namespace {
+constexpr int kTpqrtBlock = 32;  // LAPACK's usual panel width; the T factor is nb x n
+}
+
+TriangleStackQr::TriangleStackQr(int n, std::vector<double> top, int kb, std::vector<double> below)
+    : n_(n), kb_(kb), nb_(std::max(1, std::min(kTpqrtBlock, n))), a_(std::move(top)), v_(std::move(below)) {
+  GPHR_REQUIRE(n >= 0 && kb >= 0 && kb <= n && a_.size() == static_cast<size_t>(n) * n &&
+                   v_.size() == static_cast<size_t>(kb) * n,
+               InputError, "triangle-stack QR: a ", n, " x ", n, " triangle on a ", kb, " x ", n,
+               " trapezoid (need kb <= n and matching arrays)");
+  t_.assign(static_cast<size_t>(nb_) * std::max(n, 1), 0.0);
+  if (n == 0 || kb == 0) return;  // [T; nothing]: R = T, Q = I
+  std::vector<double> work(static_cast<size_t>(nb_) * n);
+  int info = 0;
+  dtpqrt_(&kb_, &n_, &kb_, &nb_, a_.data(), &n_, v_.data(), &kb_, t_.data(), &nb_, work.data(), &info);
+  GPHR_REQUIRE(info == 0, SolverError, "triangle-stack QR: LAPACK TPQRT of ", n, " + ", kb, " rows failed (info = ",
+               info, ")");
+}
+
+std::vector<double> TriangleStackQr::r() const {
+  std::vector<double> R(a_.size(), 0.0);
+  for (int j = 0; j < n_; ++j)
+    for (int i = 0; i <= j; ++i) R[i + static_cast<size_t>(n_) * j] = a_[i + static_cast<size_t>(n_) * j];
+  return R;
+}
+
+std::vector<double> TriangleStackQr::applyQ(const std::vector<double>& C, int cols) const {
+  std::vector<double> top(C.begin(), C.begin() + static_cast<size_t>(n_) * cols), bottom(static_cast<size_t>(kb_) * cols, 0.0);
+  if (kb_ > 0 && cols > 0) {
+    std::vector<double> work(static_cast<size_t>(nb_) * cols);
+    int info = 0;
+    dtpmqrt_("L", "N", &kb_, &cols, &n_, &kb_, &nb_, v_.data(), &kb_, t_.data(), &nb_, top.data(), &n_, bottom.data(),
+             &kb_, work.data(), &info);
+    GPHR_REQUIRE(info == 0, SolverError, "triangle-stack QR: LAPACK TPMQRT on ", n_ + kb_, " x ", cols,
+                 " failed (info = ", info, ")");
+  }
+  std::vector<double> out(static_cast<size_t>(rows()) * cols);
+  for (int j = 0; j < cols; ++j) {
+    std::copy_n(top.begin() + static_cast<size_t>(n_) * j, n_, out.begin() + static_cast<size_t>(rows()) * j);
+    std::copy_n(bottom.begin() + static_cast<size_t>(kb_) * j, kb_, out.begin() + n_ + static_cast<size_t>(rows()) * j);
+  }
+  return out;
+}
+
+namespace {
 // Rows [r0, r1) of the column-major m x cols block a.
 std::vector<double> rowBlock(const std::vector<double>& a, int m, int cols, int r0, int r1) {
   std::vector<double> out(static_cast<size_t>(r1 - r0) * cols);
@@ -76,15 +129,17 @@ std::vector<double> TreeTsqr::reduce(std::vector<double> R, int k, int* rootRows
     Teuchos::receive(comm_, me + s, 1, &kb);
     std::vector<double> below(static_cast<size_t>(kb) * n_);
     if (kb > 0) Teuchos::receive(comm_, me + s, kb * n_, below.data());
-    // The stack [R; R_below], (k + kb) x n column-major.
-    std::vector<double> stack(static_cast<size_t>(k + kb) * n_);
-    for (int j = 0; j < n_; ++j) {
-      std::copy_n(R.begin() + static_cast<size_t>(k) * j, k, stack.begin() + static_cast<size_t>(k + kb) * j);
-      std::copy_n(below.begin() + static_cast<size_t>(kb) * j, kb, stack.begin() + k + static_cast<size_t>(k + kb) * j);
+    if (k == n_) {  // this rank's R is a full triangle: the structured QR (TriangleStackQr)
+      levels_.push_back(Level{me + s, k, TriangleStackQr(n_, std::move(R), kb, std::move(below))});
+    } else {  // a trapezoid on top: GEQRF of the dense stack [R; R_below], (k + kb) x n column-major
+      std::vector<double> stack(static_cast<size_t>(k + kb) * n_);
+      for (int j = 0; j < n_; ++j) {
+        std::copy_n(R.begin() + static_cast<size_t>(k) * j, k, stack.begin() + static_cast<size_t>(k + kb) * j);
+        std::copy_n(below.begin() + static_cast<size_t>(kb) * j, kb, stack.begin() + k + static_cast<size_t>(k + kb) * j);
+      }
+      levels_.push_back(Level{me + s, k, HouseholderQr(k + kb, n_, std::move(stack))});
     }
-    levels_.push_back(Level{me + s, k, HouseholderQr(k + kb, n_, std::move(stack))});
-    R = levels_.back().qr.r();
-    k = levels_.back().qr.k();
+    std::visit([&](const auto& qr) { R = qr.r(), k = qr.k(); }, levels_.back().qr);
   }
   *rootRows = k;
   return R;
@@ -96,8 +151,9 @@ std::vector<double> TreeTsqr::applyQ(std::vector<double> C, int cols) const {
     if (sent_ * cols > 0) Teuchos::receive(comm_, parent_, sent_ * cols, C.data());
   }
   for (auto level = levels_.rbegin(); level != levels_.rend(); ++level) {
-    const int m = level->qr.rows();
-    const std::vector<double> full = level->qr.applyQ(C, cols);  // the stack's rows: mine on top, the partner's below
+    const int m = std::visit([](const auto& qr) { return qr.rows(); }, level->qr);
+    // the stack's rows: mine on top, the partner's below
+    const std::vector<double> full = std::visit([&](const auto& qr) { return qr.applyQ(C, cols); }, level->qr);
     const std::vector<double> theirs = rowBlock(full, m, cols, level->mine, m);
     if (!theirs.empty()) Teuchos::send(comm_, static_cast<int>(theirs.size()), theirs.data(), level->partner);
     C = rowBlock(full, m, cols, 0, level->mine);

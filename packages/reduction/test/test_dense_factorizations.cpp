@@ -4,6 +4,9 @@
 // - pivotedCholeskyInverse (PSTRF + TRTRI) of G = U^T U: U Pi R^{-1} has orthonormal columns,
 //   the pivots are GEQP3's on U (both take the largest remaining column norm first), and a
 //   rank-deficient G reports its rank.
+// - TriangleStackQr (TPQRT, the tree TSQR's level): Q [R; 0] reproduces the stacked triangles, Q's
+//   columns are orthonormal, and R equals GEQRF's of the dense stack up to the signs of its rows;
+//   with a trapezoid or nothing below.
 // Tolerances: the matrices are random with entries O(1), so the backward errors are a small
 // multiple of n eps ||A||^2 ~ 1e-13 here; orthonormality from a Gram matrix loses cond(G) eps,
 // and the test matrix below has cond(G) = 1e4 (column scales 1 .. 1e-2), so 1e-10.
@@ -17,6 +20,7 @@
 #include "gphr/core/Error.hpp"
 #include "gphr/reduction/DenseQr.hpp"
 #include "gphr/reduction/PivotedCholesky.hpp"
+#include "gphr/reduction/TreeTsqr.hpp"
 
 using namespace gphr;
 
@@ -68,6 +72,64 @@ TEST(DenseQr, RFactorReproducesTheGramMatrix) {
 TEST(DenseQr, WideMatrixIsRefused) {
   DenseMatrix a(3, 5), R(5, 5);
   EXPECT_THROW(denseQrFactorR(3, 5, a.values(), a.stride(), R.values(), R.stride(), "test"), InputError);
+}
+
+namespace {
+// An m x n upper trapezoid (column-major), entries N(0, 1) on and above the diagonal.
+std::vector<double> trapezoid(int m, int n, unsigned seed) {
+  std::mt19937 gen(seed);
+  std::normal_distribution<double> nd;
+  std::vector<double> a(static_cast<size_t>(m) * n, 0.0);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < std::min(m, j + 1); ++i) a[i + static_cast<size_t>(m) * j] = nd(gen);
+  return a;
+}
+}  // namespace
+
+// The stack [T; B] (n + kb rows) is what one tree level factors; every entry is O(1), so
+// Householder's backward error is a small multiple of (n + kb) eps ~ 1e-14: 1e-12 leaves room.
+TEST(TriangleStackQr, FactorsTheStackOfTwoTrianglesAsGeqrfDoes) {
+  const int n = 45;  // above the TPQRT panel of 32: two panels
+  for (int kb : {n, 20, 0}) {
+    SCOPED_TRACE(kb);
+    const std::vector<double> T = trapezoid(n, n, 11u), B = trapezoid(kb, n, 12u + kb);
+    const int m = n + kb;
+    std::vector<double> stack(static_cast<size_t>(m) * n);
+    for (int j = 0; j < n; ++j) {
+      std::copy_n(T.begin() + static_cast<size_t>(n) * j, n, stack.begin() + static_cast<size_t>(m) * j);
+      std::copy_n(B.begin() + static_cast<size_t>(kb) * j, kb, stack.begin() + n + static_cast<size_t>(m) * j);
+    }
+    const TriangleStackQr qr(n, T, kb, B);
+    const HouseholderQr dense(m, n, stack);
+    ASSERT_EQ(qr.rows(), m);
+    ASSERT_EQ(qr.k(), n);
+    const std::vector<double> R = qr.r(), Rd = dense.r();
+    double rowSign = 0.0, orth = 0.0, recon = 0.0;
+    for (int i = 0; i < n; ++i) {  // R = diag(+-1) R_geqrf
+      const double sign = (R[i + static_cast<size_t>(n) * i] > 0) == (Rd[i + static_cast<size_t>(n) * i] > 0) ? 1.0 : -1.0;
+      for (int j = 0; j < n; ++j)
+        rowSign = std::max(rowSign, std::abs(R[i + static_cast<size_t>(n) * j] - sign * Rd[i + static_cast<size_t>(n) * j]));
+    }
+    std::vector<double> I(static_cast<size_t>(n) * n, 0.0);
+    for (int i = 0; i < n; ++i) I[i + static_cast<size_t>(n) * i] = 1.0;
+    const std::vector<double> Q = qr.applyQ(I, n), QR = qr.applyQ(R, n);  // Q [I; 0], Q [R; 0]
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < n; ++b) {
+        double dot = 0.0;
+        for (int i = 0; i < m; ++i) dot += Q[i + static_cast<size_t>(m) * a] * Q[i + static_cast<size_t>(m) * b];
+        orth = std::max(orth, std::abs(dot - (a == b ? 1.0 : 0.0)));
+      }
+    for (size_t e = 0; e < stack.size(); ++e) recon = std::max(recon, std::abs(QR[e] - stack[e]));
+    EXPECT_LT(rowSign, 1e-12 * n);
+    EXPECT_LT(orth, 1e-12);
+    EXPECT_LT(recon, 1e-12 * n);
+    for (int j = 0; j < n; ++j)
+      for (int i = j + 1; i < n; ++i) EXPECT_EQ(R[i + static_cast<size_t>(n) * j], 0.0);
+  }
+}
+
+TEST(TriangleStackQr, RefusesATrapezoidTallerThanTheTriangle) {
+  EXPECT_THROW(TriangleStackQr(3, std::vector<double>(9), 4, std::vector<double>(12)), InputError);
 }
 
 TEST(PivotedCholesky, GivesAnOrthonormalBasisInColumnPivotedQrOrder) {

@@ -279,10 +279,13 @@ TEST_F(TooFewRows, TsqrRefusesNamingColumnsAndRows) {
   }
 }
 
-TEST_F(TooFewRows, AutoTakesTheStackedRouteAndAgreesWithReplicated) {
+// auto: the stacked route on one rank, the tree from 2 (stepRoute); either takes the steps TSQR refuses.
+TEST_F(TooFewRows, AutoTakesTheStackedOrTreeRouteAndAgreesWithReplicated) {
   const StreamingPod autoPod = podOf(X_, 8, 6, PodRoute::Auto);
   const StreamingPod repl = podOf(X_, 8, 6, PodRoute::Replicated);
-  EXPECT_EQ(autoPod.stackedSteps(), 2);
+  const bool tree = test::comm()->getSize() >= kTreeRouteFromRanks;
+  EXPECT_EQ(autoPod.stackedSteps(), tree ? 0 : 2);
+  EXPECT_EQ(autoPod.treeSteps(), tree ? 2 : 0);
   EXPECT_EQ(autoPod.tsqrSteps() + autoPod.replicatedSteps(), 0);
   ASSERT_EQ(autoPod.rank(), 8);
   ASSERT_EQ(repl.rank(), 8);
@@ -371,10 +374,11 @@ TEST(PodRoute, NamesAndUnknownName) {
   EXPECT_EQ(podRouteFromName("tsqr"), PodRoute::Tsqr);
   EXPECT_EQ(podRouteFromName("stacked"), PodRoute::Stacked);
   EXPECT_EQ(podRouteFromName("tree"), PodRoute::Tree);
-  // auto: stacked below kTreeRouteFromRanks ranks (where the tests run), tree from there on.
+  // auto: stacked on one rank (the same work as the tree there), the tree from 2 ranks on.
+  EXPECT_EQ(kTreeRouteFromRanks, 2);
   EXPECT_EQ(stepRoute(PodRoute::Auto, 1), PodRoute::Stacked);
-  EXPECT_EQ(stepRoute(PodRoute::Auto, kTreeRouteFromRanks - 1), PodRoute::Stacked);
-  EXPECT_EQ(stepRoute(PodRoute::Auto, kTreeRouteFromRanks), PodRoute::Tree);
+  EXPECT_EQ(stepRoute(PodRoute::Auto, 2), PodRoute::Tree);
+  EXPECT_EQ(stepRoute(PodRoute::Auto, 3), PodRoute::Tree);
   EXPECT_EQ(stepRoute(PodRoute::Replicated, 64), PodRoute::Replicated);
   EXPECT_EQ(podRouteFromName("replicated"), PodRoute::Replicated);
   try {

@@ -17,13 +17,13 @@
 ///               by ORMQR; its local work divides with the ranks, it takes any rank count, and
 ///               where ranks hold fewer rows than columns it costs about what `replicated` costs.
 ///   tree:       the stacked route with the R factors reduced over a binary tree of ranks
-///               (TreeTsqr.hpp) instead of stacked on every rank: one 2c x c QR per level, one
-///               c x c SVD on rank 0; its replicated work grows with log2 p, not with p.
-/// PodRoute::Auto (the default) takes the stacked route on up to 7 ranks (at the paper's NLS size,
-/// 4096 rows and steps of up to 1120 columns, it is the fastest measured on 1, 2 and 4 ranks, and
-/// the tree's small factorizations cost the same as its up to 4 ranks) and the tree route from 8
-/// ranks on, where they are measured 1.6x faster and more with p (doc/design.md, 'Symplectic bases
-/// and the streaming POD').
+///               (TreeTsqr.hpp) instead of stacked on every rank: one QR of two stacked c x c
+///               triangles per level (LAPACK TPQRT), one c x c SVD on rank 0; its replicated work
+///               grows with log2 p, not with p.
+/// PodRoute::Auto (the default) takes the tree route from 2 ranks on (one rank: the stacked route,
+/// the same work): with the structured QR at its levels its steps are measured 1.1-1.3x faster than
+/// the stacked route's on 2 ranks, 1.5x on 3, 1.8x on 4, and more with p (doc/design.md,
+/// 'Symplectic bases and the streaming POD').
 /// Tsqr refuses a step that does not fit (InputError naming its columns and the rows per rank);
 /// the other routes take every step.
 #include <string>
@@ -40,7 +40,7 @@ enum class PodRoute { Auto, Tsqr, Stacked, Tree, Replicated };
 /// "auto" | "tsqr" | "stacked" | "tree" | "replicated" (the config's podRoute values); anything else: InputError.
 PodRoute podRouteFromName(const std::string& name);
 /// The rank count from which auto takes the tree route.
-constexpr int kTreeRouteFromRanks = 8;
+constexpr int kTreeRouteFromRanks = 2;
 /// The route a step takes on `ranks` ranks: `route`, or for Auto stacked below kTreeRouteFromRanks, else tree.
 PodRoute stepRoute(PodRoute route, int ranks);
 

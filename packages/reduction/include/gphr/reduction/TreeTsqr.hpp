@@ -2,13 +2,16 @@
 /// @file
 /// The pieces of a communication-avoiding TSQR (Demmel, Grigori, Hoemmen, Langou 2012) on small
 /// dense blocks, for StreamingPod's `tree` route:
-///   HouseholderQr: one block's QR by LAPACK GEQRF, its R and Q [C; 0] by ORMQR;
-///   TreeTsqr:      a binary-tree reduction of the ranks' R factors over ceil(log2 p) levels (at
-///                  each level a rank stacks its R on its partner's and factors the stack), and
-///                  the tree's Q applied back down to each rank's block.
+///   HouseholderQr:    one block's QR by LAPACK GEQRF, its R and Q [C; 0] by ORMQR;
+///   TriangleStackQr:  the QR of an n x n upper triangle stacked on an upper trapezoid by LAPACK
+///                     TPQRT, which skips the zeros below both diagonals, and its Q by TPMQRT;
+///   TreeTsqr:         a binary-tree reduction of the ranks' R factors over ceil(log2 p) levels
+///                     (at each level a rank stacks its R on its partner's and factors the stack),
+///                     and the tree's Q applied back down to each rank's block.
 /// Each level's QR is at most 2c x c for c columns, and the root's R is c x c: the work a rank
 /// does beyond its own rows is O(log2(p) c^3), against the stacked route's O(p c^3) on every rank.
 #include <algorithm>
+#include <variant>
 #include <vector>
 
 #include "gphr/core/Types.hpp"
@@ -33,6 +36,30 @@ class HouseholderQr {
   std::vector<double> a_, tau_;
 };
 
+/// QR of [T; B]: T an n x n upper triangle, B a kb x n upper trapezoid (kb <= n; zeros below the
+/// diagonal are not read), by LAPACK TPQRT (compact WY, the triangle-on-triangle case L = kb).
+/// A tree level's stack of two R factors is such a pair: GEQRF of the dense 2n x n stack does
+/// 10/3 n^3 flops and its ORMQR about 6 n^2 cols (cols carried back down), TPQRT about n^3 (its
+/// T included) and TPMQRT 2 n^2 cols, since each reflector has j + 1 nonzeros instead of n + j.
+/// One core of the 2-core VM, factor and Q applied to n / 2 columns: 8.6 -> 2.6 ms per level at
+/// n = 232, 37.6 -> 11.0 ms at n = 400 (`pod_tree_micro kernels`).
+class TriangleStackQr {
+ public:
+  TriangleStackQr() = default;
+  /// Factors [top; below] (column-major, leading dimensions n and kb; taken over).
+  TriangleStackQr(int n, std::vector<double> top, int kb, std::vector<double> below);
+  int rows() const { return n_ + kb_; }  ///< n + kb, the stack's rows
+  int k() const { return n_; }           ///< rows of R
+  /// R: n x n upper triangular, column-major.
+  std::vector<double> r() const;
+  /// Q [C; 0] ((n + kb) x cols, column-major) for C (n x cols, column-major).
+  std::vector<double> applyQ(const std::vector<double>& C, int cols) const;
+
+ private:
+  int n_ = 0, kb_ = 0, nb_ = 1;
+  std::vector<double> a_, v_, t_;  ///< R (n x n), the reflectors' trapezoid (kb x n), T (nb x n)
+};
+
 /// A binary-tree reduction of one R factor per rank to rank 0 and back (collective over comm).
 /// Level s = 1, 2, 4, ...: rank q with q % 2s == s sends its R to q - s and waits; rank q with
 /// q % 2s == 0 and q + s < p stacks [R_q; R_{q+s}] and factors it. Any p (a rank without a
@@ -51,7 +78,9 @@ class TreeTsqr {
  private:
   struct Level {
     int partner, mine;  ///< the rank whose R was stacked below this rank's, and this rank's rows in the stack
-    HouseholderQr qr;
+    /// TriangleStackQr where this rank's R is a full n x n triangle; GEQRF of the dense stack where
+    /// it is a trapezoid (a rank with fewer rows than columns).
+    std::variant<HouseholderQr, TriangleStackQr> qr;
   };
   const Comm& comm_;
   int n_;
