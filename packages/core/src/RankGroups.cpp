@@ -51,22 +51,4 @@ RCP<MultiVector> RankGroups::toWorld(const MultiVector& Xg, const RCP<const Map>
   return out;
 }
 
-RCP<MultiVector> RankGroups::fromGroup(int g, const MultiVector* Xg, const RCP<const Map>& worldMap,
-                                       size_t numVectors) const {
-  GPHR_REQUIRE(g >= 0 && g < count_, InputError, "rank group ", g, "; allowed: 0 .. ", count_ - 1);
-  const bool ours = group_ == g;
-  GPHR_REQUIRE(!ours || (Xg && Xg->getNumVectors() == numVectors), InputError, "RankGroups::fromGroup: group ", g,
-               "'s ranks pass its MultiVector of ", numVectors, " columns");
-  // Group g's rows on the world communicator: each global id once, so the Import's source is one-to-one.
-  const auto invalid = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
-  const RCP<const Map> source =
-      ours ? groupRowsOnWorld(*Xg->getMap())
-           : RCP<const Map>(rcp(new Map(invalid, Teuchos::ArrayView<const GO>(), worldMap->getIndexBase(), world_)));
-  MultiVector onWorld(source, numVectors);
-  if (ours) copyLocal(*Xg, onWorld);
-  auto out = rcp(new MultiVector(worldMap, numVectors));
-  out->doImport(onWorld, Import(source, worldMap), Tpetra::INSERT);
-  return out;
-}
-
 }  // namespace gphr

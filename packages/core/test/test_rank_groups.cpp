@@ -67,27 +67,5 @@ TEST(RankGroups, ToWorldSumsWhatEachGroupFilled) {
   }
 }
 
-// fromGroup: group g's MultiVector lands on the world map exactly (each row from the one rank of
-// group g that holds it; the other groups pass nothing), for every group and group size.
-TEST(RankGroups, FromGroupMovesOneGroupsRows) {
-  auto world = Tpetra::getDefaultComm();
-  for (int size = 1; size <= world->getSize(); ++size) {
-    const RankGroups g(world, size);
-    auto groupMap = rcp(new Map(kRows, 0, g.sub()));
-    auto worldMap = rcp(new Map(kRows, 0, world));
-    MultiVector Xg(groupMap, 2);  // entries that name the group that wrote them
-    for (LO l = 0; l < static_cast<LO>(groupMap->getNodeNumElements()); ++l)
-      for (size_t j = 0; j < 2; ++j) Xg.replaceLocalValue(l, j, entry(groupMap->getGlobalElement(l), j) + 1000.0 * g.group());
-    for (int from = 0; from < g.count(); ++from) {
-      const RCP<MultiVector> X = g.fromGroup(from, g.group() == from ? &Xg : nullptr, worldMap, 2);
-      auto v = X->getLocalViewHost(Tpetra::Access::ReadOnly);
-      for (LO l = 0; l < static_cast<LO>(worldMap->getNodeNumElements()); ++l)
-        for (size_t j = 0; j < 2; ++j)
-          EXPECT_EQ(v(l, j), entry(worldMap->getGlobalElement(l), j) + 1000.0 * from) << "size " << size << ", group " << from;
-    }
-    EXPECT_THROW(g.fromGroup(g.count(), &Xg, worldMap, 2), InputError);
-  }
-}
-
 }  // namespace
 }  // namespace gphr

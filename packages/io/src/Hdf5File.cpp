@@ -121,18 +121,25 @@ void selectLocal(hid_t space, hsize_t count, hsize_t every, const PhaseSpace& ps
 
 // Columns of X as rows of a (cols, N) dataset; `select` picks this rank's entries of each row in
 // the order of its local rows.
-void Hdf5File::writeDistributed(const std::string& name, const MultiVector& X, hsize_t N, const Selector& select) {
-  const hsize_t count = X.getNumVectors(), local = X.getLocalLength();
+void Hdf5File::writeDistributed(const std::string& name, hsize_t count, hsize_t N, const MultiVector* X,
+                                const Selector& select) {
+  GPHR_REQUIRE(!X || X->getNumVectors() == count, InputError, "writing dataset '", name, "': ", X ? X->getNumVectors() : 0,
+               " columns for ", count, " rows");
+  const hsize_t local = X ? X->getLocalLength() : 0;
   hsize_t dims[2] = {count, N};
   Id fspace{H5Screate_simple(2, dims, nullptr), H5Sclose};
   Id dset{H5Dcreate2(file_, name.c_str(), H5T_NATIVE_DOUBLE, fspace.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
           H5Dclose};
   check(dset.id, "creating dataset '" + name + "'", path_);
   std::vector<double> buf(std::max<hsize_t>(count * local, 1));
-  auto v = X.getLocalViewHost(Tpetra::Access::ReadOnly);
-  for (hsize_t j = 0; j < count; ++j)
-    for (hsize_t i = 0; i < local; ++i) buf[j * local + i] = v(i, j);
-  select(fspace.id, count, 1);
+  if (X) {
+    auto v = X->getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (hsize_t j = 0; j < count; ++j)
+      for (hsize_t i = 0; i < local; ++i) buf[j * local + i] = v(i, j);
+    select(fspace.id, count, 1);
+  } else {
+    H5Sselect_none(fspace.id);
+  }
   hsize_t mdims[1] = {std::max<hsize_t>(count * local, 1)};
   Id mspace{H5Screate_simple(1, mdims, nullptr), H5Sclose};
   if (count * local == 0) H5Sselect_none(mspace.id);
@@ -169,8 +176,17 @@ RCP<MultiVector> Hdf5File::readDistributed(const std::string& name, const RCP<co
 }
 
 void Hdf5File::writeStates(const std::string& name, const MultiVector& states, const PhaseSpace& ps) {
-  writeDistributed(name, states, ps.fullDim(),
+  writeDistributed(name, states.getNumVectors(), ps.fullDim(), &states,
                    [&](hid_t sp, hsize_t count, hsize_t every) { selectLocal(sp, count, every, ps); });
+}
+
+void Hdf5File::writeStatesFrom(const std::string& name, hsize_t count, hsize_t fullDim, const MultiVector* states,
+                               const PhaseSpace* groupSpace) {
+  GPHR_REQUIRE(!states == !groupSpace && (!groupSpace || static_cast<hsize_t>(groupSpace->fullDim()) == fullDim),
+               InputError, "writing states '", name, "' from a rank group: states and phase space of ",
+               groupSpace ? groupSpace->fullDim() : 0, " entries for states of ", fullDim, " (need both or neither)");
+  writeDistributed(name, count, fullDim, states,
+                   [&](hid_t sp, hsize_t c, hsize_t every) { selectLocal(sp, c, every, *groupSpace); });
 }
 
 RCP<MultiVector> Hdf5File::readStates(const std::string& name, const PhaseSpace& ps) const {
@@ -198,7 +214,7 @@ void selectContiguous(hid_t space, hsize_t count, hsize_t every, const Map& map)
 void Hdf5File::writeColumns(const std::string& name, const MultiVector& X) {
   const Map& map = *X.getMap();
   GPHR_REQUIRE(map.isContiguous(), InputError, "writeColumns '", name, "': the map must be contiguous");
-  writeDistributed(name, X, map.getGlobalNumElements(),
+  writeDistributed(name, X.getNumVectors(), map.getGlobalNumElements(), &X,
                    [&](hid_t sp, hsize_t count, hsize_t every) { selectContiguous(sp, count, every, map); });
 }
 

@@ -11,6 +11,7 @@
 
 #include "TestUtils.hpp"
 #include "gphr/core/Error.hpp"
+#include "gphr/core/RankGroups.hpp"
 #include "gphr/core/SnapshotSet.hpp"
 #include "gphr/io/Hdf5File.hpp"
 
@@ -137,6 +138,44 @@ TEST(Hdf5, EveryNthStateReadAlone) {
     }
   }
   EXPECT_THROW(f.readStates("traj", ps, 0), InputError);
+}
+
+// A rank group's states written by its own ranks (writeStatesFrom; the training's groups): read
+// back on all ranks they are the group's states bit for bit, for every group of every group size
+// (each group's entries carry its number, so a row written by the wrong group shows).
+TEST(Hdf5, StatesWrittenByOneRankGroup) {
+  const auto world = test::comm();
+  const PhaseSpace worldPs(23, world);
+  const size_t count = 5;
+  for (int size = 1; size <= world->getSize(); ++size) {
+    const RankGroups g(world, size);
+    const PhaseSpace groupPs(23, g.sub());
+    auto fill = [&](MultiVector& X, int group) {
+      for (size_t j = 0; j < count; ++j) test::fillByGid(*X.getVectorNonConst(j), 1.0 + j + 100.0 * group, j);
+    };
+    MultiVector mine(groupPs.map(), count);
+    fill(mine, g.group());
+    const std::string path = tmpName("groups" + std::to_string(size));
+    {
+      Hdf5File f(path, world, Hdf5File::Mode::Create);
+      for (int from = 0; from < g.count(); ++from) {
+        const bool ours = g.group() == from;
+        f.writeStatesFrom("g" + std::to_string(from), count, 46, ours ? &mine : nullptr, ours ? &groupPs : nullptr);
+      }
+      EXPECT_THROW(f.writeStatesFrom("bad", count, 46, &mine, nullptr), InputError);
+    }
+    Hdf5File f(path, world, Hdf5File::Mode::ReadOnly);
+    for (int from = 0; from < g.count(); ++from) {
+      const auto back = f.readStates("g" + std::to_string(from), worldPs);
+      MultiVector expected(worldPs.map(), count);
+      fill(expected, from);
+      ASSERT_EQ(back->getNumVectors(), count);
+      back->update(-1.0, expected, 1.0);
+      std::vector<double> err(count);
+      back->normInf(Teuchos::ArrayView<double>(err));
+      EXPECT_EQ(*std::max_element(err.begin(), err.end()), 0.0) << "group size " << size << ", group " << from;
+    }
+  }
 }
 
 TEST(Hdf5, BadFilesNameTheFile) {

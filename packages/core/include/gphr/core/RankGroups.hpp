@@ -7,8 +7,9 @@
 ///   toGroup:  every group gets the whole of a world MultiVector, in its own row distribution;
 ///   toWorld:  the sum over the groups of each group's MultiVector, in the world's distribution
 ///             (a group fills the columns it computed and leaves the others zero: the sum is then
-///             exact, x + 0 = x, and independent of the number of groups);
-///   fromGroup: one group's MultiVector in the world's distribution (only its rows move).
+///             exact, x + 0 = x, and independent of the number of groups).
+/// (A group's training snapshots need no move: its ranks write them to the artifacts file
+/// themselves, Hdf5File::writeStatesFrom.)
 /// Each is one Tpetra Import/Export between the world map and the group map's rows seen from the
 /// world communicator (a map that holds every row once per group).
 #include "gphr/core/Types.hpp"
@@ -33,9 +34,6 @@ class RankGroups {
   /// The sum over the groups of Xg (each group's on its groupMap, all with the same columns), on
   /// worldMap (a map of world() over the same global ids). Collective over world().
   RCP<MultiVector> toWorld(const MultiVector& Xg, const RCP<const Map>& worldMap) const;
-  /// Group g's Xg (on its groupMap; ignored on the other groups' ranks, which pass null) on
-  /// worldMap, numVectors columns: only group g's rows move. Collective over world().
-  RCP<MultiVector> fromGroup(int g, const MultiVector* Xg, const RCP<const Map>& worldMap, size_t numVectors) const;
 
  private:
   RCP<const Map> groupRowsOnWorld(const Map& groupMap) const;

@@ -37,6 +37,12 @@ class Hdf5File {
 
   /// States: columns of `states` (vectors on space.map()) as rows of dataset `name`.
   void writeStates(const std::string& name, const MultiVector& states, const PhaseSpace& space);
+  /// States written by one rank group (collective over the file's ranks): `count` states of
+  /// `fullDim` entries, the columns of `states` on the ranks of the group that integrated them
+  /// (`groupSpace` its phase space, whose dofs are the world's, split over the group's ranks), null
+  /// (both) on every other rank. The same dataset as writeStates() of those states moved to all ranks.
+  void writeStatesFrom(const std::string& name, hsize_t count, hsize_t fullDim, const MultiVector* states,
+                       const PhaseSpace* groupSpace);
   /// The states written by writeStates(), distributed on space.map().
   RCP<MultiVector> readStates(const std::string& name, const PhaseSpace& space) const;
   /// Rows 0, every, 2 every, ... of a (count, 2n) dataset of states: ceil(count / every) columns.
@@ -62,7 +68,9 @@ class Hdf5File {
 
  private:
   using Selector = std::function<void(hid_t, hsize_t count, hsize_t every)>;  // rows 0, every, ... of count
-  void writeDistributed(const std::string& name, const MultiVector& X, hsize_t N, const Selector& select);
+  /// A (count, N) dataset; this rank's entries the columns of X (none where X is null).
+  void writeDistributed(const std::string& name, hsize_t count, hsize_t N, const MultiVector* X,
+                        const Selector& select);
   RCP<MultiVector> readDistributed(const std::string& name, const RCP<const Map>& map, hsize_t N,
                                    const Selector& select, const char* what, hsize_t every = 1) const;
   hid_t openDataset(const std::string& name) const;
