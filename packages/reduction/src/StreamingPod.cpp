@@ -145,14 +145,18 @@ void StreamingPod::replicatedStep(const MultiVector& Y) {
 }
 
 // U_p = Q_p [C; 0] for this rank's leaf QR and its block C of the small factor's left vectors.
+// The old U (copied into the leaf's array already) goes before the new one is allocated, and
+// ORMQR writes straight into the new one's storage: two rows x keep arrays fewer at the step's peak
+// (the leaf's array, the new U and the caller's block).
 void StreamingPod::setLeftVectors(const HouseholderQr& leaf, const std::vector<double>& C, int keep) {
+  U_ = Teuchos::null;
   U_ = rcp(new MultiVector(map_, std::max(keep, 1)));
   const int rows = leaf.rows();
   if (keep == 0 || rows == 0) return;
-  const std::vector<double> c = leaf.applyQ(C, keep);
+  GPHR_REQUIRE(U_->isConstantStride() && U_->getStride() >= static_cast<size_t>(rows), InputError,
+               "streaming POD: unexpected MultiVector layout");
   auto u = U_->getLocalViewHost(Tpetra::Access::OverwriteAll);
-  for (int j = 0; j < keep; ++j)
-    for (int i = 0; i < rows; ++i) u(i, j) = c[i + static_cast<size_t>(rows) * j];
+  leaf.applyQInto(C, keep, u.data(), static_cast<int>(U_->getStride()));
 }
 
 // The stacked-QR route (a TSQR with LAPACK kernels and a flat reduction): each rank factors its

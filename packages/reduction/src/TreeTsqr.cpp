@@ -39,23 +39,32 @@ std::vector<double> HouseholderQr::r() const {
 }
 
 std::vector<double> HouseholderQr::applyQ(const std::vector<double>& C, int cols) const {
+  std::vector<double> out(static_cast<size_t>(m_) * cols);
+  applyQInto(C, cols, out.data(), std::max(m_, 1));
+  return out;
+}
+
+void HouseholderQr::applyQInto(const std::vector<double>& C, int cols, double* out, int ldo) const {
   const int kk = k();
-  std::vector<double> out(static_cast<size_t>(m_) * cols, 0.0);
-  for (int j = 0; j < cols; ++j)
-    std::copy_n(C.begin() + static_cast<size_t>(kk) * j, kk, out.begin() + static_cast<size_t>(m_) * j);
-  if (kk == 0 || cols == 0) return out;
+  GPHR_REQUIRE(ldo >= std::max(m_, 1) && C.size() >= static_cast<size_t>(kk) * cols, InputError,
+               "Householder QR: Q [C; 0] of ", m_, " x ", cols, " into leading dimension ", ldo, " from ", C.size(),
+               " numbers");
+  for (int j = 0; j < cols; ++j) {
+    double* col = out + static_cast<size_t>(ldo) * j;
+    std::copy_n(C.begin() + static_cast<size_t>(kk) * j, kk, col);
+    std::fill(col + kk, col + m_, 0.0);
+  }
+  if (kk == 0 || cols == 0) return;
   Teuchos::LAPACK<int, double> lapack;
   std::vector<double> work(1);
   int info = 0;
   // ORMQR only reads the reflectors; Teuchos::LAPACK (Trilinos 13.2) declares them non-const.
   double* a = const_cast<double*>(a_.data());
   double* tau = const_cast<double*>(tau_.data());
-  lapack.ORMQR('L', 'N', m_, cols, kk, a, m_, tau, out.data(), m_, work.data(), -1, &info);
+  lapack.ORMQR('L', 'N', m_, cols, kk, a, m_, tau, out, ldo, work.data(), -1, &info);
   work.resize(std::max(1, static_cast<int>(work[0])));
-  lapack.ORMQR('L', 'N', m_, cols, kk, a, m_, tau, out.data(), m_, work.data(),
-               static_cast<int>(work.size()), &info);
+  lapack.ORMQR('L', 'N', m_, cols, kk, a, m_, tau, out, ldo, work.data(), static_cast<int>(work.size()), &info);
   GPHR_REQUIRE(info == 0, SolverError, "Householder QR: LAPACK ORMQR on ", m_, " x ", cols, " failed (info = ", info, ")");
-  return out;
 }
 
 namespace {

@@ -30,6 +30,8 @@ class HouseholderQr {
   std::vector<double> r() const;
   /// Q [C; 0] (m x cols, column-major) for C (k() x cols, column-major): Q's first k() columns times C.
   std::vector<double> applyQ(const std::vector<double>& C, int cols) const;
+  /// The same into `out` (m x cols, leading dimension ldo >= m), e.g.\ a MultiVector's own storage.
+  void applyQInto(const std::vector<double>& C, int cols, double* out, int ldo) const;
 
  private:
   int m_ = 0, n_ = 0;
