@@ -346,8 +346,23 @@ def main():
     if worst:
         print("largest |pred/meas - 1| at p > 1 per stage: " + ", ".join(
             f"{c_}/{s_} {r - 1:+.0%}" for (c_, s_), (w, r) in worst.items()))
+    route_rule_effect(table, sizes, c)
     extrapolate(sizes, c, None)
     extrapolate(sizes, c, 1e8)
+
+
+def route_rule_effect(table, sizes, c):
+    """At each build case's largest rank count in the CSV: the busiest rank's predicted compute of the
+    basis and the DEIM basis under the record's POD route rule and under the current code's."""
+    for case in ("nls", "swe"):
+        ranks = [p for (x, p) in table if x == case]
+        if case not in sizes or not ranks or "F_deim_" + case not in c:
+            continue
+        p, s = max(ranks), sizes[case]
+        now = dict(s, treefrom=TREE_FROM, tplevel=1)
+        print(f"{case} at p = {p}, predicted compute s under the record's POD route rule -> the current one: "
+              f"basis {basis_flops(s, p) / c['F_dense']:.2f} -> {basis_flops(now, p) / c['F_dense']:.2f}, "
+              f"deim basis {deim_flops(s, p) / c['F_deim_' + case]:.2f} -> {deim_flops(now, p) / c['F_deim_' + case]:.2f}")
 
 
 def extrapolate(sizes, c, total_rows):

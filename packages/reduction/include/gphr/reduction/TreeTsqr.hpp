@@ -44,7 +44,7 @@ class HouseholderQr {
 /// 10/3 n^3 flops and its ORMQR about 6 n^2 cols (cols carried back down), TPQRT about n^3 (its
 /// T included) and TPMQRT 2 n^2 cols, since each reflector has j + 1 nonzeros instead of n + j.
 /// One core of the 2-core VM, factor and Q applied to n / 2 columns: 8.6 -> 2.6 ms per level at
-/// n = 232, 37.6 -> 11.0 ms at n = 400 (`pod_tree_micro kernels`).
+/// n = 232, 37.6 -> 11.0 ms at n = 400 (timed by hand; `pod_tree_micro kernels` prints whole steps).
 class TriangleStackQr {
  public:
   TriangleStackQr() = default;
