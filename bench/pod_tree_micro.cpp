@@ -16,9 +16,16 @@
 // stacked: GESDD of the p c x c stack of triangles; tree: ceil(log2 p) x (TPQRT of two stacked
 // triangles, its R, TPMQRT of c columns) and a c x c GESDD, and the same with GEQRF/ORMQR of the
 // dense 2c x c stack at each level. CPU seconds, median of REPEATS.
+// With `leaf` it times one rank's own rows instead, the part of a step that divides with the ranks:
+// the QR of ROWS x C and Q [W; 0] for KEEP columns, by LAPACK GEQRF and ORMQR of the whole block
+// against HouseholderQr's row chunks (GEQRT, TPQRT, and their Q). On one core, or as many copies
+// side by side as it is started with (mpirun -np P: P ranks share the memory bandwidth as a
+// P-rank build's leaves do); CPU seconds, median of REPEATS, the slowest rank's.
 // usage: mpirun -np P pod_tree_micro [ROWS_PER_RANK=4096] [MAXRANK=192] [BLOCK=64] [STEPS=6] [REPEATS=3]
 //        pod_tree_micro kernels [C=256] [REPEATS=5]
+//        [mpirun -np P] pod_tree_micro leaf [ROWS=65536] [C=232] [KEEP=112] [REPEATS=5]
 #include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_LAPACK.hpp>
 #include <Tpetra_Core.hpp>
 
 #include <algorithm>
@@ -90,6 +97,80 @@ double medianCpu(int repeats, Fn&& fn) {
   return t[t.size() / 2];
 }
 
+// The QR as HouseholderQr took it before its row chunks, the baseline of `leaf` and of the
+// tree's dense levels in `kernels`: LAPACK GEQRF of the whole m x n block, Q [C; 0] by ORMQR.
+struct GeqrfQr {
+  int m, n;
+  std::vector<double> a, tau;
+  GeqrfQr(int rows, int cols, std::vector<double> block) : m(rows), n(cols), a(std::move(block)), tau(cols) {
+    Teuchos::LAPACK<int, double> lapack;
+    std::vector<double> work(1);
+    int info = 0;
+    lapack.GEQRF(m, n, a.data(), m, tau.data(), work.data(), -1, &info);
+    work.resize(static_cast<size_t>(work[0]));
+    lapack.GEQRF(m, n, a.data(), m, tau.data(), work.data(), static_cast<int>(work.size()), &info);
+  }
+  std::vector<double> r() const {
+    std::vector<double> R(static_cast<size_t>(n) * n, 0.0);
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i <= j; ++i) R[i + static_cast<size_t>(n) * j] = a[i + static_cast<size_t>(m) * j];
+    return R;
+  }
+  std::vector<double> applyQ(const std::vector<double>& C, int cols) const {
+    std::vector<double> out(static_cast<size_t>(m) * cols, 0.0), work(1);
+    for (int j = 0; j < cols; ++j) std::copy_n(C.begin() + static_cast<size_t>(n) * j, n, out.begin() + static_cast<size_t>(m) * j);
+    Teuchos::LAPACK<int, double> lapack;
+    int info = 0;
+    auto* v = const_cast<double*>(a.data());  // ORMQR reads them; Teuchos declares them non-const
+    auto* t = const_cast<double*>(tau.data());
+    lapack.ORMQR('L', 'N', m, cols, n, v, m, t, out.data(), m, work.data(), -1, &info);
+    work.resize(static_cast<size_t>(work[0]));
+    lapack.ORMQR('L', 'N', m, cols, n, v, m, t, out.data(), m, work.data(), static_cast<int>(work.size()), &info);
+    return out;
+  }
+};
+
+// One rank's leaf: QR of rows x c and Q [W; 0] for keep columns, GEQRF/ORMQR against HouseholderQr,
+// alternating so that both see the same load; prints the slowest rank's medians and |R| agreement.
+void leaf(int rows, int c, int keep, int repeats) {
+  const auto comm = Tpetra::getDefaultComm();
+  std::mt19937 gen(5 + comm->getRank());
+  std::normal_distribution<double> N(0.0, 1.0);
+  std::vector<double> block(static_cast<size_t>(rows) * c), W(static_cast<size_t>(c) * keep);
+  for (double& x : block) x = N(gen);
+  for (double& x : W) x = N(gen);
+  std::vector<double> geqrf, chunked;
+  double rdiff = 0.0;
+  for (int r = 0; r < repeats; ++r) {
+    std::vector<double> Rg, Rc;
+    comm->barrier();
+    geqrf.push_back(medianCpu(1, [&] {
+      const GeqrfQr qr(rows, c, block);
+      Rg = qr.r();
+      qr.applyQ(W, keep);
+    }));
+    comm->barrier();
+    chunked.push_back(medianCpu(1, [&] {
+      const HouseholderQr qr(rows, c, block);
+      Rc = qr.r();
+      qr.applyQ(W, keep);
+    }));
+    for (int i = 0; i < c; ++i)  // R is unique up to its rows' signs
+      for (int j = i; j < c; ++j)
+        rdiff = std::max(rdiff, std::abs(std::abs(Rg[i + static_cast<size_t>(c) * j]) - std::abs(Rc[i + static_cast<size_t>(c) * j])));
+  }
+  for (auto* t : {&geqrf, &chunked}) std::sort(t->begin(), t->end());
+  double g = geqrf[repeats / 2], h = chunked[repeats / 2], gmax = 0.0, hmax = 0.0, dmax = 0.0;
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, g, Teuchos::outArg(gmax));
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, h, Teuchos::outArg(hmax));
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, rdiff, Teuchos::outArg(dmax));
+  if (comm->getRank() == 0)
+    std::printf("leaf %d x %d, Q applied to %d columns, %d cop%s side by side (CPU s, median of %d, slowest): "
+                "GEQRF+ORMQR %.4f s, row chunks of %d (GEQRT+TPQRT) %.4f s, ratio %.2f; max ||R_ij| - |R'_ij|| %.1e\n",
+                rows, c, keep, comm->getSize(), comm->getSize() == 1 ? "y" : "ies", repeats, gmax,
+                HouseholderQr::kChunkRows, hmax, gmax / hmax, dmax);
+}
+
 void kernels(int c, int repeats) {
   std::mt19937 gen(3);
   std::printf("one step's small factorizations on one core, c = %d (CPU s, median of %d):\n", c, repeats);
@@ -112,7 +193,7 @@ void kernels(int c, int repeats) {
             const std::vector<double> R = qr.r();
             C = qr.applyQ(C, c);
           } else {
-            const HouseholderQr qr(2 * c, c, pair);
+            const GeqrfQr qr(2 * c, c, pair);
             const std::vector<double> R = qr.r();
             C = qr.applyQ(C, c);
           }
@@ -135,6 +216,11 @@ int main(int argc, char** argv) {
     return 0;
   }
   Tpetra::ScopeGuard scope(&argc, &argv);
+  if (argc > 1 && std::string(argv[1]) == "leaf") {
+    leaf(argc > 2 ? std::atoi(argv[2]) : 65536, argc > 3 ? std::atoi(argv[3]) : 232, argc > 4 ? std::atoi(argv[4]) : 112,
+         argc > 5 ? std::atoi(argv[5]) : 5);
+    return 0;
+  }
   const auto comm = Tpetra::getDefaultComm();
   const int rowsPerRank = argc > 1 ? std::atoi(argv[1]) : 4096, maxRank = argc > 2 ? std::atoi(argv[2]) : 192;
   const int block = argc > 3 ? std::atoi(argv[3]) : 64, steps = argc > 4 ? std::atoi(argv[4]) : 6;

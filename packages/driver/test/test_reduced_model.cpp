@@ -140,6 +140,13 @@ TEST(ReducedModelFile, SweExactRouteReproducesAndInterpolatedRouteIsClose) {
   // (reference rows of another beta differ by ~1e-2).
   EXPECT_LT(dInterp, 1e-6);
   EXPECT_GT(dInterp, 0.0);  // it is a different route, not the exact one in disguise
+  // c = H(y0(mu)) at each of its 49 nodes, which the build takes from the instances of the first
+  // interpolant's nodes (the same points here): bit for bit the scene's own constant at that node,
+  // since the same instance is computed the same way.
+  const auto& constant = rm.data().basis(4).constant;
+  ASSERT_EQ(constant.numNodes(), 49u);
+  for (size_t j = 0; j < constant.numNodes(); ++j)
+    EXPECT_EQ(constant.values()[j], scene->instantiate(comm(), constant.node(j), true).system->constant()) << "node " << j;
   if (comm()->getRank() == 0) std::remove(path.c_str());
 }
 

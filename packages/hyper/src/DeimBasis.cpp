@@ -136,7 +136,7 @@ DeimBasis randomizedDeimBasis(const SystemSet& systems,
     }
     if (nl > 0) blas.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, nl, ell, r, 1.0, J.data(), r, omega.data(), r, 1.0, yData(), nl);
   });
-  // Q = orth(Y) (StreamingPod, its default route: GEQRF per rank and one SVD of the stacked R's).
+  // Q = orth(Y) (StreamingPod: a Householder QR of each rank's rows, the R factors reduced, one small SVD).
   auto orth = [&] {
     StreamingPod q(rowMap, ell, ell, -1.0);
     q.add(Y);

@@ -7,8 +7,14 @@
 
 #include "gphr/core/Error.hpp"
 
-// LAPACK's triangle-pentagonal QR (3.4 on): Teuchos::LAPACK (Trilinos 13.2) does not wrap it.
+// LAPACK's compact-WY QR and triangle-pentagonal QR (3.4 on): Teuchos::LAPACK (Trilinos 13.2)
+// wraps neither.
 extern "C" {
+void dgeqrt_(const int* m, const int* n, const int* nb, double* a, const int* lda, double* t, const int* ldt,
+             double* work, int* info);
+void dgemqrt_(const char* side, const char* trans, const int* m, const int* n, const int* k, const int* nb,
+              const double* v, const int* ldv, const double* t, const int* ldt, double* c, const int* ldc,
+              double* work, int* info);
 void dtpqrt_(const int* m, const int* n, const int* l, const int* nb, double* a, const int* lda, double* b,
              const int* ldb, double* t, const int* ldt, double* work, int* info);
 void dtpmqrt_(const char* side, const char* trans, const int* m, const int* n, const int* k, const int* l,
@@ -18,23 +24,46 @@ void dtpmqrt_(const char* side, const char* trans, const int* m, const int* n, c
 
 namespace gphr {
 
-HouseholderQr::HouseholderQr(int m, int n, std::vector<double> a) : m_(m), n_(n), a_(std::move(a)) {
-  tau_.assign(std::max(k(), 1), 0.0);
+namespace {
+constexpr int kPanel = 32;  // GEQRT's and TPQRT's panel width (LAPACK's usual block); T is nb x n
+}
+
+HouseholderQr::HouseholderQr(int m, int n, std::vector<double> a, int chunkRows)
+    : m_(m), n_(n), nb_(std::max(1, std::min(kPanel, std::min(m, n)))), a_(std::move(a)) {
+  GPHR_REQUIRE(m >= 0 && n >= 0 && chunkRows >= 1 && a_.size() >= static_cast<size_t>(m) * n, InputError,
+               "Householder QR: a ", m, " x ", n, " block in ", a_.size(), " numbers, chunks of ", chunkRows,
+               " rows (need chunks of at least 1 row and m n numbers)");
   if (k() == 0) return;
-  Teuchos::LAPACK<int, double> lapack;
-  std::vector<double> work(1);
+  // A block with fewer rows than columns is one chunk (its R a trapezoid); otherwise the first chunk
+  // holds at least n rows, so that its R is the n x n triangle TPQRT takes on top.
+  const int r0 = m_ <= n_ ? m_ : std::min(m_, std::max(chunkRows, n_));
+  start_ = {0, r0};
+  while (start_.back() < m_) start_.push_back(std::min(m_, start_.back() + chunkRows));
+  t_.assign(static_cast<size_t>(nb_) * n_ * chunks(), 0.0);
+  std::vector<double> work(static_cast<size_t>(nb_) * n_);
   int info = 0;
-  lapack.GEQRF(m_, n_, a_.data(), m_, tau_.data(), work.data(), -1, &info);
-  work.resize(std::max(1, static_cast<int>(work[0])));
-  lapack.GEQRF(m_, n_, a_.data(), m_, tau_.data(), work.data(), static_cast<int>(work.size()), &info);
-  GPHR_REQUIRE(info == 0, SolverError, "Householder QR: LAPACK GEQRF of ", m_, " x ", n_, " failed (info = ", info, ")");
+  dgeqrt_(&r0, &n_, &nb_, a_.data(), &m_, t(0), &nb_, work.data(), &info);
+  GPHR_REQUIRE(info == 0, SolverError, "Householder QR: LAPACK GEQRT of ", r0, " x ", n_, " failed (info = ", info, ")");
+  if (chunks() == 1) return;
+  top_.assign(static_cast<size_t>(n_) * n_, 0.0);
+  for (int j = 0; j < n_; ++j)
+    std::copy_n(a_.begin() + static_cast<size_t>(m_) * j, j + 1, top_.begin() + static_cast<size_t>(n_) * j);
+  const int l = 0;  // each further chunk is a full rectangle below the triangle
+  for (int c = 1; c < chunks(); ++c) {
+    const int rc = start_[c + 1] - start_[c];
+    dtpqrt_(&rc, &n_, &l, &nb_, top_.data(), &n_, a_.data() + start_[c], &m_, t(c), &nb_, work.data(), &info);
+    GPHR_REQUIRE(info == 0, SolverError, "Householder QR: LAPACK TPQRT of rows ", start_[c], " .. ", start_[c + 1],
+                 " (", n_, " columns) failed (info = ", info, ")");
+  }
 }
 
 std::vector<double> HouseholderQr::r() const {
   const int kk = k();
   std::vector<double> R(static_cast<size_t>(kk) * n_, 0.0);
+  const double* src = top_.empty() ? a_.data() : top_.data();
+  const size_t lds = top_.empty() ? static_cast<size_t>(m_) : static_cast<size_t>(n_);
   for (int j = 0; j < n_; ++j)
-    for (int i = 0; i < std::min(kk, j + 1); ++i) R[i + static_cast<size_t>(kk) * j] = a_[i + static_cast<size_t>(m_) * j];
+    for (int i = 0; i < std::min(kk, j + 1); ++i) R[i + static_cast<size_t>(kk) * j] = src[i + lds * j];
   return R;
 }
 
@@ -44,35 +73,39 @@ std::vector<double> HouseholderQr::applyQ(const std::vector<double>& C, int cols
   return out;
 }
 
+// Q = Q_0 Q_1 ... Q_last (Q_0 on the first chunk's rows, Q_c on the R's n rows and chunk c's):
+// Q [C; 0] applies Q_last first, to C on top and zeros in the chunk, down to Q_0.
 void HouseholderQr::applyQInto(const std::vector<double>& C, int cols, double* out, int ldo) const {
   const int kk = k();
-  GPHR_REQUIRE(ldo >= std::max(m_, 1) && C.size() >= static_cast<size_t>(kk) * cols, InputError,
+  GPHR_REQUIRE(ldo >= std::max(m_, 1) && cols >= 0 && C.size() >= static_cast<size_t>(kk) * cols, InputError,
                "Householder QR: Q [C; 0] of ", m_, " x ", cols, " into leading dimension ", ldo, " from ", C.size(),
                " numbers");
-  for (int j = 0; j < cols; ++j) {
-    double* col = out + static_cast<size_t>(ldo) * j;
-    std::copy_n(C.begin() + static_cast<size_t>(kk) * j, kk, col);
-    std::fill(col + kk, col + m_, 0.0);
+  std::vector<double> top(C.begin(), C.begin() + static_cast<size_t>(kk) * cols);
+  for (int j = 0; j < cols; ++j) std::fill(out + static_cast<size_t>(ldo) * j + kk, out + static_cast<size_t>(ldo) * j + m_, 0.0);
+  if (kk > 0 && cols > 0) {
+    std::vector<double> work(static_cast<size_t>(nb_) * cols);
+    int info = 0;
+    const int l = 0;
+    for (int c = chunks() - 1; c >= 1; --c) {
+      const int rc = start_[c + 1] - start_[c];
+      dtpmqrt_("L", "N", &rc, &cols, &n_, &l, &nb_, a_.data() + start_[c], &m_, t(c), &nb_, top.data(), &kk,
+               out + start_[c], &ldo, work.data(), &info);
+      GPHR_REQUIRE(info == 0, SolverError, "Householder QR: LAPACK TPMQRT on rows ", start_[c], " .. ", start_[c + 1],
+                   " failed (info = ", info, ")");
+    }
+    for (int j = 0; j < cols; ++j)
+      std::copy_n(top.begin() + static_cast<size_t>(kk) * j, kk, out + static_cast<size_t>(ldo) * j);
+    dgemqrt_("L", "N", &start_[1], &cols, &kk, &nb_, a_.data(), &m_, t(0), &nb_, out, &ldo, work.data(), &info);
+    GPHR_REQUIRE(info == 0, SolverError, "Householder QR: LAPACK GEMQRT on ", start_[1], " x ", cols,
+                 " failed (info = ", info, ")");
+  } else {
+    for (int j = 0; j < cols; ++j)
+      std::copy_n(top.begin() + static_cast<size_t>(kk) * j, kk, out + static_cast<size_t>(ldo) * j);
   }
-  if (kk == 0 || cols == 0) return;
-  Teuchos::LAPACK<int, double> lapack;
-  std::vector<double> work(1);
-  int info = 0;
-  // ORMQR only reads the reflectors; Teuchos::LAPACK (Trilinos 13.2) declares them non-const.
-  double* a = const_cast<double*>(a_.data());
-  double* tau = const_cast<double*>(tau_.data());
-  lapack.ORMQR('L', 'N', m_, cols, kk, a, m_, tau, out, ldo, work.data(), -1, &info);
-  work.resize(std::max(1, static_cast<int>(work[0])));
-  lapack.ORMQR('L', 'N', m_, cols, kk, a, m_, tau, out, ldo, work.data(), static_cast<int>(work.size()), &info);
-  GPHR_REQUIRE(info == 0, SolverError, "Householder QR: LAPACK ORMQR on ", m_, " x ", cols, " failed (info = ", info, ")");
-}
-
-namespace {
-constexpr int kTpqrtBlock = 32;  // LAPACK's usual panel width; the T factor is nb x n
 }
 
 TriangleStackQr::TriangleStackQr(int n, std::vector<double> top, int kb, std::vector<double> below)
-    : n_(n), kb_(kb), nb_(std::max(1, std::min(kTpqrtBlock, n))), a_(std::move(top)), v_(std::move(below)) {
+    : n_(n), kb_(kb), nb_(std::max(1, std::min(kPanel, n))), a_(std::move(top)), v_(std::move(below)) {
   GPHR_REQUIRE(n >= 0 && kb >= 0 && kb <= n && a_.size() == static_cast<size_t>(n) * n &&
                    v_.size() == static_cast<size_t>(kb) * n,
                InputError, "triangle-stack QR: a ", n, " x ", n, " triangle on a ", kb, " x ", n,

@@ -7,6 +7,8 @@
 // - TriangleStackQr (TPQRT, the tree TSQR's level): Q [R; 0] reproduces the stacked triangles, Q's
 //   columns are orthonormal, and R equals GEQRF's of the dense stack up to the signs of its rows;
 //   with a trapezoid or nothing below.
+// - HouseholderQr (the TSQR leaf: GEQRT of a first chunk of rows, TPQRT of the others): the same
+//   three identities on one chunk, several, a short last chunk, and fewer rows than columns.
 // Tolerances: the matrices are random with entries O(1), so the backward errors are a small
 // multiple of n eps ||A||^2 ~ 1e-13 here; orthonormality from a Gram matrix loses cond(G) eps,
 // and the test matrix below has cond(G) = 1e4 (column scales 1 .. 1e-2), so 1e-10.
@@ -75,6 +77,55 @@ TEST(DenseQr, WideMatrixIsRefused) {
 }
 
 namespace {
+// LAPACK GEQRF's R (min(m, n) x n, column-major) of the m x n column-major a: the reference.
+std::vector<double> geqrfR(int m, int n, std::vector<double> a) {
+  const int k = std::min(m, n);
+  std::vector<double> tau(std::max(k, 1)), work(1), R(static_cast<size_t>(k) * n, 0.0);
+  Teuchos::LAPACK<int, double> lapack;
+  int info = 0;
+  lapack.GEQRF(m, n, a.data(), m, tau.data(), work.data(), -1, &info);
+  work.resize(static_cast<size_t>(work[0]));
+  lapack.GEQRF(m, n, a.data(), m, tau.data(), work.data(), static_cast<int>(work.size()), &info);
+  EXPECT_EQ(info, 0);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < std::min(k, j + 1); ++i) R[i + static_cast<size_t>(k) * j] = a[i + static_cast<size_t>(m) * j];
+  return R;
+}
+
+// max |R - diag(+-1) Rref| over a k x n pair (column-major): R is unique up to its rows' signs.
+double rowSignDiff(const std::vector<double>& R, const std::vector<double>& Rref, int k, int n) {
+  double e = 0.0;
+  for (int i = 0; i < k; ++i) {
+    const double sign = (R[i + static_cast<size_t>(k) * i] > 0) == (Rref[i + static_cast<size_t>(k) * i] > 0) ? 1.0 : -1.0;
+    for (int j = 0; j < n; ++j) e = std::max(e, std::abs(R[i + static_cast<size_t>(k) * j] - sign * Rref[i + static_cast<size_t>(k) * j]));
+  }
+  return e;
+}
+
+// max |Q^T Q - I| over Q's m x k columns (column-major).
+double orthonormalityError(const std::vector<double>& Q, int m, int k) {
+  double e = 0.0;
+  for (int a = 0; a < k; ++a)
+    for (int b = 0; b < k; ++b) {
+      double dot = 0.0;
+      for (int i = 0; i < m; ++i) dot += Q[i + static_cast<size_t>(m) * a] * Q[i + static_cast<size_t>(m) * b];
+      e = std::max(e, std::abs(dot - (a == b ? 1.0 : 0.0)));
+    }
+  return e;
+}
+
+std::vector<double> identity(int k) {
+  std::vector<double> I(static_cast<size_t>(k) * k, 0.0);
+  for (int i = 0; i < k; ++i) I[i + static_cast<size_t>(k) * i] = 1.0;
+  return I;
+}
+
+double maxAbsDiff(const std::vector<double>& a, const std::vector<double>& b) {
+  double e = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) e = std::max(e, std::abs(a[i] - b[i]));
+  return e;
+}
+
 // An m x n upper trapezoid (column-major), entries N(0, 1) on and above the diagonal.
 std::vector<double> trapezoid(int m, int n, unsigned seed) {
   std::mt19937 gen(seed);
@@ -100,29 +151,13 @@ TEST(TriangleStackQr, FactorsTheStackOfTwoTrianglesAsGeqrfDoes) {
       std::copy_n(B.begin() + static_cast<size_t>(kb) * j, kb, stack.begin() + n + static_cast<size_t>(m) * j);
     }
     const TriangleStackQr qr(n, T, kb, B);
-    const HouseholderQr dense(m, n, stack);
     ASSERT_EQ(qr.rows(), m);
     ASSERT_EQ(qr.k(), n);
-    const std::vector<double> R = qr.r(), Rd = dense.r();
-    double rowSign = 0.0, orth = 0.0, recon = 0.0;
-    for (int i = 0; i < n; ++i) {  // R = diag(+-1) R_geqrf
-      const double sign = (R[i + static_cast<size_t>(n) * i] > 0) == (Rd[i + static_cast<size_t>(n) * i] > 0) ? 1.0 : -1.0;
-      for (int j = 0; j < n; ++j)
-        rowSign = std::max(rowSign, std::abs(R[i + static_cast<size_t>(n) * j] - sign * Rd[i + static_cast<size_t>(n) * j]));
-    }
-    std::vector<double> I(static_cast<size_t>(n) * n, 0.0);
-    for (int i = 0; i < n; ++i) I[i + static_cast<size_t>(n) * i] = 1.0;
-    const std::vector<double> Q = qr.applyQ(I, n), QR = qr.applyQ(R, n);  // Q [I; 0], Q [R; 0]
-    for (int a = 0; a < n; ++a)
-      for (int b = 0; b < n; ++b) {
-        double dot = 0.0;
-        for (int i = 0; i < m; ++i) dot += Q[i + static_cast<size_t>(m) * a] * Q[i + static_cast<size_t>(m) * b];
-        orth = std::max(orth, std::abs(dot - (a == b ? 1.0 : 0.0)));
-      }
-    for (size_t e = 0; e < stack.size(); ++e) recon = std::max(recon, std::abs(QR[e] - stack[e]));
-    EXPECT_LT(rowSign, 1e-12 * n);
-    EXPECT_LT(orth, 1e-12);
-    EXPECT_LT(recon, 1e-12 * n);
+    const std::vector<double> R = qr.r();
+    const std::vector<double> Q = qr.applyQ(identity(n), n), QR = qr.applyQ(R, n);  // Q [I; 0], Q [R; 0]
+    EXPECT_LT(rowSignDiff(R, geqrfR(m, n, stack), n, n), 1e-12 * n);
+    EXPECT_LT(orthonormalityError(Q, m, n), 1e-12);
+    EXPECT_LT(maxAbsDiff(QR, stack), 1e-12 * n);
     for (int j = 0; j < n; ++j)
       for (int i = j + 1; i < n; ++i) EXPECT_EQ(R[i + static_cast<size_t>(n) * j], 0.0);
   }
@@ -130,6 +165,45 @@ TEST(TriangleStackQr, FactorsTheStackOfTwoTrianglesAsGeqrfDoes) {
 
 TEST(TriangleStackQr, RefusesATrapezoidTallerThanTheTriangle) {
   EXPECT_THROW(TriangleStackQr(3, std::vector<double>(9), 4, std::vector<double>(12)), InputError);
+}
+
+// The leaf QR in chunks of 64 rows (the library's chunks are 2048 rows; 64 makes several chunks of
+// a small block): one chunk (m <= 64), a first chunk of n > 64 rows, a short last chunk (1000 =
+// 15 x 64 + 40), and fewer rows than columns (one GEQRT, R a trapezoid). Entries N(0, 1): R and
+// Q [R; 0] carry Householder's backward error, a small multiple of m eps ||A|| <= m eps sqrt(m n)
+// (~1e-11 at 1000 x 45; 1e-12 m bounds it with room); Q's orthonormality a small multiple of m eps.
+TEST(HouseholderQr, RowChunksFactorAsGeqrfDoes) {
+  const int chunkRows = 64;
+  for (const auto& [m, n] : {std::pair<int, int>{50, 45}, {1000, 45}, {130, 100}, {30, 45}, {64, 64}}) {
+    SCOPED_TRACE(std::to_string(m) + " x " + std::to_string(n));
+    std::vector<double> a(static_cast<size_t>(m) * n);
+    std::mt19937 gen(31u + m);
+    std::normal_distribution<double> nd;
+    for (double& x : a) x = nd(gen);
+    const HouseholderQr qr(m, n, a, chunkRows);
+    const int k = std::min(m, n);
+    ASSERT_EQ(qr.k(), k);
+    EXPECT_EQ(qr.chunks(), m <= n ? 1 : 1 + (m - std::min(m, std::max(chunkRows, n)) + chunkRows - 1) / chunkRows);
+    const std::vector<double> R = qr.r();
+    for (int j = 0; j < n; ++j)
+      for (int i = j + 1; i < k; ++i) EXPECT_EQ(R[i + static_cast<size_t>(k) * j], 0.0);
+    EXPECT_LT(rowSignDiff(R, geqrfR(m, n, a), k, n), 1e-12 * m);
+    EXPECT_LT(orthonormalityError(qr.applyQ(identity(k), k), m, k), 1e-12 * m);
+    EXPECT_LT(maxAbsDiff(qr.applyQ(R, n), a), 1e-12 * m);
+    // Into a leading dimension above m (a MultiVector's padded storage): the same numbers.
+    const int ldo = m + 3;
+    std::vector<double> out(static_cast<size_t>(ldo) * n, -7.0), direct = qr.applyQ(R, n);
+    qr.applyQInto(R, n, out.data(), ldo);
+    double e = 0.0;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < m; ++i) e = std::max(e, std::abs(out[i + static_cast<size_t>(ldo) * j] - direct[i + static_cast<size_t>(m) * j]));
+    EXPECT_EQ(e, 0.0);
+  }
+}
+
+TEST(HouseholderQr, RefusesAnArrayShorterThanTheBlock) {
+  EXPECT_THROW(HouseholderQr(10, 4, std::vector<double>(39)), InputError);
+  EXPECT_THROW(HouseholderQr(10, 4, std::vector<double>(40), 0), InputError);
 }
 
 TEST(PivotedCholesky, GivesAnOrthonormalBasisInColumnPivotedQrOrder) {

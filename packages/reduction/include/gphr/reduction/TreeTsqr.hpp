@@ -2,7 +2,8 @@
 /// @file
 /// The pieces of a communication-avoiding TSQR (Demmel, Grigori, Hoemmen, Langou 2012) on small
 /// dense blocks, for StreamingPod's `tree` route:
-///   HouseholderQr:    one block's QR by LAPACK GEQRF, its R and Q [C; 0] by ORMQR;
+///   HouseholderQr:    one block's QR as a sequential TSQR over chunks of its rows (LAPACK GEQRT,
+///                     then TPQRT of each further chunk onto the running R), its Q by GEMQRT/TPMQRT;
 ///   TriangleStackQr:  the QR of an n x n upper triangle stacked on an upper trapezoid by LAPACK
 ///                     TPQRT, which skips the zeros below both diagonals, and its Q by TPMQRT;
 ///   TreeTsqr:         a binary-tree reduction of the ranks' R factors over ceil(log2 p) levels
@@ -18,14 +19,26 @@
 
 namespace gphr {
 
-/// Householder QR of an m x n column-major block (any shape): k = min(m, n) reflectors.
+/// Householder QR of an m x n column-major block (any shape): k = min(m, n) reflectors. A tall
+/// block is factored as a sequential TSQR (Demmel et al. 2012, Sec. 3.2) over chunks of its rows:
+/// the first chunk (at least n rows) by GEQRT, each further chunk by TPQRT onto the running n x n
+/// R, so that each factorization works on a chunk x n panel that stays in cache. Why not GEQRF
+/// of the whole block: reference LAPACK's GEQRF factors each 32-column panel of all m rows by the
+/// Level-2 GEQR2 (one pass over the m x 32 panel per column), which streams the block from memory
+/// 32 times a panel; ranks that share a node's memory bandwidth then slow each other down. Same
+/// Householder arithmetic in another order, same backward stability. `bench/pod_tree_micro leaf`
+/// times both side by side: 1.36x at 65536 x 232 with Q applied to 112 columns (the SWE 256^2 DEIM
+/// basis' step on one rank), 1.14x at 32768 rows with two ranks side by side (this 2-core VM).
 class HouseholderQr {
  public:
+  static constexpr int kChunkRows = 2048;  ///< rows of a chunk (2048 x 232 doubles: 3.8 MB)
   HouseholderQr() = default;
-  /// Factors a (m x n, column-major, leading dimension m; taken over). SolverError if LAPACK fails.
-  HouseholderQr(int m, int n, std::vector<double> a);
+  /// Factors a (m x n, column-major, leading dimension m; taken over) in chunks of chunkRows rows
+  /// (the first chunk max(chunkRows, n) rows). SolverError if LAPACK fails.
+  HouseholderQr(int m, int n, std::vector<double> a, int chunkRows = kChunkRows);
   int rows() const { return m_; }             ///< m, the block's rows
   int k() const { return std::min(m_, n_); }  ///< rows of R
+  int chunks() const { return static_cast<int>(start_.size()) - 1; }  ///< row chunks factored (0 if k() = 0)
   /// R: k() x n upper trapezoidal, column-major (leading dimension k()).
   std::vector<double> r() const;
   /// Q [C; 0] (m x cols, column-major) for C (k() x cols, column-major): Q's first k() columns times C.
@@ -34,8 +47,13 @@ class HouseholderQr {
   void applyQInto(const std::vector<double>& C, int cols, double* out, int ldo) const;
 
  private:
-  int m_ = 0, n_ = 0;
-  std::vector<double> a_, tau_;
+  double* t(int chunk) { return t_.data() + static_cast<size_t>(nb_) * n_ * chunk; }
+  const double* t(int chunk) const { return t_.data() + static_cast<size_t>(nb_) * n_ * chunk; }
+  int m_ = 0, n_ = 0, nb_ = 1;
+  std::vector<double> a_;      ///< the reflectors, chunk by chunk in place (m x n)
+  std::vector<double> t_;      ///< each chunk's block reflector factor T (nb x n)
+  std::vector<double> top_;    ///< the running R (n x n) when there is more than one chunk
+  std::vector<int> start_;     ///< chunk c holds rows start_[c] .. start_[c + 1]
 };
 
 /// QR of [T; B]: T an n x n upper triangle, B a kb x n upper trapezoid (kb <= n; zeros below the
