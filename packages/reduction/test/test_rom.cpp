@@ -5,11 +5,13 @@
 //  - IMR conserves the NLS mass |A z|^2 = |z|^2 with a symplectic basis of either kind, which
 //    commutes with J (unshifted model: the mass is then a quadratic invariant of the ROM);
 //  - chord Newton (jacobianReuse) gives the same solution with fewer Newton-matrix assemblies;
-//  - grad H_r and Hess H_r equal central differences of H_r and grad H_r (both scenes).
+//  - grad H_r and Hess H_r equal central differences of H_r and grad H_r (both scenes);
+//  - L_r and f_r are the projections A^T L A and A^T f (formed a block of columns at a time).
 #include <gtest/gtest.h>
 
 #include "ReductionTestUtils.hpp"
 #include "gphr/reduction/GalerkinRom.hpp"
+#include "gphr/reduction/ReducedHamiltonian.hpp"
 #include "gphr/reduction/SymplecticBasis.hpp"
 #include "gphr/timeint/DenseModelIntegrator.hpp"
 
@@ -23,6 +25,40 @@ Teuchos::ParameterList integ(const std::string& scheme) {
   pl.set("newtonTolerance", 1e-12);
   pl.sublist("linearSolver").set("tolerance", 1e-14);
   return pl;
+}
+
+// reduceLinearPart forms L A eight columns at a time (ReducedHamiltonian.cpp); here against the
+// whole A^T (L A) with 21 columns (blocks of 8, 8 and 5), the NLS shifted so that f = L y0 is not
+// zero. A's entries are O(1) over 2n = 120 rows and L's rows have 3 entries of O(1 / dx^2): each
+// entry of L_r sums the same products in another order at most, a few hundred eps of the largest
+// entry (1e-12 leaves room; a wrong block is O(1) off). L_r is symmetric to the last bit.
+TEST(ReducedLinearPart, IsTheProjectionOfLAndF) {
+  Nls1d scene(60);
+  const auto s = scene.instantiate(test::comm(), {1.0}, true);
+  const int r = 21;
+  MultiVector A(s.system->map(), r), LA(s.system->map(), r);
+  for (int j = 0; j < r; ++j) test::fillByGid(*A.getVectorNonConst(j), 1.0, static_cast<unsigned>(j + 3));
+  s.system->linearPart().apply(A, LA);
+  const std::vector<double> Lref = test::transposeTimes(A, LA);
+  MultiVector f(s.system->map(), 1);
+  Tpetra::deep_copy(*f.getVectorNonConst(0), s.system->linearForce());
+  const std::vector<double> fref = test::transposeTimes(A, f);
+  const ReducedLinearPart lin = reduceLinearPart(*s.system, A);
+  ASSERT_EQ(lin.L.numRows(), r);
+  double scaleL = 0.0, scaleF = 0.0, eL = 0.0, eF = 0.0;
+  for (double x : Lref) scaleL = std::max(scaleL, std::abs(x));
+  for (double x : fref) scaleF = std::max(scaleF, std::abs(x));
+  ASSERT_GT(scaleF, 0.0);
+  for (int i = 0; i < r; ++i) {
+    eF = std::max(eF, std::abs(lin.f(i) - fref[i]));
+    for (int j = 0; j < r; ++j) {
+      eL = std::max(eL, std::abs(lin.L(i, j) - Lref[i * r + j]));
+      EXPECT_EQ(lin.L(i, j), lin.L(j, i));
+    }
+  }
+  EXPECT_LT(eL, 1e-12 * scaleL);
+  EXPECT_LT(eF, 1e-12 * scaleF);
+  EXPECT_EQ(lin.c, s.system->constant());
 }
 
 TEST(GalerkinRom, FullBasisReproducesFullModel) {
