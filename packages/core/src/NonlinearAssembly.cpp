@@ -19,9 +19,8 @@ NonlinearAssembly::NonlinearAssembly(RCP<const NonlinearTerm> term) : term_(term
   for (size_t j = 0; j < st.gids.size(); ++j) stencilLids_[j] = overlapMap_->getLocalElement(st.gids[j]);
   std::vector<GO> rowIds(st.numRows());
   for (LO r = 0; r < st.numRows(); ++r) rowIds[r] = term_->rowMap()->getGlobalElement(r);
-  batch_.allocate(rowIds, st.offsets, true, true);
+  batch_.allocate(rowIds, st.offsets, true, false);  // the Hessian's buffers when first asked for
   gRef_.assign(st.numRows(), 0.0);
-  hessVals_.resize(batch_.hessOffsets(batch_.size()));
 }
 
 void NonlinearAssembly::setReference(const RCP<const Vector>& yRef) {
@@ -48,6 +47,12 @@ void NonlinearAssembly::evaluate(const Vector& y, bool withGradient, bool withHe
     Kokkos::parallel_for(
         "gphr::gatherStencil", Kokkos::RangePolicy<ExecSpace>(0, vals.extent(0)),
         KOKKOS_LAMBDA(const size_t j) { vals(j) = yv(lids[j], 0); });
+  }
+  if (withHessian && !hessianAllocated_) {
+    const size_t entries = batch_.hessOffsets(batch_.size());
+    batch_.hess = HostView1("gphr::batch.hess", entries);
+    hessVals_.resize(entries);
+    hessianAllocated_ = true;
   }
   RowBatch b = batch_;
   if (!withGradient) b.grad = HostView1();
@@ -93,6 +98,7 @@ void NonlinearAssembly::fillJacobian(CrsMatrix& out) const {
 }
 
 void NonlinearAssembly::addHessian(CrsMatrix& target, Scalar scale, const PhaseSpace* leftJ) const {
+  GPHR_REQUIRE(hessianAllocated_, SolverError, "nonlinear assembly: addHessian before an evaluate() with the Hessian");
   const Stencil& st = term_->stencil();
   LocalScatter& scatter = hessScatter_[leftJ ? 1 : 0];
   const CrsGraph& graph = *target.getCrsGraph();

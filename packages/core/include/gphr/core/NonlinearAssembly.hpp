@@ -5,7 +5,10 @@
 /// Hessian of N = sum_i v_i Hess G_i. No scene writes these assemblies itself.
 ///
 /// The evaluation point is y + yRef (yRef = 0 unless the system is shifted, paper eq:shiftH),
-/// and N subtracts v^T G(yRef). Buffers are allocated once here, never in a time loop.
+/// and N subtracts v^T G(yRef). Buffers are allocated once, never in a time loop: the Hessian's
+/// (s^2 numbers per row, twice) at the first evaluation that asks for it, since most systems are
+/// never asked (a model file's interpolation nodes instantiate 57 SWE systems for their projections
+/// alone; at SWE 256^2 on one rank they were 26 MB per system, zero-filled).
 #include "gphr/core/LocalScatter.hpp"
 #include "gphr/core/NonlinearTerm.hpp"
 #include "gphr/core/PhaseSpace.hpp"
@@ -57,6 +60,7 @@ class NonlinearAssembly {
   std::vector<Scalar> gRef_;  ///< G_i(yRef)
   mutable LocalScatter hessScatter_[2];  ///< per target graph, without / with J applied
   mutable std::vector<Scalar> hessVals_;
+  bool hessianAllocated_ = false;  ///< batch_.hess and hessVals_ sized (at the first evaluate with the Hessian)
 };
 
 }  // namespace gphr
