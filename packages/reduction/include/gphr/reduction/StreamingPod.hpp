@@ -14,8 +14,9 @@
 ///               does not get faster with more ranks).
 ///   stacked:    a TSQR with LAPACK kernels: each rank's rows by a Householder QR in row chunks
 ///               (HouseholderQr: GEQRT, TPQRT; any row count), the R factors stacked on every
-///               rank and one GESDD of the stack, each rank's rows of U by the chunks' Q; its local work divides with the ranks, it takes any rank count, and
-///               where ranks hold fewer rows than columns it costs about what `replicated` costs.
+///               rank and one GESDD of the stack, each rank's rows of U by the chunks' Q; its
+///               local work divides with the ranks, it takes any rank count, and where ranks
+///               hold fewer rows than columns it costs about what `replicated` costs.
 ///   tree:       the stacked route with the R factors reduced over a binary tree of ranks
 ///               (TreeTsqr.hpp) instead of stacked on every rank: one QR of two stacked c x c
 ///               triangles per level (LAPACK TPQRT), one c x c SVD on rank 0; its replicated work
