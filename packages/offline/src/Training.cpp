@@ -165,7 +165,8 @@ void storeInCache(const ArtifactsCache& cache, size_t j, const std::vector<doubl
 // (Each group writing a parallel HDF5 file of its own, copied into the cache at the end, moved
 // every snapshot through the file system twice more: 0.68 s of the 7.4 s training of SWE 256^2 on
 // 16 ranks. Moving each parameter to all ranks first by a Tpetra Import, then writing, took
-// 0.18-0.27 s a parameter of SWE 256^2 on this VM's 2 ranks, against 0.06 s for the write.)
+// 0.18-0.27 s a parameter of SWE 256^2 on the 2-core VM's 2 ranks, against 0.06 s for the write;
+// Teuchos timers in a local build, not kept.)
 void trainInGroups(const Scene& scene, const RCP<const Comm>& comm, const TrainingOptions& o, const ArtifactsCache& cache,
                    const std::string& key, const std::vector<char>& done, int size, const PhaseSpace& ps) {
   const RankGroups split(comm, size);

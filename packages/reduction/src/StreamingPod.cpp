@@ -146,8 +146,8 @@ void StreamingPod::replicatedStep(const MultiVector& Y) {
 
 // U_p = Q_p [C; 0] for this rank's leaf QR and its block C of the small factor's left vectors.
 // The old U (copied into the leaf's array already) goes before the new one is allocated, and
-// the leaf's Q is applied straight into the new one's storage: two rows x keep arrays fewer at the step's peak
-// (the leaf's array, the new U and the caller's block).
+// the leaf's Q is applied straight into the new one's storage: two rows x keep arrays fewer at
+// the step's peak (the leaf's array, the new U and the caller's block).
 void StreamingPod::setLeftVectors(const HouseholderQr& leaf, const std::vector<double>& C, int keep) {
   U_ = Teuchos::null;
   U_ = rcp(new MultiVector(map_, std::max(keep, 1)));
@@ -160,11 +160,12 @@ void StreamingPod::setLeftVectors(const HouseholderQr& leaf, const std::vector<d
 }
 
 // The stacked-QR route (a TSQR with LAPACK kernels and a flat reduction): each rank factors its
-// own rows Y_p = Q_p R_p (HouseholderQr: GEQRT and TPQRT over chunks of its rows; R_p is min(rows_p, nc) x nc: a rank may hold fewer rows than
-// columns), every rank holds the stack of all R_p (a sum-reduction of disjoint blocks, so exact)
-// and takes its thin SVD by GESDD, stack = W S Z^T; then Y = blockdiag(Q_p) W S Z^T, and each rank
-// forms its rows of U = Q_p W_p(:, 1:keep) (GEMQRT/TPMQRT). Work per rank: rows_p nc^2 for the
-// local QR and its Q (these divide with the ranks) plus the stack's SVD, min(d, p nc) nc^2 (replicated):
+// own rows Y_p = Q_p R_p (HouseholderQr: GEQRT and TPQRT over chunks of its rows; R_p is
+// min(rows_p, nc) x nc: a rank may hold fewer rows than columns), every rank holds the stack of
+// all R_p (a sum-reduction of disjoint blocks, so exact) and takes its thin SVD by GESDD,
+// stack = W S Z^T; then Y = blockdiag(Q_p) W S Z^T, and each rank forms its rows of
+// U = Q_p W_p(:, 1:keep) (GEMQRT/TPMQRT). Work per rank: rows_p nc^2 for the local QR and its Q
+// (these divide with the ranks) plus the stack's SVD, min(d, p nc) nc^2 (replicated):
 // it scales while every rank holds several times nc rows, and where none does it costs about what
 // the replicated route costs, with stack rows instead of d.
 void StreamingPod::stackedStep(std::vector<double> y, int nc) {
@@ -193,11 +194,11 @@ void StreamingPod::stackedStep(std::vector<double> y, int nc) {
   setLeftVectors(leaf, C, keep);
 }
 
-// The tree route (TSQR with a binary-tree reduction, TreeTsqr.hpp): each rank's rows by HouseholderQr
-// as in the stacked route, the R factors reduced to rank 0 over ceil(log2 p) levels of QRs of two
-// stacked nc x nc triangles (TPQRT), one GESDD of the root's R (at most nc x nc) on rank 0, its singular values broadcast
-// (every rank truncates alike) and its left vectors carried back down the tree's Q factors to each
-// rank's block. Beyond its own rows a rank does at most log2(p) small QRs and their Q's, and
+// The tree route (TSQR with a binary-tree reduction, TreeTsqr.hpp): each rank's rows by
+// HouseholderQr as in the stacked route, the R factors reduced to rank 0 over ceil(log2 p) levels
+// of QRs of two stacked nc x nc triangles (TPQRT), one GESDD of the root's R (at most nc x nc) on
+// rank 0, its singular values broadcast (every rank truncates alike) and its left vectors carried
+// back down the tree's Q factors to each rank's block. Beyond its own rows a rank does at most log2(p) small QRs and their Q's, and
 // rank 0 one nc x nc SVD: none of it grows with p but the log2 p levels.
 void StreamingPod::treeStep(std::vector<double> y, int nc) {
   const auto& comm = *map_->getComm();
