@@ -9,14 +9,13 @@ namespace gphr {
 NonlinearAssembly::NonlinearAssembly(RCP<const NonlinearTerm> term) : term_(term) {
   const auto& graph = *term_->jacobianGraph();
   overlapMap_ = graph.getColMap();
-  importer_ = rcp(new Import(term_->stateMap(), overlapMap_));
+  importer_ = term_->layout()->overlapImport;  // the layout's, shared by every system on it
   yOverlap_ = rcp(new Vector(overlapMap_));
   gradOverlap_ = rcp(new Vector(overlapMap_));
   yWork_ = rcp(new Vector(term_->stateMap()));
   gradOwned_ = rcp(new Vector(term_->stateMap()));
   const Stencil& st = term_->stencil();
-  stencilLids_.resize(st.gids.size());
-  for (size_t j = 0; j < st.gids.size(); ++j) stencilLids_[j] = overlapMap_->getLocalElement(st.gids[j]);
+  stencilLids_ = term_->layout()->stencilLids.data();
   std::vector<GO> rowIds(st.numRows());
   for (LO r = 0; r < st.numRows(); ++r) rowIds[r] = term_->rowMap()->getGlobalElement(r);
   batch_.allocate(rowIds, st.offsets, true, false);  // the Hessian's buffers when first asked for
@@ -43,7 +42,7 @@ void NonlinearAssembly::evaluate(const Vector& y, bool withGradient, bool withHe
   {
     auto yv = yOverlap_->getLocalViewHost(Tpetra::Access::ReadOnly);
     auto vals = batch_.values;
-    const LO* lids = stencilLids_.data();
+    const LO* lids = stencilLids_;
     Kokkos::parallel_for(
         "gphr::gatherStencil", Kokkos::RangePolicy<ExecSpace>(0, vals.extent(0)),
         KOKKOS_LAMBDA(const size_t j) { vals(j) = yv(lids[j], 0); });

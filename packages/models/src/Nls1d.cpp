@@ -46,12 +46,27 @@ RCP<const RowEvaluator> Nls1d::rowKernel(const std::vector<double>& mu) const {
 
 std::pair<RCP<HamiltonianSystem>, RCP<Vector>> Nls1d::build(const RCP<const Comm>& comm,
                                                            const std::vector<double>& mu) const {
+  return assemble(nullptr, comm, mu);
+}
+
+std::pair<RCP<HamiltonianSystem>, RCP<Vector>> Nls1d::rebuild(const HamiltonianSystem& like,
+                                                             const std::vector<double>& mu) const {
+  GPHR_REQUIRE(like.space().n() == n_ && like.nonlinearTerm().maxStencilSize() == 2, InputError,
+               "nls1d: a system of n = ", like.space().n(), " and stencils of ", like.nonlinearTerm().maxStencilSize(),
+               " entries cannot lend its layout to this scene (n = ", n_, ", stencils of 2)");
+  return assemble(&like, like.space().comm(), mu);
+}
+
+std::pair<RCP<HamiltonianSystem>, RCP<Vector>> Nls1d::assemble(const HamiltonianSystem* like,
+                                                              const RCP<const Comm>& comm,
+                                                              const std::vector<double>& mu) const {
   GPHR_REQUIRE(mu.size() == 1, InputError, "nls1d takes one parameter (eps), got ", mu.size());
   const double eps = mu[0], dx = 2 * L_ / n_, c = 1.0 / (dx * dx);
-  auto space = rcp(new PhaseSpace(n_, comm));
+  const RCP<const PhaseSpace> space = like ? like->spacePtr() : rcp<const PhaseSpace>(new PhaseSpace(n_, comm));
   const auto& map = space->map();
-  // L = blockdiag(-Dxx, -Dxx), periodic second-order central differences.
-  auto L = rcp(new CrsMatrix(map, 3));
+  // L = blockdiag(-Dxx, -Dxx), periodic second-order central differences; on like's graph the
+  // values replace the zeros of a matrix on that (static) graph.
+  auto L = like ? rcp(new CrsMatrix(like->linearPart().getCrsGraph())) : rcp(new CrsMatrix(map, 3));
   auto y0 = rcp(new Vector(map));
   Stencil st;
   {
@@ -59,21 +74,30 @@ std::pair<RCP<HamiltonianSystem>, RCP<Vector>> Nls1d::build(const RCP<const Comm
     for (LO il = 0; il < space->numLocalDofs(); ++il) {
       const GO i = space->firstLocalDof() + il;
       const GO im = (i + n_ - 1) % n_, ip = (i + 1) % n_;
-      for (GO off : {GO(0), n_})
-        L->insertGlobalValues(off + i, Teuchos::tuple<GO>(off + im, off + i, off + ip),
-                              Teuchos::tuple<Scalar>(-c, 2 * c, -c));
+      for (GO off : {GO(0), n_}) {
+        const auto cols = Teuchos::tuple<GO>(off + im, off + i, off + ip);
+        const auto vals = Teuchos::tuple<Scalar>(-c, 2 * c, -c);
+        if (like) L->replaceGlobalValues(off + i, cols, vals);
+        else L->insertGlobalValues(off + i, cols, vals);
+      }
       const double x = -L_ + i * dx, amp = std::sqrt(2.0) / std::cosh(x);
       yv(il, 0) = amp * std::cos(0.5 * x);
       yv(space->numLocalDofs() + il, 0) = amp * std::sin(0.5 * x);
+      if (like) continue;
       st.gids.push_back(i);
       st.gids.push_back(n_ + i);
       st.offsets.push_back(st.gids.size());
     }
   }
   L->fillComplete(map, map);
-  auto v = rcp(new Vector(space->dofMap()));
-  v->putScalar(1.0);
-  auto term = makeRowKernelTerm(NlsKernel{eps}, space->dofMap(), map, std::move(st), v, 4);
+  RCP<const NonlinearTerm> term;
+  if (like) {
+    term = makeRowKernelTerm(NlsKernel{eps}, like->nonlinearTerm(), 4);
+  } else {
+    auto v = rcp(new Vector(space->dofMap()));
+    v->putScalar(1.0);
+    term = makeRowKernelTerm(NlsKernel{eps}, space->dofMap(), map, std::move(st), v, 4);
+  }
   auto system = rcp(new HamiltonianSystem(space, L, rcp(new Vector(map)), 0.0, term));
   return {system, y0};
 }

@@ -32,9 +32,14 @@ void SceneGrid::check(GO fullDim, const std::string& scene) const {
                " components for a state of size ", fullDim, "; allowed: points x components = the state's size");
 }
 
-SceneInstance Scene::instantiate(const RCP<const Comm>& comm, const std::vector<double>& mu,
-                                 bool shift) const {
-  auto [system, y0] = build(comm, mu);
+std::pair<RCP<HamiltonianSystem>, RCP<Vector>> Scene::rebuild(const HamiltonianSystem& like,
+                                                              const std::vector<double>& mu) const {
+  return build(like.space().comm(), mu);
+}
+
+namespace {
+SceneInstance shiftedIfAsked(std::pair<RCP<HamiltonianSystem>, RCP<Vector>> built, bool shift) {
+  auto [system, y0] = std::move(built);
   SceneInstance s;
   s.physicalInitialState = y0;
   if (!shift) {
@@ -45,6 +50,15 @@ SceneInstance Scene::instantiate(const RCP<const Comm>& comm, const std::vector<
     s.y0 = rcp(new Vector(y0->getMap()));  // y_s(0) = 0
   }
   return s;
+}
+}  // namespace
+
+SceneInstance Scene::instantiate(const RCP<const Comm>& comm, const std::vector<double>& mu, bool shift) const {
+  return shiftedIfAsked(build(comm, mu), shift);
+}
+
+SceneInstance Scene::instantiate(const HamiltonianSystem& like, const std::vector<double>& mu, bool shift) const {
+  return shiftedIfAsked(rebuild(like, mu), shift);
 }
 
 double nlsMass(const Vector& y) {

@@ -60,32 +60,55 @@ RCP<const RowEvaluator> Swe2d::rowKernel(const std::vector<double>& mu) const {
 
 std::pair<RCP<HamiltonianSystem>, RCP<Vector>> Swe2d::build(const RCP<const Comm>& comm,
                                                            const std::vector<double>& mu) const {
+  return assemble(nullptr, comm, mu);
+}
+
+std::pair<RCP<HamiltonianSystem>, RCP<Vector>> Swe2d::rebuild(const HamiltonianSystem& like,
+                                                             const std::vector<double>& mu) const {
+  GPHR_REQUIRE(like.space().n() == nx_ * nx_ && like.nonlinearTerm().maxStencilSize() == 5, InputError,
+               "swe2d: a system of n = ", like.space().n(), " and stencils of ", like.nonlinearTerm().maxStencilSize(),
+               " entries cannot lend its layout to this scene (n = nx^2 = ", nx_ * nx_, ", stencils of 5)");
+  return assemble(&like, like.space().comm(), mu);
+}
+
+std::pair<RCP<HamiltonianSystem>, RCP<Vector>> Swe2d::assemble(const HamiltonianSystem* like,
+                                                              const RCP<const Comm>& comm,
+                                                              const std::vector<double>& mu) const {
   GPHR_REQUIRE(mu.size() == 2, InputError, "swe2d takes two parameters (beta, gamma), got ", mu.size());
   const double beta = mu[0], gamma = mu[1], dx = 2 * L_ / nx_;
   const GO n = nx_ * nx_;
-  auto space = rcp(new PhaseSpace(n, comm));
+  const RCP<const PhaseSpace> space = like ? like->spacePtr() : rcp<const PhaseSpace>(new PhaseSpace(n, comm));
   const auto& map = space->map();
-  // L = blockdiag(gamma I, 0): the chi^2 part of H.
-  auto L = rcp(new CrsMatrix(map, 1));
+  // L = blockdiag(gamma I, 0): the chi^2 part of H. On like's graph the values replace the zeros
+  // of a matrix on that (static) graph.
+  auto L = like ? rcp(new CrsMatrix(like->linearPart().getCrsGraph())) : rcp(new CrsMatrix(map, 1));
   auto y0 = rcp(new Vector(map));
   Stencil st;
   {
     auto yv = y0->getLocalViewHost(Tpetra::Access::OverwriteAll);
     for (LO il = 0; il < space->numLocalDofs(); ++il) {
       const GO i = space->firstLocalDof() + il, a = i % nx_, b = i / nx_;
-      L->insertGlobalValues(i, Teuchos::tuple<GO>(i), Teuchos::tuple<Scalar>(gamma));
+      if (like) L->replaceGlobalValues(i, Teuchos::tuple<GO>(i), Teuchos::tuple<Scalar>(gamma));
+      else L->insertGlobalValues(i, Teuchos::tuple<GO>(i), Teuchos::tuple<Scalar>(gamma));
       const double x1 = -L_ + a * dx, x2 = -L_ + b * dx;
       yv(il, 0) = 1.0 + 0.5 * std::exp(-beta * (x1 * x1 + x2 * x2));
       yv(space->numLocalDofs() + il, 0) = 0.0;
+      if (like) continue;
       auto id = [&](GO aa, GO bb) { return n + ((aa + nx_) % nx_) + nx_ * ((bb + nx_) % nx_); };
       for (GO g : {i, id(a + 1, b), id(a - 1, b), id(a, b + 1), id(a, b - 1)}) st.gids.push_back(g);
       st.offsets.push_back(st.gids.size());
     }
   }
   L->fillComplete(map, map);
-  auto v = rcp(new Vector(space->dofMap()));
-  v->putScalar(1.0);
-  auto term = makeRowKernelTerm(SweKernel{gamma, 0.5 / dx}, space->dofMap(), map, std::move(st), v, 3);
+  const SweKernel kernel{gamma, 0.5 / dx};
+  RCP<const NonlinearTerm> term;
+  if (like) {
+    term = makeRowKernelTerm(kernel, like->nonlinearTerm(), 3);
+  } else {
+    auto v = rcp(new Vector(space->dofMap()));
+    v->putScalar(1.0);
+    term = makeRowKernelTerm(kernel, space->dofMap(), map, std::move(st), v, 3);
+  }
   auto system = rcp(new HamiltonianSystem(space, L, rcp(new Vector(map)), 0.0, term));
   return {system, y0};
 }

@@ -126,6 +126,50 @@ TEST(Shift, ShiftedHamiltonianEqualsOriginalAtTranslatedState) {
   }
 }
 
+// Scene::rebuild: a system at mu built on another system's layout (the model file's interpolation
+// nodes) is the system build() makes at mu, to the last bit: the same values in the same
+// structure, so L y, H, grad H and Hess N agree exactly, shifted or not; and the layout is shared,
+// not rebuilt.
+TEST(Scenes, RebuildOnALayoutEqualsBuild) {
+  for (const auto& c : cases()) {
+    const std::vector<double> other = c.mu.size() == 1 ? std::vector<double>{1.05} : std::vector<double>{1.4, 0.9};
+    const auto first = c.scene->instantiate(test::comm(), c.mu, c.shift);
+    const auto fresh = c.scene->instantiate(test::comm(), other, c.shift);
+    const auto reused = c.scene->instantiate(*first.system, other, c.shift);
+    const auto& a = *fresh.system;
+    const auto& b = *reused.system;
+    EXPECT_EQ(b.nonlinearTerm().layout(), first.system->nonlinearTerm().layout()) << c.name;
+    EXPECT_EQ(b.linearPart().getCrsGraph(), first.system->linearPart().getCrsGraph()) << c.name;
+    EXPECT_EQ(b.constant(), a.constant()) << c.name;
+    auto y = point(fresh);
+    Vector La(a.map()), Lb(a.map()), ga(a.map()), gb(a.map()), d(a.map()), Ha(a.map()), Hb(a.map());
+    a.linearPart().apply(*y, La);
+    b.linearPart().apply(*y, Lb);
+    a.gradient(*y, ga);
+    b.gradient(*y, gb);
+    EXPECT_EQ(a.hamiltonian(*y), b.hamiltonian(*y)) << c.name;
+    test::fillByGid(d, 1.0, 7);
+    auto HNa = a.createHessianN(), HNb = b.createHessianN();
+    a.hessianN(*y, *HNa);
+    b.hessianN(*y, *HNb);
+    HNa->apply(d, Ha);
+    HNb->apply(d, Hb);
+    La.update(-1.0, Lb, 1.0), ga.update(-1.0, gb, 1.0), Ha.update(-1.0, Hb, 1.0);
+    EXPECT_EQ(La.normInf(), 0.0) << c.name;
+    EXPECT_EQ(ga.normInf(), 0.0) << c.name;
+    EXPECT_EQ(Ha.normInf(), 0.0) << c.name;
+    Vector y0(*fresh.physicalInitialState, Teuchos::Copy);
+    y0.update(-1.0, *reused.physicalInitialState, 1.0);
+    EXPECT_EQ(y0.normInf(), 0.0) << c.name;
+  }
+  // A layout of another scene or size is refused, naming both.
+  const auto swe = Swe2d(8).instantiate(test::comm(), {1.4, 0.9}, false);
+  EXPECT_THROW(Nls1d(64).rebuild(*swe.system, {1.0}), InputError);
+  EXPECT_THROW(Swe2d(9).rebuild(*swe.system, {1.4, 0.9}), InputError);
+  const auto nls = Nls1d(64).instantiate(test::comm(), {1.0}, false);
+  EXPECT_THROW(Swe2d(8).rebuild(*nls.system, {1.4, 0.9}), InputError);
+}
+
 // J^T J = I exactly (J only permutes and flips signs); x^T J x = 0 up to the round-off of a
 // dot product of 2n terms summed in another order (<= 2n eps ||x||^2).
 TEST(PhaseSpace, CanonicalTensorIdentities) {

@@ -20,10 +20,11 @@ namespace gphr {
 
 namespace {
 
-// Exact L_r, f_r, c and reference rows at mu (an O(n k) projection of the full system).
-OnlineParameterData exactAt(const Scene& scene, const RCP<const Comm>& comm, const MultiVector& A,
+// Exact L_r, f_r, c and reference rows at mu (an O(n k) projection of the full system). The
+// system at mu is built on the layout of `like` (Scene::rebuild): only its values are new.
+OnlineParameterData exactAt(const Scene& scene, const HamiltonianSystem& like, const MultiVector& A,
                             const std::vector<GO>& gids, const std::vector<double>& mu) {
-  const auto inst = scene.instantiate(comm, mu, true);
+  const auto inst = scene.instantiate(like, mu, true);
   OnlineParameterData d;
   d.linear = reduceLinearPart(*inst.system, A);
   d.reference = gatherRows(*inst.system->reference(), gids);
@@ -31,8 +32,8 @@ OnlineParameterData exactAt(const Scene& scene, const RCP<const Comm>& comm, con
 }
 
 // c = H(y0(mu)) of the shifted system (no projection needed).
-double exactConstant(const Scene& scene, const RCP<const Comm>& comm, const std::vector<double>& mu) {
-  return scene.instantiate(comm, mu, true).system->constant();
+double exactConstant(const Scene& scene, const HamiltonianSystem& like, const std::vector<double>& mu) {
+  return scene.instantiate(like, mu, true).system->constant();
 }
 
 double relativeError(const std::vector<double>& a, const std::vector<double>& b, size_t i0, size_t i1) {
@@ -43,11 +44,11 @@ double relativeError(const std::vector<double>& a, const std::vector<double>& b,
 
 // The interpolants' largest relative error per piece at points between the nodes of every
 // parameter: a scene that declared a parameter's entries wrongly shows up here.
-void checkInterpolant(const Scene& scene, const RCP<const Comm>& comm, const MultiVector& A, StoredBasisData& b) {
+void checkInterpolant(const Scene& scene, const HamiltonianSystem& like, const MultiVector& A, StoredBasisData& b) {
   const size_t r = 2 * static_cast<size_t>(b.k), nL = r * r, nf = nL + r;
   for (const char* piece : {"L", "f", "c", "reference"}) b.interpolationError[piece] = 0.0;
   for (const auto& mu : b.constant.checkPoints(8)) {
-    const auto data = exactAt(scene, comm, A, b.referenceGids, mu), interpolated = b.at(mu);
+    const auto data = exactAt(scene, like, A, b.referenceGids, mu), interpolated = b.at(mu);
     const auto exact = b.pack(data), approx = b.pack(interpolated);
     auto worst = [&](const char* piece, size_t i0, size_t i1) {
       b.interpolationError[piece] = std::max(b.interpolationError[piece], relativeError(approx, exact, i0, i1));
@@ -58,7 +59,7 @@ void checkInterpolant(const Scene& scene, const RCP<const Comm>& comm, const Mul
   }
 }
 
-StoredBasisData basisData(const Scene& scene, const RCP<const Comm>& comm, const MultiVector& A, int k,
+StoredBasisData basisData(const Scene& scene, const HamiltonianSystem& like, const MultiVector& A, int k,
                           const std::vector<StoredHyperModel>& models, const ModelFileOptions& opt) {
   StoredBasisData b;
   b.k = k;
@@ -81,13 +82,13 @@ StoredBasisData basisData(const Scene& scene, const RCP<const Comm>& comm, const
                                        4 * k * k + 2 * k + b.referenceGids.size());
   // c at the points instantiated for the first interpolant: where every parameter enters L_r, f_r
   // or y0 (the SWE's two), the constant's nodes are the same points and need no instance of their
-  // own (an instance is most of a node's cost: 49 of the SWE 256^2 build's 106, 0.1 s each).
+  // own (49 of the SWE 256^2 build's 106 instances).
   std::map<std::vector<double>, double> constantAt;
   for (size_t j = 0; j < b.interpolant.numNodes(); ++j) {
     auto mu = centre;  // the other parameters do not change these pieces (the scene's declaration)
     const auto node = b.interpolant.node(j);
     for (size_t i = 0; i < b.interpolated.size(); ++i) mu[b.interpolated[i]] = node[i];
-    const OnlineParameterData data = exactAt(scene, comm, A, b.referenceGids, mu);
+    const OnlineParameterData data = exactAt(scene, like, A, b.referenceGids, mu);
     constantAt[mu] = data.linear.c;
     b.interpolant.setNodeValues(j, b.pack(data));
   }
@@ -95,9 +96,9 @@ StoredBasisData basisData(const Scene& scene, const RCP<const Comm>& comm, const
   for (size_t j = 0; j < b.constant.numNodes(); ++j) {
     const std::vector<double> mu = b.constant.node(j);
     const auto known = constantAt.find(mu);  // the same doubles: both grids come from nodeCoordinate
-    b.constant.setNodeValues(j, {known != constantAt.end() ? known->second : exactConstant(scene, comm, mu)});
+    b.constant.setNodeValues(j, {known != constantAt.end() ? known->second : exactConstant(scene, like, mu)});
   }
-  checkInterpolant(scene, comm, A, b);
+  checkInterpolant(scene, like, A, b);
   return b;
 }
 
@@ -149,7 +150,7 @@ void addReducedBasis(ReducedModelData& data, const Scene& scene, const SceneInst
   GPHR_REQUIRE(opt.interpolationNodes >= 2 && opt.interpolationNodes <= 33, InputError, "interpolation nodes ",
                opt.interpolationNodes, "; allowed: 2 to 33");
   GPHR_REQUIRE(!models.empty(), InputError, "reduced-model file: no model for k = ", k);
-  data.bases.push_back(basisData(scene, inst.system->space().comm(), A, k, models, opt));
+  data.bases.push_back(basisData(scene, *inst.system, A, k, models, opt));
   for (auto& m : models) data.models.push_back(std::move(m));
 }
 

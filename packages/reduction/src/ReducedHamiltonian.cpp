@@ -2,7 +2,11 @@
 
 #include "gphr/core/Error.hpp"
 
+#include <Teuchos_BLAS.hpp>
+#include <Teuchos_CommHelpers.hpp>
+
 #include <algorithm>
+#include <vector>
 
 // Teuchos::BLAS (Trilinos 13.2) has no SYMV; BLAS itself is linked through Teuchos.
 extern "C" void dsymv_(const char* uplo, const int* n, const double* alpha, const double* a, const int* lda,
@@ -22,35 +26,61 @@ void symmetricProduct(const DenseMatrix& L, const double* z, double* out) {
 }  // namespace
 
 namespace {
-// L_r = A^T (L A) a block of kLinearPartColumns columns at a time: L A whole is a rows x 2k array
-// (42 MB per rank for the SWE 256^2's 2k = 40 on one rank), above glibc's largest mmap threshold
-// (32 MB), so each call mapped it afresh and the kernel zeroed its pages. The model file's
-// interpolation projects once per node: on one rank its system time fell from 3.4 to 2.2 s (57
-// projections, SWE 256^2). A block of 8 columns is reused from the heap.
+// L_r = A^T (L A), a block of kLinearPartColumns columns of L A at a time: L A whole is a rows x 2k
+// array (42 MB per rank for the SWE 256^2's 2k = 40 on one rank), above glibc's largest mmap
+// threshold (32 MB), so each call mapped it afresh and the kernel zeroed its pages. The model
+// file's interpolation projects once per node: on one rank its system time fell from 3.4 to 2.2 s
+// (57 projections, SWE 256^2). A block of 8 columns is reused from the heap.
 constexpr int kLinearPartColumns = 8;
+
+// Block j0 of L_r's upper triangle: rows 0 .. j0 + nb - 1 of columns j0 .. j0 + nb - 1, this
+// rank's rows only (BLAS GEMM on the local arrays; the ranks' sums are added by the caller).
+// L_r is symmetric, so the blocks below the diagonal are not formed: (r/8 + 1) / (2 r/8) of the
+// flops and packing of the whole A^T (L A) (0.6 at 2k = 40).
+void upperBlock(const MultiVector& A, const MultiVector& LAj, int j0, std::vector<double>& upper) {
+  const int rows = static_cast<int>(A.getLocalLength()), r = static_cast<int>(A.getNumVectors());
+  const int nb = static_cast<int>(LAj.getNumVectors());
+  if (rows == 0) return;
+  auto a = A.getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto b = LAj.getLocalViewHost(Tpetra::Access::ReadOnly);
+  Teuchos::BLAS<int, double> blas;
+  blas.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, j0 + nb, nb, rows, 1.0, a.data(), static_cast<int>(A.getStride()),
+            b.data(), static_cast<int>(LAj.getStride()), 0.0, upper.data() + static_cast<size_t>(j0) * r, r);
+}
 }  // namespace
 
-ReducedLinearPart reduceLinearPart(const HamiltonianSystem& system, const MultiVector& A) {
+ReducedLinearPart reduceLinearPart(const HamiltonianSystem& system, const MultiVector& basis) {
+  // BLAS reads A by one leading dimension: a basis of scattered columns is copied once.
+  const RCP<const MultiVector> copy =
+      basis.isConstantStride() ? Teuchos::null : rcp(new MultiVector(basis, Teuchos::Copy));
+  const MultiVector& A = copy.is_null() ? basis : *copy;
   const int r = static_cast<int>(A.getNumVectors());
-  auto local = rcp(new Map(r, 0, system.space().comm(), Tpetra::LocallyReplicated));
-  MultiVector Lr(local, r), fr(local, 1);
+  const int rows = static_cast<int>(A.getLocalLength());
+  // Local sums: L_r's upper triangle (column-major r x r), then f_r = A^T f; one all-reduce.
+  std::vector<double> local(static_cast<size_t>(r) * r + r, 0.0), global(local.size());
+  MultiVector LA(system.map(), std::max(1, std::min(r, kLinearPartColumns)));
   for (int j0 = 0; j0 < r; j0 += kLinearPartColumns) {
-    const Teuchos::Range1D cols(j0, std::min(r, j0 + kLinearPartColumns) - 1);
-    const auto Aj = A.subView(cols);
-    MultiVector LAj(system.map(), cols.size());
-    system.linearPart().apply(*Aj, LAj);
-    Lr.subViewNonConst(cols)->multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, A, LAj, 0.0);
+    const int nb = std::min(r, j0 + kLinearPartColumns) - j0;
+    const auto LAj = LA.subViewNonConst(Teuchos::Range1D(0, nb - 1));
+    system.linearPart().apply(*A.subView(Teuchos::Range1D(j0, j0 + nb - 1)), *LAj);
+    upperBlock(A, *LAj, j0, local);
   }
-  fr.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, A, system.linearForce(), 0.0);
+  if (rows > 0 && r > 0) {
+    auto a = A.getLocalViewHost(Tpetra::Access::ReadOnly);
+    auto f = system.linearForce().getLocalViewHost(Tpetra::Access::ReadOnly);
+    Teuchos::BLAS<int, double>().GEMV(Teuchos::TRANS, rows, r, 1.0, a.data(), static_cast<int>(A.getStride()),
+                                      f.data(), 1, 0.0, local.data() + static_cast<size_t>(r) * r, 1);
+  }
+  Teuchos::reduceAll(*system.space().comm(), Teuchos::REDUCE_SUM, static_cast<int>(local.size()), local.data(),
+                     global.data());
   ReducedLinearPart out;
   out.L.shape(r, r);
   out.f.size(r);
   out.c = system.constant();
-  auto l = Lr.getLocalViewHost(Tpetra::Access::ReadOnly);
-  auto f = fr.getLocalViewHost(Tpetra::Access::ReadOnly);
   for (int j = 0; j < r; ++j) {
-    out.f(j) = f(j, 0);
-    for (int i = 0; i < r; ++i) out.L(i, j) = 0.5 * (l(i, j) + l(j, i));  // symmetric to the last bit
+    out.f(j) = global[static_cast<size_t>(r) * r + j];
+    for (int i = 0; i <= j; ++i)  // the upper triangle mirrored: symmetric to the last bit
+      out.L(i, j) = out.L(j, i) = global[static_cast<size_t>(j) * r + i];
   }
   return out;
 }

@@ -52,10 +52,10 @@ class NonlinearAssembly {
  private:
   RCP<const NonlinearTerm> term_;
   RCP<const Map> overlapMap_;  ///< = column map of J_G: owned + ghost state entries
-  RCP<Import> importer_;
+  RCP<const Import> importer_;  ///< the term layout's
   RCP<Vector> yOverlap_, gradOverlap_, yWork_, gradOwned_;
   RCP<const Vector> yRef_;
-  std::vector<LO> stencilLids_;  ///< stencil entries as local ids of overlapMap_
+  const LO* stencilLids_ = nullptr;  ///< stencil entries as local ids of overlapMap_ (the term layout's; term_ keeps it)
   RowBatch batch_;
   std::vector<Scalar> gRef_;  ///< G_i(yRef)
   mutable LocalScatter hessScatter_[2];  ///< per target graph, without / with J applied

@@ -16,6 +16,7 @@
 /// owned rows; gatherStencils (ReplicatedGather.hpp) collects those of any set of global rows.
 /// The kernel may be called on any row id with any values: the full model calls it on owned
 /// rows, the reduced and hyper-reduced models on rows they hold replicated.
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -115,31 +116,48 @@ RCP<const RowEvaluator> makeRowEvaluator(const Kernel& kernel, int degree, int s
   return rcp(new KernelRows<Kernel>(kernel, degree, stencilSize));
 }
 
+/// The layout of a decomposed nonlinearity, everything of it but the row kernel: the maps, this
+/// rank's stencils, the weights v, the sparsity of J_G and the import of the stencils' state
+/// entries. It does not depend on the scene's parameters, so systems built at many parameter values
+/// on one communicator (a model file's interpolation nodes) share one (Scene::rebuild).
+struct TermLayout {
+  /// The layout of rows on `rowMap` with stencils `stencil` into states on `stateMap`, weights v.
+  TermLayout(RCP<const Map> rowMap, RCP<const Map> stateMap, Stencil stencil, RCP<const Vector> weights);
+  RCP<const Map> rowMap;  ///< Distribution of the d rows of G.
+  RCP<const Map> stateMap;  ///< The state map (2n entries).
+  Stencil stencil;  ///< Stencils of this rank's rows of G.
+  RCP<const Vector> weights;  ///< The weights v of N = v^T G, on rowMap.
+  int maxStencil = 0;  ///< Largest stencil size s over this rank's rows.
+  RCP<const CrsGraph> jacobianGraph;  ///< Sparsity of J_G: row map rowMap, domain stateMap, range rowMap.
+  RCP<const Import> overlapImport;  ///< stateMap -> the column map of J_G (owned and ghost state entries).
+  std::vector<LO> stencilLids;  ///< The stencils' entries as local ids of J_G's column map.
+};
+
 /// The decomposed nonlinearity of a full system: the row kernel with the layout of the rows of G
 /// (maps, stencils, weights v, the sparsity of J_G).
 class NonlinearTerm : public RowEvaluator {
  public:
   /// d, the number of terms (rows of G).
-  GO numTerms() const { return static_cast<GO>(rowMap_->getGlobalNumElements()); }
-  const RCP<const Map>& rowMap() const { return rowMap_; }  ///< Distribution of the d rows of G.
-  const RCP<const Map>& stateMap() const { return stateMap_; }  ///< The state map (2n entries).
-  const RCP<const Vector>& weights() const { return weights_; }  ///< The weights v of N = v^T G, on rowMap().
-  const Stencil& stencil() const { return stencil_; }  ///< Stencils of this rank's rows of G.
-  int maxStencilSize() const { return maxStencil_; }  ///< Largest stencil size s over all rows.
+  GO numTerms() const { return static_cast<GO>(layout_->rowMap->getGlobalNumElements()); }
+  const RCP<const Map>& rowMap() const { return layout_->rowMap; }  ///< Distribution of the d rows of G.
+  const RCP<const Map>& stateMap() const { return layout_->stateMap; }  ///< The state map (2n entries).
+  const RCP<const Vector>& weights() const { return layout_->weights; }  ///< The weights v of N = v^T G, on rowMap().
+  const Stencil& stencil() const { return layout_->stencil; }  ///< Stencils of this rank's rows of G.
+  int maxStencilSize() const { return layout_->maxStencil; }  ///< Largest stencil size s over all rows.
   /// Sparsity of J_G (d rows x 2n columns): row map rowMap(), domain stateMap(), range rowMap().
-  const RCP<const CrsGraph>& jacobianGraph() const { return jacobianGraph_; }
+  const RCP<const CrsGraph>& jacobianGraph() const { return layout_->jacobianGraph; }
+  /// The layout alone, to share with a term of another kernel (Scene::rebuild).
+  const std::shared_ptr<const TermLayout>& layout() const { return layout_; }
 
  protected:
   /// A nonlinearity with rows on `rowMap`, states on `stateMap`, this rank's stencils and weights v.
   NonlinearTerm(RCP<const Map> rowMap, RCP<const Map> stateMap, Stencil stencil,
                 RCP<const Vector> weights, int degree);
+  /// A nonlinearity on an existing layout.
+  NonlinearTerm(std::shared_ptr<const TermLayout> layout, int degree);
 
  private:
-  RCP<const Map> rowMap_, stateMap_;
-  Stencil stencil_;
-  RCP<const Vector> weights_;
-  int maxStencil_ = 0;
-  RCP<const CrsGraph> jacobianGraph_;
+  std::shared_ptr<const TermLayout> layout_;
 };
 
 /// A NonlinearTerm over a row-kernel functor (the file's row-kernel contract): what a scene supplies.
@@ -150,6 +168,9 @@ class RowKernelTerm final : public NonlinearTerm {
   RowKernelTerm(const Kernel& kernel, RCP<const Map> rowMap, RCP<const Map> stateMap,
                 Stencil stencil, RCP<const Vector> weights, int degree)
       : NonlinearTerm(rowMap, stateMap, std::move(stencil), weights, degree), kernel_(kernel) {}
+  /// The row kernel `kernel` on an existing layout (another term's, NonlinearTerm::layout()).
+  RowKernelTerm(const Kernel& kernel, std::shared_ptr<const TermLayout> layout, int degree)
+      : NonlinearTerm(std::move(layout), degree), kernel_(kernel) {}
 
   const Kernel& kernel() const { return kernel_; }  ///< The row-kernel functor.
   void evaluate(const RowBatch& b) const override { runRowKernel(kernel_, b); }
@@ -164,6 +185,13 @@ RCP<const NonlinearTerm> makeRowKernelTerm(const Kernel& kernel, RCP<const Map> 
                                            RCP<const Map> stateMap, Stencil stencil,
                                            RCP<const Vector> weights, int degree) {
   return rcp(new RowKernelTerm<Kernel>(kernel, rowMap, stateMap, std::move(stencil), weights, degree));
+}
+
+/// A NonlinearTerm over a row-kernel functor on the layout of `like` (its maps, stencils, weights
+/// and J_G's graph): no graph is built.
+template <class Kernel>
+RCP<const NonlinearTerm> makeRowKernelTerm(const Kernel& kernel, const NonlinearTerm& like, int degree) {
+  return rcp(new RowKernelTerm<Kernel>(kernel, like.layout(), degree));
 }
 
 }  // namespace gphr

@@ -68,8 +68,18 @@ class Scene {
   /// The grid of the state, for pictures and ParaView; a scene without one (the default) gets
   /// neither, with a message saying so.
   virtual std::optional<SceneGrid> grid() const { return std::nullopt; }
+  /// The system and initial state at mu on the layout of `like`, a system this scene built (at any
+  /// parameter, shifted or not) on the communicator wanted: the phase space, the graph of L and the
+  /// nonlinear term's layout (stencils, weights v, J_G's graph, its import) are shared and only the
+  /// values are computed. Equal to build(like's communicator, mu). The default builds afresh; the
+  /// scenes here share the layout (a model file's interpolation instantiates one per node: the
+  /// layout was about half of a SWE node's cost).
+  virtual std::pair<RCP<HamiltonianSystem>, RCP<Vector>> rebuild(const HamiltonianSystem& like,
+                                                                const std::vector<double>& mu) const;
   /// build() then, if shift is set, the shifted system of paper eq:shiftH with y0 = 0.
   SceneInstance instantiate(const RCP<const Comm>& comm, const std::vector<double>& mu, bool shift) const;
+  /// rebuild() then, if shift is set, the shifted system: instantiate() on the layout of `like`.
+  SceneInstance instantiate(const HamiltonianSystem& like, const std::vector<double>& mu, bool shift) const;
 };
 
 /// The NLS scene (paper eq:schrodinger): u = q + i p on [-L, L), L = pi/0.11, n points,
@@ -82,11 +92,16 @@ class Nls1d final : public Scene {
   const ParameterBox& parameterBox() const override { return box_; }
   std::pair<RCP<HamiltonianSystem>, RCP<Vector>> build(const RCP<const Comm>& comm,
                                                       const std::vector<double>& mu) const override;
+  std::pair<RCP<HamiltonianSystem>, RCP<Vector>> rebuild(const HamiltonianSystem& like,
+                                                        const std::vector<double>& mu) const override;
   RCP<const RowEvaluator> rowKernel(const std::vector<double>& mu) const override;
   std::optional<SceneGrid> grid() const override;  ///< the periodic grid of x (and y)
   GO n() const { return n_; }  ///< n, the number of grid points.
 
  private:
+  /// build() (like = nullptr) and rebuild() (on like's layout): one loop over the rows for both.
+  std::pair<RCP<HamiltonianSystem>, RCP<Vector>> assemble(const HamiltonianSystem* like, const RCP<const Comm>& comm,
+                                                         const std::vector<double>& mu) const;
   GO n_;
   double L_;
   ParameterBox box_;
@@ -102,11 +117,16 @@ class Swe2d final : public Scene {
   const ParameterBox& parameterBox() const override { return box_; }
   std::pair<RCP<HamiltonianSystem>, RCP<Vector>> build(const RCP<const Comm>& comm,
                                                       const std::vector<double>& mu) const override;
+  std::pair<RCP<HamiltonianSystem>, RCP<Vector>> rebuild(const HamiltonianSystem& like,
+                                                        const std::vector<double>& mu) const override;
   RCP<const RowEvaluator> rowKernel(const std::vector<double>& mu) const override;
   std::optional<SceneGrid> grid() const override;  ///< the periodic grid of x (and y)
   GO nx() const { return nx_; }  ///< nx, grid points per direction.
 
  private:
+  /// build() (like = nullptr) and rebuild() (on like's layout): one loop over the rows for both.
+  std::pair<RCP<HamiltonianSystem>, RCP<Vector>> assemble(const HamiltonianSystem* like, const RCP<const Comm>& comm,
+                                                         const std::vector<double>& mu) const;
   GO nx_;
   double L_;
   ParameterBox box_;
