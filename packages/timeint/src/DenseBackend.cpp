@@ -21,7 +21,7 @@ void DenseBackend::endNewtonMatrix() {
   GPHR_REQUIRE(info == 0, SolverError, "dense Newton matrix is singular (LAPACK GETRF info = ", info, ")");
 }
 
-int DenseBackend::solveNewton(const Vector& rhs, Vector& dx) {
+int DenseBackend::solveNewton(const Vector& rhs, Vector& dx, double) {
   dx.assign(rhs);
   int info = 0;
   lapack_.GETRS('N', model_.dim(), 1, K_.values(), K_.stride(), pivots_.data(), dx.values(), dx.length(), &info);

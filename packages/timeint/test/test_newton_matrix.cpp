@@ -90,4 +90,41 @@ TEST_P(NewtonMatrix, IsTheDerivativeOfTheResidual) {
 INSTANTIATE_TEST_SUITE_P(ScenesAndRules, NewtonMatrix, ::testing::Range(0, 8),
                          [](const ::testing::TestParamInfo<int>& i) { return cases()[i.param].name; });
 
+// linearSolver.forcing (inexact Newton): a solve given newtonRelative = tau / ||rhs|| stops once
+// its true residual ||K dx - rhs|| is below forcing x tau, but never looser than 0.1 ||rhs|| nor
+// tighter than linearSolver.tolerance; forcing = 0 solves to the tolerance whatever the Newton
+// tolerance. Belos' GMRES confirms convergence on the explicit residual, so the bounds hold to the
+// round-off of one product K dx (1e-15 relative): the factor 1.01 is slack for that alone. The
+// looser solve takes fewer iterations than the tight one: on this near-identity K each GMRES
+// iteration gains about two orders (1e-6 relative against 1e-12 leaves a gap of several).
+TEST(InexactNewton, SolvesStopAtTheForcingResidual) {
+  Swe2d scene(16);
+  auto s = scene.instantiate(test::comm(), {1.6435, 0.7762}, true);
+  const auto& sys = *s.system;
+  auto solveWith = [&](double forcing, double newtonRelative, const Vector& rhs, int& iterations) {
+    Teuchos::ParameterList ls("linearSolver");
+    ls.set("forcing", forcing);
+    ls.set("preconditioner", std::string("RELAXATION"));
+    FullModelBackend backend(s.system, ls);
+    AveragedGradientScheme<FullModelBackend> scheme(backend, quadratureFor("imr", 0, 3), NewtonOptions{});
+    Vector y0(*s.y0, Teuchos::Copy), y1(sys.map()), dx(sys.map()), r(sys.map());
+    test::fillByGid(y1, 0.1, 2);
+    scheme.assembleNewtonMatrix(y0, y1, 0.05);
+    iterations = backend.solveNewton(rhs, dx, newtonRelative);
+    backend.newtonMatrix()->apply(dx, r);
+    r.update(-1.0, rhs, 1.0);
+    return r.norm2() / rhs.norm2();  // the true relative residual
+  };
+  Vector rhs(sys.map());
+  test::fillByGid(rhs, 1.0, 5);
+  int tight = 0, loose = 0, capped = 0, off = 0;
+  EXPECT_LE(solveWith(1e-3, 0.0, rhs, tight), 1.01e-12);       // tau = 0: the tolerance
+  EXPECT_LE(solveWith(1e-3, 1e-3, rhs, loose), 1.01 * 1e-6);   // forcing x tau / ||rhs||
+  EXPECT_LE(solveWith(1e-3, 1e9, rhs, capped), 1.01 * 0.1);    // at most 0.1
+  EXPECT_LE(solveWith(0.0, 1e9, rhs, off), 1.01e-12);          // forcing off: the tolerance
+  EXPECT_LT(loose, tight);
+  EXPECT_LE(capped, loose);
+  EXPECT_EQ(off, tight);
+}
+
 }  // namespace

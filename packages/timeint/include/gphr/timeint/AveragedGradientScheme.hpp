@@ -27,7 +27,9 @@
 ///   bool addAveragedHessian(const Vector& y0, const Vector& y1, const QuadratureRule& rule, double scale);
 ///                         // M += scale J sum_q w_q s_q Hess H(y_q) at once; false: the scheme loops over nodes
 ///   void endNewtonMatrix();
-///   int solveNewton(const Vector& rhs, Vector& dx);      // M dx = rhs; returns linear iterations
+///   int solveNewton(const Vector& rhs, Vector& dx, double newtonRelative);
+///                         // M dx = rhs; returns linear iterations. newtonRelative = newton tolerance / ||rhs||:
+///                         // an iterative solve may stop at a fraction of it (inexact Newton)
 ///   static void update(Vector& y, double a, const Vector& x, double b);  // y = a x + b y
 ///   static void update(Vector& y, double a, const Vector& x, double b, const Vector& z, double c);
 ///   static double norm(const Vector& x);  static void assign(Vector& y, const Vector& x);
@@ -120,7 +122,7 @@ class AveragedGradientScheme {
       }
       previous = rep.residualNorm;
       Backend::update(rhs_, -1.0, res_, 0.0);
-      rep.linearIterations += be_.solveNewton(rhs_, dx_);
+      rep.linearIterations += be_.solveNewton(rhs_, dx_, opts_.tolerance / rep.residualNorm);
       Backend::update(y1, 1.0, dx_, 1.0);
       ++rep.newtonIterations;
     }

@@ -30,8 +30,9 @@ class DenseBackend {
     return model_.addAveragedHessian(z0, z1, rule, scale, hbar_);
   }
   void endNewtonMatrix();  ///< K = I + J hbar (hbar holds -dt Hbar), then LU
-  /// Solves K dx = rhs with the LU of endNewtonMatrix(); returns 0 (linear iterations).
-  int solveNewton(const Vector& rhs, Vector& dx);
+  /// Solves K dx = rhs with the LU of endNewtonMatrix() (exact: the Newton tolerance's share is
+  /// not used); returns 0 (linear iterations).
+  int solveNewton(const Vector& rhs, Vector& dx, double newtonRelative = 0.0);
   /// Newton matrices assembled and LU-factored so far (endNewtonMatrix() calls).
   long newtonMatrixAssemblies() const { return assemblies_; }
 

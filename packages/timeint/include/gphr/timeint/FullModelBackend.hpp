@@ -42,7 +42,9 @@ class FullModelBackend {
   void addHessian(const Vector& y, double scale) { system_->addHessian(y, scale, *newtonMatrix_, true); }
   bool addAveragedHessian(const Vector&, const Vector&, const QuadratureRule&, double) { return false; }  ///< by node
   void endNewtonMatrix();  ///< Completes the Newton matrix (fillComplete; preconditioner set-up when due).
-  int solveNewton(const Vector& rhs, Vector& dx);  ///< Solves M dx = rhs with Belos; returns the linear iterations.
+  /// Solves M dx = rhs with Belos; returns the linear iterations. newtonRelative: the relative
+  /// residual at which the solve's error equals the Newton tolerance (linearSolver.forcing).
+  int solveNewton(const Vector& rhs, Vector& dx, double newtonRelative);
   /// The Newton matrix (assembled in place), and whether the last endNewtonMatrix() was one at which
   /// the preconditioner is to be refactored (every linearSolver.preconditionerRecomputeEvery).
   RCP<CrsMatrix> newtonMatrix() const { return newtonMatrix_; }
