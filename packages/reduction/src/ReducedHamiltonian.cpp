@@ -23,9 +23,7 @@ void symmetricProduct(const DenseMatrix& L, const double* z, double* out) {
   const double alpha = 1.0, beta = 0.0;
   if (n > 0) dsymv_("U", &n, &alpha, L.values(), &lda, z, &one, &beta, out, &one);
 }
-}  // namespace
 
-namespace {
 // L_r = A^T (L A), a block of kLinearPartColumns columns of L A at a time: L A whole is a rows x 2k
 // array (42 MB per rank for the SWE 256^2's 2k = 40 on one rank), above glibc's largest mmap
 // threshold (32 MB), so each call mapped it afresh and the kernel zeroed its pages. The model

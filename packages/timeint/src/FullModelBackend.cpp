@@ -148,9 +148,9 @@ int FullModelBackend::solveNewton(const Vector& rhs, Vector& dx, double newtonRe
       solver_->forcing > 0.0 ? std::max(solver_->tolerance, std::min(kLoosestForcing, solver_->forcing * newtonRelative))
                              : solver_->tolerance;
   if (wanted != solver_->current) {
-    Teuchos::ParameterList tol;
-    tol.set("Convergence Tolerance", wanted);
-    solver_->belos->setParameters(Teuchos::rcpFromRef(tol));
+    auto tol = Teuchos::parameterList();  // owned: a solver manager may keep the list it is given
+    tol->set("Convergence Tolerance", wanted);
+    solver_->belos->setParameters(tol);
     solver_->current = wanted;
   }
   dx.putScalar(0.0);
