@@ -50,8 +50,8 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
   setChoiceParameter(red, "podRoute", "auto", routes,
                      "incremental SVD step: auto (tree from 2 ranks: the faster measured), tsqr "
                      "(Tpetra's TSQR; refuses a step with more carried + new columns than rows on some rank), stacked "
-                     "(a TSQR on LAPACK kernels: each rank's rows by a Householder QR in row chunks, the R factors stacked on every rank and "
-                     "one SVD of the stack; any rank count, local work divides with the ranks), tree (as stacked, "
+                     "(a TSQR on LAPACK kernels: each rank's rows by a Householder QR in row chunks, the R factors "
+                     "stacked on every rank and one SVD of the stack; any rank count, local work divides with the ranks), tree (as stacked, "
                      "the R factors reduced over a binary tree of ranks and one small SVD on rank 0: the work beyond "
                      "a rank's rows grows with log2 of the ranks, not with the ranks), replicated (each step's matrix "
                      "gathered on every rank, one LAPACK SVD: any rank count, no parallel speed-up)");

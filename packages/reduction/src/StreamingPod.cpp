@@ -198,8 +198,9 @@ void StreamingPod::stackedStep(std::vector<double> y, int nc) {
 // HouseholderQr as in the stacked route, the R factors reduced to rank 0 over ceil(log2 p) levels
 // of QRs of two stacked nc x nc triangles (TPQRT), one GESDD of the root's R (at most nc x nc) on
 // rank 0, its singular values broadcast (every rank truncates alike) and its left vectors carried
-// back down the tree's Q factors to each rank's block. Beyond its own rows a rank does at most log2(p) small QRs and their Q's, and
-// rank 0 one nc x nc SVD: none of it grows with p but the log2 p levels.
+// back down the tree's Q factors to each rank's block. Beyond its own rows a rank does at most
+// log2(p) small QRs and their Q's, and rank 0 one nc x nc SVD: none of it grows with p but the
+// log2 p levels.
 void StreamingPod::treeStep(std::vector<double> y, int nc) {
   const auto& comm = *map_->getComm();
   const HouseholderQr leaf(static_cast<int>(map_->getNodeNumElements()), nc, std::move(y));

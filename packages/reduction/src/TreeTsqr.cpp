@@ -43,7 +43,8 @@ HouseholderQr::HouseholderQr(int m, int n, std::vector<double> a, int chunkRows)
   std::vector<double> work(static_cast<size_t>(nb_) * n_);
   int info = 0;
   dgeqrt_(&r0, &n_, &nb_, a_.data(), &m_, t(0), &nb_, work.data(), &info);
-  GPHR_REQUIRE(info == 0, SolverError, "Householder QR: LAPACK GEQRT of ", r0, " x ", n_, " failed (info = ", info, ")");
+  GPHR_REQUIRE(info == 0, SolverError, "Householder QR: LAPACK GEQRT of ", r0, " x ", n_, " failed (info = ", info,
+               ")");
   if (chunks() == 1) return;
   top_.assign(static_cast<size_t>(n_) * n_, 0.0);
   for (int j = 0; j < n_; ++j)
@@ -80,9 +81,13 @@ void HouseholderQr::applyQInto(const std::vector<double>& C, int cols, double* o
   GPHR_REQUIRE(ldo >= std::max(m_, 1) && cols >= 0 && C.size() >= static_cast<size_t>(kk) * cols, InputError,
                "Householder QR: Q [C; 0] of ", m_, " x ", cols, " into leading dimension ", ldo, " from ", C.size(),
                " numbers");
-  for (int j = 0; j < cols; ++j) std::fill(out + static_cast<size_t>(ldo) * j + kk, out + static_cast<size_t>(ldo) * j + m_, 0.0);
+  for (int j = 0; j < cols; ++j) {
+    double* col = out + static_cast<size_t>(ldo) * j;
+    std::fill(col + kk, col + m_, 0.0);
+  }
   if (kk == 0 || cols == 0) return;  // Q [C; 0] is the zeros just written
-  std::vector<double> top(C.begin(), C.begin() + static_cast<size_t>(kk) * cols), work(static_cast<size_t>(nb_) * cols);
+  std::vector<double> top(C.begin(), C.begin() + static_cast<size_t>(kk) * cols);
+  std::vector<double> work(static_cast<size_t>(nb_) * cols);
   int info = 0;
   const int l = 0;
   for (int c = chunks() - 1; c >= 1; --c) {
@@ -92,7 +97,8 @@ void HouseholderQr::applyQInto(const std::vector<double>& C, int cols, double* o
     GPHR_REQUIRE(info == 0, SolverError, "Householder QR: LAPACK TPMQRT on rows ", start_[c], " .. ", start_[c + 1],
                  " failed (info = ", info, ")");
   }
-  for (int j = 0; j < cols; ++j) std::copy_n(top.begin() + static_cast<size_t>(kk) * j, kk, out + static_cast<size_t>(ldo) * j);
+  for (int j = 0; j < cols; ++j)
+    std::copy_n(top.begin() + static_cast<size_t>(kk) * j, kk, out + static_cast<size_t>(ldo) * j);
   dgemqrt_("L", "N", &start_[1], &cols, &kk, &nb_, a_.data(), &m_, t(0), &nb_, out, &ldo, work.data(), &info);
   GPHR_REQUIRE(info == 0, SolverError, "Householder QR: LAPACK GEMQRT on ", start_[1], " x ", cols,
                " failed (info = ", info, ")");

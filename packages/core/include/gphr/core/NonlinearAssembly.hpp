@@ -55,7 +55,8 @@ class NonlinearAssembly {
   RCP<const Import> importer_;  ///< the term layout's
   RCP<Vector> yOverlap_, gradOverlap_, yWork_, gradOwned_;
   RCP<const Vector> yRef_;
-  const LO* stencilLids_ = nullptr;  ///< stencil entries as local ids of overlapMap_ (the term layout's; term_ keeps it)
+  /// stencil entries as local ids of overlapMap_ (the term layout's array; term_ keeps it alive)
+  const LO* stencilLids_ = nullptr;
   RowBatch batch_;
   std::vector<Scalar> gRef_;  ///< G_i(yRef)
   mutable LocalScatter hessScatter_[2];  ///< per target graph, without / with J applied

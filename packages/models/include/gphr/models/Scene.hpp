@@ -72,8 +72,8 @@ class Scene {
   /// parameter, shifted or not) on the communicator wanted: the phase space, the graph of L and the
   /// nonlinear term's layout (stencils, weights v, J_G's graph, its import) are shared and only the
   /// values are computed. Equal to build(like's communicator, mu). The default builds afresh; the
-  /// scenes here share the layout (a model file's interpolation instantiates one per node: the
-  /// layout was about half of a SWE node's cost).
+  /// scenes here share the layout (a model file's interpolation instantiates one system per node:
+  /// the instance was about half of a SWE node's time, perf of a SWE 256^2 build).
   virtual std::pair<RCP<HamiltonianSystem>, RCP<Vector>> rebuild(const HamiltonianSystem& like,
                                                                 const std::vector<double>& mu) const;
   /// build() then, if shift is set, the shifted system of paper eq:shiftH with y0 = 0.
