@@ -10,7 +10,8 @@
 #          (speedup: paper_s / NOX's wall_s)
 #   reuse: linearSolver.preconditionerRecomputeEvery in {1, 5, 20, 100}, SWE IMR T = 0.5 and NLS AVF T = 2
 #   pc:    preconditioners at the paper sizes (AVF, T = 2), then on the training run of bench/scaling.sh's
-#          SWE case (256^2, IMR with the lagged Jacobian, T = 0.4) on 1 and 2 ranks: the SWE's default
+#          SWE case (256^2, IMR with the lagged Jacobian, T = 0.4; PC_NX=512 for another grid) on 1 and 2
+#          ranks: the SWE's default
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}; part=${2:-all}
@@ -81,11 +82,15 @@ for pc in RILUK AMESOS2 RELAXATION none; do
   run swe_pc_$pc bench/configs/swe_paper.yaml 1 "{scheme: avf, linearSolver: {preconditioner: $pc, maxIterations: 2000}}" "{T: 2.0, dt: 0.005}"
   row swe_pc_$pc -
 done
-echo "preconditioner comparison on the training run of bench/scaling.sh's SWE case (256^2, IMR, lagged Jacobian, T = 0.4):"
-for pc in RILUK RELAXATION none; do
+nx=${PC_NX:-256}
+echo "preconditioner comparison on the training run of bench/scaling.sh's SWE case (${nx}^2, IMR, lagged Jacobian, T = 0.4;"
+echo "RELAXATION sweeps forward Gauss-Seidel, RELAXATION-sym symmetric Gauss-Seidel):"
+for pc in RILUK RELAXATION RELAXATION-sym none; do
+  ls="preconditioner: ${pc%-sym}"
+  [ "$pc" = RELAXATION-sym ] && ls="$ls, relaxation: Symmetric Gauss-Seidel"
   for np in 1 2; do
-    run swe256_pc_${pc}_np$np bench/configs/swe_paper.yaml $np \
-      "{scheme: imr, jacobianLag: true, linearSolver: {preconditioner: $pc}}" "{T: 0.4, dt: 0.005}" "{name: swe2d, nx: 256}"
-    row swe256_pc_${pc}_np$np -
+    run swe${nx}_pc_${pc}_np$np bench/configs/swe_paper.yaml $np \
+      "{scheme: imr, jacobianLag: true, linearSolver: {$ls}}" "{T: 0.4, dt: 0.005}" "{name: swe2d, nx: $nx}"
+    row swe${nx}_pc_${pc}_np$np -
   done
 done

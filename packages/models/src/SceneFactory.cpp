@@ -52,11 +52,12 @@ Teuchos::ParameterList sceneTimeValidParameters(const std::string& name) {
 
 void sceneLinearSolverDefaults(const std::string& name, Teuchos::ParameterList& linearSolver) {
   requireKnown(name);
-  // The SWE's Newton matrix I - dt J Hbar is close to the identity at its time steps: symmetric
-  // Gauss-Seidel (no factorization) beats RILUK(1), whose triangular solves were 37 % of a step
-  // and whose block-Jacobi iterations grow with the ranks of a group (bench/fom_paper.sh pc, SWE
-  // 256^2, IMR, 80 steps: 6.0 s against 8.8 s on one rank, 3.3 s against 5.8 s on two; GMRES per
-  // Newton on 1 / 4 ranks 4.95 / 5.84 against 4.16 / 5.72; doc/design.md, 'Preconditioner').
+  // The SWE's Newton matrix I - dt J Hbar is close to the identity at its time steps: one forward
+  // Gauss-Seidel sweep (no factorization; linearSolver.relaxation's default) beats RILUK(1), whose
+  // triangular solves were 37 % of a step and whose block-Jacobi iterations grow with the ranks of a
+  // group (bench/fom_paper.sh pc, SWE 256^2, IMR, 80 steps: 5.1 s against 7.4 s on one rank, 2.6 s
+  // against 5.4 s on two; GMRES per Newton 3.21 / 3.21 against 2.28 / 3.21; doc/design.md,
+  // 'Preconditioner').
   // The NLS keeps RILUK(1).
   if (name != "swe2d") return;
   const Teuchos::ParameterEntry& e = linearSolver.getEntry("preconditioner");
