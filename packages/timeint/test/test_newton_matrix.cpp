@@ -155,7 +155,9 @@ TEST(Relaxation, EachSweepSolvesAndGaussSeidelBeatsJacobi) {
   }
   EXPECT_LT(iterations["Gauss-Seidel"], iterations["Jacobi"]);
   EXPECT_LE(iterations["Symmetric Gauss-Seidel"], iterations["Gauss-Seidel"]);
-  if (test::comm()->getSize() == 1) EXPECT_LT(iterations["Symmetric Gauss-Seidel"], iterations["Gauss-Seidel"]);
+  if (test::comm()->getSize() == 1) {
+    EXPECT_LT(iterations["Symmetric Gauss-Seidel"], iterations["Gauss-Seidel"]);
+  }
   Teuchos::ParameterList bad("linearSolver");
   bad.set("relaxation", std::string("SOR"));
   try {
