@@ -93,13 +93,6 @@ TEST_P(NewtonMatrix, IsTheDerivativeOfTheResidual) {
 INSTANTIATE_TEST_SUITE_P(ScenesAndRules, NewtonMatrix, ::testing::Range(0, 8),
                          [](const ::testing::TestParamInfo<int>& i) { return cases()[i.param].name; });
 
-// linearSolver.forcing (inexact Newton): a solve given newtonRelative = tau / ||rhs|| stops once
-// its true residual ||K dx - rhs|| is below forcing x tau, but never looser than 0.1 ||rhs|| nor
-// tighter than linearSolver.tolerance; forcing = 0 solves to the tolerance whatever the Newton
-// tolerance. Belos' GMRES confirms convergence on the explicit residual, so the bounds hold to the
-// round-off of one product K dx (1e-15 relative): the factor 1.01 is slack for that alone. The
-// looser solve takes fewer iterations than the tight one: on this near-identity K each GMRES
-// iteration gains about two orders (1e-6 relative against 1e-12 leaves a gap of several).
 // One SWE Newton system K dx = rhs (dt = 0.05, 10x the paper's) solved by FullModelBackend with
 // the given linearSolver settings; returns the true relative residual ||K dx - rhs|| / ||rhs||.
 double solveSweNewton(Teuchos::ParameterList ls, double newtonRelative, int& iterations) {
@@ -119,8 +112,15 @@ double solveSweNewton(Teuchos::ParameterList ls, double newtonRelative, int& ite
   return r.norm2() / rhs.norm2();
 }
 
+// linearSolver.forcing (inexact Newton): a solve given newtonRelative = tau / ||rhs|| stops once
+// its true residual ||K dx - rhs|| is below forcing x tau, but never looser than 0.1 ||rhs|| nor
+// tighter than linearSolver.tolerance; forcing = 0 solves to the tolerance whatever the Newton
+// tolerance. Belos' GMRES confirms convergence on the explicit residual, so the bounds hold to the
+// round-off of one product K dx (1e-15 relative): the factor 1.01 is slack for that alone. The
+// looser solve takes fewer iterations than the tight one: on this near-identity K each GMRES
+// iteration gains about two orders (1e-6 relative against 1e-12 leaves a gap of several).
 TEST(InexactNewton, SolvesStopAtTheForcingResidual) {
-  auto solveWith = [&](double forcing, double newtonRelative, int& iterations) {
+  auto solveWith = [](double forcing, double newtonRelative, int& iterations) {
     Teuchos::ParameterList ls("linearSolver");
     ls.set("forcing", forcing);
     ls.set("preconditioner", std::string("RELAXATION"));
@@ -170,4 +170,5 @@ TEST(Relaxation, EachSweepSolvesAndGaussSeidelBeatsJacobi) {
   }
   for (const auto& [sweep, its] : iterations) std::printf("%s: %d GMRES iterations\n", sweep.c_str(), its);
 }
+
 }  // namespace
