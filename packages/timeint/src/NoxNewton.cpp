@@ -169,9 +169,13 @@ NoxNewtonSolver::NoxNewtonSolver(Scheme& scheme, FullModelBackend& backend, cons
   const auto source = Thyra::defaultLinearOpSource<double>(W);
   FullModelBackend* be = &backend;
   auto ifpack = Teuchos::rcp(new RCP<Ifpack2::Preconditioner<Scalar, LO, GO, Node>>());
-  auto refresh = [be, precFactory, prec, source, ifpack]() {
+  const bool reinitialize = FullModelBackend::refreshReinitializes(ls, backend.system().map()->getComm()->getSize());
+  auto refresh = [be, precFactory, prec, source, ifpack, reinitialize]() {
     if (prec.is_null() || !be->preconditionerRefreshDue()) return;
-    if (!ifpack->is_null()) return (*ifpack)->compute();
+    if (!ifpack->is_null()) {
+      if (reinitialize) (*ifpack)->initialize();  // FullModelBackend::refreshReinitializes
+      return (*ifpack)->compute();
+    }
     precFactory->initializePrec(source, prec.get());
     const auto op = Teuchos::rcp_dynamic_cast<Thyra::TpetraLinearOp<Scalar, LO, GO, Node>>(
         prec->getNonconstUnspecifiedPrecOp(), true);

@@ -29,6 +29,10 @@ class FullModelBackend {
   /// From a validated linearSolver list, for both drivers: Ifpack2's parameters for the chosen
   /// preconditioner, and GMRES's Krylov space size ("Num Blocks").
   static Teuchos::ParameterList preconditionerParameters(const Teuchos::ParameterList& linearSolver);
+  /// Whether a refresh of the configured preconditioner must initialize() it again before
+  /// compute(): Ifpack2 13.2's AMESOS2 on more than one rank factors a copy of its block taken in
+  /// initialize(), so compute() alone would refactor stale values.
+  static bool refreshReinitializes(const Teuchos::ParameterList& linearSolver, int ranks);
   /// Krylov vectors the configured linear solver keeps.
   static int krylovVectors(const Teuchos::ParameterList& linearSolver);
 
@@ -72,6 +76,7 @@ class FullModelBackend {
   int recomputeEvery_ = 1;
   long assemblies_ = 0;
   bool refreshDue_ = false;
+  bool reinitialize_ = false;  ///< refreshReinitializes() for this backend's settings and ranks
 };
 
 }  // namespace gphr
