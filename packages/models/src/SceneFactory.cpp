@@ -58,7 +58,7 @@ void sceneLinearSolverDefaults(const std::string& name, Teuchos::ParameterList& 
   // group (bench/fom_paper.sh pc, SWE 256^2, IMR, 80 steps: 5.1 s against 7.4 s on one rank, 2.6 s
   // against 5.4 s on two; GMRES per Newton 3.21 / 3.21 against 2.28 / 3.21; doc/design.md,
   // 'Preconditioner').
-  // The NLS keeps RILUK(1): AMESOS2 runs one rank 1.5-1.8x faster but, under the inexact Newton,
+  // The NLS keeps RILUK(1): AMESOS2 runs one rank 1.5-1.9x faster but, under the inexact Newton,
   // with an 8x larger AVF energy drift (doc/design.md, 'Preconditioner').
   if (name != "swe2d") return;
   const Teuchos::ParameterEntry& e = linearSolver.getEntry("preconditioner");

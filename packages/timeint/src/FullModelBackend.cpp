@@ -84,7 +84,7 @@ Teuchos::ParameterList FullModelBackend::preconditionerParameters(const Teuchos:
 // Ifpack2 13.2's Amesos2Wrapper, on a matrix of several ranks, copies its LocalFilter into a new
 // CrsMatrix in initialize() and compute() refactors that copy: with compute() alone every refresh
 // would factor the matrix of the first initialize() (here the identity), and GMRES ran as if
-// unpreconditioned (NLS n = 2048, AVF, 2 ranks: 333 GMRES per Newton, none's count, against 8.3
+// unpreconditioned (NLS n = 2048, AVF, 2 ranks: 333 GMRES per step, none's count, against 8.3
 // with RILUK). RILUK, ILUT and RELAXATION read the matrix's current values in compute().
 bool FullModelBackend::refreshReinitializes(const Teuchos::ParameterList& ls, int ranks) {
   return ranks > 1 && ls.get<std::string>("preconditioner") == "AMESOS2";
@@ -158,11 +158,12 @@ int FullModelBackend::solveNewton(const Vector& rhs, Vector& dx, double newtonRe
                "a linear solver (the NOX driver solves with Stratimikos)");
   // Inexact Newton: the solve stops once its residual is below forcing x newtonTolerance
   // (newtonRelative is that tolerance over ||rhs||), not at 'tolerance' relative whatever ||rhs||.
-  // `gphr run`, 1 rank, this VM: SWE 256^2 IMR with the lagged Jacobian, 80 steps, GMRES
-  // iterations per step 8.29 -> 3.70 at forcing 1e-3 (3.09 at 1e-2, 2.71 at 0.1), time stepping
-  // 5.8-7.4 -> 3.5-4.3 s, Newton iterations unchanged, the trajectory to 1e-12; NLS n = 2048, AVF,
-  // T = 2: relative energy drift 4.0e-13 with tight solves, 3.7e-13 at 1e-3, 1.3e-11 at 1e-2,
-  // 1.0e-10 at 0.1 (AVF conserves H to the Newton residual, which a loose solve leaves larger).
+  // `gphr run`, 1 rank, this VM: SWE 256^2 IMR with the lagged Jacobian, 80 steps, symmetric
+  // Gauss-Seidel (the SWE's sweep then), GMRES iterations per step 8.29 -> 3.70 at forcing 1e-3
+  // (3.09 at 1e-2, 2.71 at 0.1), time stepping 5.8-7.4 -> 3.5-4.3 s, Newton iterations unchanged,
+  // the trajectory to 1e-12; NLS n = 2048, AVF, T = 2: relative energy drift 4.0e-13 with tight
+  // solves, 3.7e-13 at 1e-3, 1.3e-11 at 1e-2, 1.0e-10 at 0.1 (AVF conserves H to the Newton
+  // residual, which a loose solve leaves larger).
   const double loose = std::min(kLoosestForcing, solver_->forcing * newtonRelative);
   const double wanted = solver_->forcing > 0.0 ? std::max(solver_->tolerance, loose) : solver_->tolerance;
   if (wanted != solver_->current) {  // Belos updates its status tests' tolerance alone
