@@ -14,7 +14,9 @@
 # compute seconds (CPU outside MPI calls: waits excluded, also when ranks outnumber the cores and
 # spin in MPI) as max and mean, CPU seconds per rank, peak resident memory per rank, and the
 # speed-up of wall and compute over the first rank count. The build cases' stages come from
-# gphr build's DIR/stages.csv; every case also has a whole-process row per rank (GPHR_PROCESS_CLOCKS),
+# gphr build's DIR/stages.csv (their MPI seconds split by MPI function, DIR/mpi_calls.csv, go to
+# OUT_CSV's -mpi.csv twin, and the largest rank count's leading functions are printed per stage:
+# where a stage waits); every case also has a whole-process row per rank (GPHR_PROCESS_CLOCKS),
 # fom a "time loop" row (summary.json t_online_s) and query a "queries" row (query_summary.json).
 # Environment: RANKS (default "1 2 4 8"), SIZE (issue | small), CASES (default "nls swe fom query"),
 # G (the gphr binary; default build/packages/driver/gphr), OUT_CSV (default
@@ -30,6 +32,7 @@ case $SIZE in issue|small) ;; *) echo "SIZE=$SIZE; allowed: issue, small" >&2; e
 [ -x "$G" ] || { echo "no gphr binary at '$G' (set G)" >&2; exit 2; }
 work=bench-out/scaling/$SIZE; mkdir -p "$work"
 OUT_CSV=${OUT_CSV:-bench-out/scaling/scaling-$SIZE.csv}
+MPI_CSV=${OUT_CSV%.csv}-mpi.csv
 cores=$(nproc)  # before OMP_NUM_THREADS is set: GNU nproc honours it
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
@@ -93,6 +96,7 @@ queries:
 YAML
 
 echo "case,size,ranks,rank,stage,wall_s,cpu_s,mpi_wall_s,mpi_cpu_s,compute_s,peak_rss_mb,sizes" > "$OUT_CSV.tmp"
+echo "case,size,ranks,rank,stage,call,calls,wall_s" > "$MPI_CSV.tmp"
 # rows CASE P SIZES FILE...: the CSV lines of FILE... (stages.csv format, header skipped) with the case columns.
 rows() {
   local c=$1 p=$2 s=$3; shift 3
@@ -114,6 +118,7 @@ for c in $CASES; do
           || { tail -20 "$d/log"; exit 1; }
         sizes=nls_sizes; [ $c = swe ] && sizes=swe_sizes
         rows "$c" "$p" "${!sizes}" "$d/art/stages.csv" "$d"/process.*
+        awk -v c="$c" -v z="$SIZE" -v p="$p" 'FNR > 1 {print c "," z "," p "," $0}' "$d/art/mpi_calls.csv" >> "$MPI_CSV.tmp"
         # on one rank, each training parameter's seconds from the progress lines (the cost model
         # deals them to rank groups as the training does)
         [ "$p" = 1 ] && awk -v c="$c" -v z="$SIZE" -v s="${!sizes}" \
@@ -143,9 +148,9 @@ for c in $CASES; do
     esac
   done
 done
-mv "$OUT_CSV.tmp" "$OUT_CSV"
+mv "$OUT_CSV.tmp" "$OUT_CSV"; mv "$MPI_CSV.tmp" "$MPI_CSV"
 
-python3 - "$OUT_CSV" "$cores" <<'PY'
+python3 - "$OUT_CSV" "$cores" "$MPI_CSV" <<'PY'
 import csv, sys
 from collections import OrderedDict
 rows = list(csv.DictReader(open(sys.argv[1]))); cores = int(sys.argv[2])
@@ -192,6 +197,19 @@ for case in OrderedDict.fromkeys(r["case"] for r in rows):
             if q: print(f"{p:>5} {'queries/s':<20} {64 / q[0]:>9.2f}")
     over = [p for p in ranks if p > cores]
     if over: print(f"      (oversubscribed on {cores} cores: {', '.join(map(str, over))} ranks)")
-print(f"\nCSV: {sys.argv[1]}; wall x, comp x: speed-up over {'the first rank count'} (wall: largest over ranks; "
+    # Where the largest rank count's stages spend their MPI seconds: per stage the three MPI
+    # functions with the most (mean over the ranks, and the largest rank's).
+    calls = [r for r in csv.DictReader(open(sys.argv[3])) if r["case"] == case and int(r["ranks"]) == max(ranks)]
+    if calls and max(ranks) > 1:
+        print(f"      MPI seconds by function on {max(ranks)} ranks (mean / max over the ranks):")
+        for st in OrderedDict.fromkeys(r["stage"] for r in calls):
+            per = {}
+            for r in calls:
+                if r["stage"] == st:
+                    per.setdefault(r["call"], []).append(float(r["wall_s"]))
+            top = sorted(per.items(), key=lambda kv: -sum(kv[1]))[:3]
+            text = ", ".join(f"{c[4:]} {sum(v) / max(ranks):.3f} / {max(v):.3f}" for c, v in top if max(v) >= 0.001)
+            if text: print(f"      {st:<20} {text}")
+print(f"\nCSV: {sys.argv[1]} (MPI by function: {sys.argv[3]}); wall x, comp x: speed-up over {'the first rank count'} (wall: largest over ranks; "
       "comp: the largest rank's compute seconds)")
 PY

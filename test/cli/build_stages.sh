@@ -5,7 +5,10 @@
 #  2. compute_s = cpu_s - mpi_cpu_s, and no MPI column exceeds its total (wall, cpu);
 #  3. the PMPI layer of the executable counts: every rank spent time inside MPI (the training's
 #     and the bases' reductions), so mpi_wall_s summed over a rank's stages is > 0;
-#  4. the console prints one line per stage.
+#  4. the console prints one line per stage;
+#  5. DIR/mpi_calls.csv splits each rank's and stage's mpi_wall_s by MPI function: its rows add up
+#     to stages.csv's column, every name is an MPI function, and the bases' tree reduction shows
+#     as point-to-point calls.
 # usage: build_stages.sh GPHR MPIEXEC
 set -u
 gphr=$1; mpi=$2
@@ -45,5 +48,27 @@ for r in (0, 1):
     # Zero would mean the PMPI layer is not linked or its symbols are not exported.
     assert mpi > 0, f"rank {r}: no time inside MPI in any stage"
 print("stages.csv ok")
+PY
+[ -f art/mpi_calls.csv ] || fail "no art/mpi_calls.csv"
+python3 - art/stages.csv art/mpi_calls.csv <<'PY' || fail "mpi_calls.csv: see above"
+import csv, sys
+stages = {(x["rank"], x["stage"]): float(x["mpi_wall_s"]) for x in csv.DictReader(open(sys.argv[1]))}
+rows = list(csv.reader(open(sys.argv[2])))
+assert rows[0] == ["rank", "stage", "call", "calls", "wall_s"], rows[0]
+split = {}
+for rank, stage, call, calls, wall in rows[1:]:
+    assert (rank, stage) in stages, f"{rank},{stage}: not a stage of stages.csv"
+    assert call.startswith("MPI_") and int(calls) > 0 and float(wall) >= 0, (rank, stage, call, calls, wall)
+    split.setdefault((rank, stage), []).append((call, float(wall)))
+for key, mpi in stages.items():
+    parts = split.get(key, [])
+    # Each figure is printed with 6 decimals: the rows' sum and the column agree to half a unit
+    # of the last digit per printed number.
+    assert abs(sum(w for _, w in parts) - mpi) <= 5e-7 * (len(parts) + 1), (key, mpi, parts)
+    assert len({c for c, _ in parts}) == len(parts), f"{key}: a function listed twice"
+# The basis' streaming POD on 2 ranks takes the tree route: the R factor goes from rank 1 to rank 0.
+assert any(c == "MPI_Send" for c, _ in split.get(("1", "basis"), [])), split.get(("1", "basis"))
+assert any(c == "MPI_Recv" for c, _ in split.get(("0", "basis"), [])), split.get(("0", "basis"))
+print("mpi_calls.csv ok")
 PY
 echo PASS

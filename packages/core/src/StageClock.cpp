@@ -13,6 +13,7 @@ namespace {
 // Constant-initialised (no dynamic initialiser), so the interposer's static initializer may
 // register before or after this file's static initialisation runs.
 std::atomic<MpiTimeSource> g_source{nullptr};
+std::atomic<const char* const*> g_callNames{nullptr};
 
 double seconds(const timespec& t) { return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec); }
 
@@ -21,6 +22,13 @@ double seconds(const timespec& t) { return static_cast<double>(t.tv_sec) + 1e-9 
 void setMpiTimeSource(MpiTimeSource source) { g_source.store(source); }
 
 bool mpiTimeAvailable() { return g_source.load() != nullptr; }
+
+void setMpiCallNames(const char* const* names) { g_callNames.store(names); }
+
+const char* mpiCallName(int kind) {
+  const char* const* names = g_callNames.load();
+  return names && kind >= 0 && kind < kMpiCallKinds ? names[kind] : nullptr;
+}
 
 MpiTime mpiTimeNow() {
   const MpiTimeSource source = g_source.load();
@@ -63,15 +71,24 @@ void StageClocks::end() {
   d.cpu = now.cpu - o.start.cpu;
   d.mpiWall = now.mpi.wall - o.start.mpi.wall;
   d.mpiCpu = now.mpi.cpu - o.start.mpi.cpu;
+  for (int k = 0; k < kMpiCallKinds; ++k) {
+    d.callWall[k] = now.mpi.callWall[k] - o.start.mpi.callWall[k];
+    d.callCount[k] = now.mpi.callCount[k] - o.start.mpi.callCount[k];
+  }
   StageTime& s = stages_[o.index];
   s.wall += d.wall - o.inner.wall;
   s.cpu += d.cpu - o.inner.cpu;
   s.mpiWall += d.mpiWall - o.inner.mpiWall;
   s.mpiCpu += d.mpiCpu - o.inner.mpiCpu;
+  for (int k = 0; k < kMpiCallKinds; ++k) {
+    s.callWall[k] += d.callWall[k] - o.inner.callWall[k];
+    s.callCount[k] += d.callCount[k] - o.inner.callCount[k];
+  }
   s.peakRssMb = now.peakRssMb;
   if (!open_.empty()) {
     StageTime& parent = open_.back().inner;
     parent.wall += d.wall, parent.cpu += d.cpu, parent.mpiWall += d.mpiWall, parent.mpiCpu += d.mpiCpu;
+    for (int k = 0; k < kMpiCallKinds; ++k) parent.callWall[k] += d.callWall[k], parent.callCount[k] += d.callCount[k];
   }
 }
 

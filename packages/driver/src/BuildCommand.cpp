@@ -3,7 +3,7 @@
 // and term-weight fits for every k and m of the pipeline, then the reduced-model file: per k the
 // parameter interpolant of L_r, f_r, c and the reference rows (doc/model-file.md), per stored
 // (method, k, m) its sample mesh. The full model is not evaluated. DIR/stages.csv: every rank's
-// clocks per stage (StageTable.hpp).
+// clocks per stage; DIR/mpi_calls.csv: their MPI time per MPI function (StageTable.hpp).
 #include <algorithm>
 #include <filesystem>
 #include <memory>
@@ -110,7 +110,10 @@ int runBuild(const std::string& configPath, const std::string& modelPath, const 
   std::vector<StageTime> stages = setup.stages();
   stages.insert(stages.end(), r.stages.begin(), r.stages.end());
   const StageTable table = gatherStages(comm, stages);
-  onRootAgreed(comm, "gphr build", [&] { writeTextFile(artifactsDir + "/stages.csv", table.csv()); });
+  onRootAgreed(comm, "gphr build", [&] {
+    writeTextFile(artifactsDir + "/stages.csv", table.csv());
+    writeTextFile(artifactsDir + "/mpi_calls.csv", table.mpiCallsCsv());
+  });
   if (comm->getRank() == 0) {
     printBuild(modelPath, r.data, r.seconds, comm->getSize());
     std::printf("%s", table.summary().c_str());

@@ -7,6 +7,10 @@
 // untimed. The executable exports these symbols (-Wl,--export-dynamic-symbol=MPI_*, see
 // packages/driver/CMakeLists.txt), so the shared libraries' calls resolve here too.
 //
+// Each wrapped function is a kind of its own (StageClock.hpp, MpiTime::callWall): its wall
+// nanoseconds and calls are added beside the totals, from the same clock readings, so that the
+// kinds add up to the totals; gphr build writes them per stage as DIR/mpi_calls.csv.
+//
 // Only the outermost call of a thread is counted (an MPI call made inside another, as MPI-IO
 // does, is not counted twice). CPU seconds are the calling thread's (CLOCK_THREAD_CPUTIME_ID),
 // so with several threads (gphr query --threads) the per-process sum is still the CPU spent
@@ -32,7 +36,15 @@
 namespace {
 
 std::atomic<long long> g_wallNs{0}, g_cpuNs{0}, g_calls{0};
+std::atomic<long long> g_kindNs[gphr::kMpiCallKinds], g_kindCalls[gphr::kMpiCallKinds];  // zero: static storage
+const char* g_kindNames[gphr::kMpiCallKinds];  // filled by the GPHR_TIMED definitions' initialisers
 thread_local int t_depth = 0;
+
+// Names kind `kind` (at static initialisation, one definition at a time); returns it.
+int nameKind(int kind, const char* name) {
+  g_kindNames[kind] = name;
+  return kind;
+}
 
 long long nanoseconds(clockid_t clock) {
   timespec t{};
@@ -45,32 +57,41 @@ gphr::MpiTime counters() {
   t.wall = 1e-9 * static_cast<double>(g_wallNs.load(std::memory_order_relaxed));
   t.cpu = 1e-9 * static_cast<double>(g_cpuNs.load(std::memory_order_relaxed));
   t.calls = g_calls.load(std::memory_order_relaxed);
+  for (int k = 0; k < gphr::kMpiCallKinds; ++k) {
+    t.callWall[k] = 1e-9 * static_cast<double>(g_kindNs[k].load(std::memory_order_relaxed));
+    t.callCount[k] = g_kindCalls[k].load(std::memory_order_relaxed);
+  }
   return t;
 }
 
-// Times one MPI call, if it is the thread's outermost.
+// Times one MPI call of kind `kind`, if it is the thread's outermost.
 class TimedCall {
  public:
-  TimedCall() : outer_(t_depth++ == 0) {
+  explicit TimedCall(int kind) : kind_(kind), outer_(t_depth++ == 0) {
     if (outer_) wall_ = nanoseconds(CLOCK_MONOTONIC), cpu_ = nanoseconds(CLOCK_THREAD_CPUTIME_ID);
   }
   ~TimedCall() {
     --t_depth;
     if (!outer_) return;
-    g_wallNs.fetch_add(nanoseconds(CLOCK_MONOTONIC) - wall_, std::memory_order_relaxed);
+    const long long wall = nanoseconds(CLOCK_MONOTONIC) - wall_;
+    g_wallNs.fetch_add(wall, std::memory_order_relaxed);
     g_cpuNs.fetch_add(nanoseconds(CLOCK_THREAD_CPUTIME_ID) - cpu_, std::memory_order_relaxed);
     g_calls.fetch_add(1, std::memory_order_relaxed);
+    g_kindNs[kind_].fetch_add(wall, std::memory_order_relaxed);
+    g_kindCalls[kind_].fetch_add(1, std::memory_order_relaxed);
   }
   TimedCall(const TimedCall&) = delete;
   TimedCall& operator=(const TimedCall&) = delete;
 
  private:
+  int kind_;
   bool outer_;
   long long wall_ = 0, cpu_ = 0;
 };
 
-// Registers the counters before main() runs (StageClock.cpp's registry is constant-initialised).
-const bool g_registered = (gphr::setMpiTimeSource(&counters), true);
+// Registers the counters and the kinds' names before main() runs (StageClock.cpp's registry is
+// constant-initialised; the names are filled in as the definitions below initialise, before main).
+const bool g_registered = (gphr::setMpiTimeSource(&counters), gphr::setMpiCallNames(g_kindNames), true);
 const long long g_startNs = nanoseconds(CLOCK_MONOTONIC);
 
 // GPHR_PROCESS_CLOCKS=PREFIX: this rank's whole-process line into PREFIX.RANK (see the top).
@@ -96,11 +117,16 @@ void writeProcessClocks() {
 
 }  // namespace
 
-// MPI_NAME(PARAMS) { PMPI_NAME(ARGS), timed }
-#define GPHR_TIMED(NAME, PARAMS, ARGS)   \
-  extern "C" int MPI_##NAME PARAMS {     \
-    const TimedCall timed;               \
-    return PMPI_##NAME ARGS;             \
+// MPI_NAME(PARAMS) { PMPI_NAME(ARGS), timed as a kind of its own }. __COUNTER__ numbers the
+// definitions 0, 1, ... from kFirstKind on.
+constexpr int kFirstKind = __COUNTER__ + 1;
+#define GPHR_TIMED(NAME, PARAMS, ARGS) GPHR_TIMED_KIND(NAME, PARAMS, ARGS, __COUNTER__ - kFirstKind)
+#define GPHR_TIMED_KIND(NAME, PARAMS, ARGS, KIND)                                      \
+  static_assert(KIND < gphr::kMpiCallKinds, "more MPI functions than gphr::kMpiCallKinds"); \
+  static const int g_kind_##NAME = nameKind(KIND, "MPI_" #NAME);                       \
+  extern "C" int MPI_##NAME PARAMS {                                                   \
+    const TimedCall timed(g_kind_##NAME);                                              \
+    return PMPI_##NAME ARGS;                                                           \
   }
 
 GPHR_TIMED(Allgather, (const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, int recvcount,
@@ -203,3 +229,4 @@ extern "C" int MPI_Finalize() {
 }
 
 #undef GPHR_TIMED
+#undef GPHR_TIMED_KIND

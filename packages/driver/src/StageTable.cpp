@@ -44,6 +44,16 @@ StageTable gatherStages(const RCP<const Comm>& comm, const std::vector<StageTime
   t.ranks = comm->getSize();
   std::vector<double> all(mine.size() * static_cast<size_t>(t.ranks));
   if (count > 0) Teuchos::gatherAll(*comm, count * kFields, mine.data(), static_cast<int>(all.size()), all.data());
+  // The per-function split of the MPI time: kMpiCallKinds wall seconds and as many call counts
+  // (exact in a double) per stage.
+  std::vector<double> calls, allCalls(static_cast<size_t>(count) * 2 * kMpiCallKinds * t.ranks);
+  for (const auto& s : stages) {
+    calls.insert(calls.end(), s.callWall.begin(), s.callWall.end());
+    for (long long c : s.callCount) calls.push_back(static_cast<double>(c));
+  }
+  if (count > 0)
+    Teuchos::gatherAll(*comm, static_cast<int>(calls.size()), calls.data(), static_cast<int>(allCalls.size()),
+                       allCalls.data());
   for (const auto& s : stages) t.names.push_back(s.name);
   for (int r = 0; r < t.ranks; ++r)
     for (int i = 0; i < count; ++i) {
@@ -54,6 +64,9 @@ StageTable gatherStages(const RCP<const Comm>& comm, const std::vector<StageTime
       StageTime s;
       s.name = t.names[i];
       s.wall = v[0], s.cpu = v[1], s.mpiWall = v[2], s.mpiCpu = v[3], s.peakRssMb = v[4];
+      const double* c = &allCalls[(static_cast<size_t>(r) * count + i) * 2 * kMpiCallKinds];
+      for (int k = 0; k < kMpiCallKinds; ++k)
+        s.callWall[k] = c[k], s.callCount[k] = static_cast<long long>(c[kMpiCallKinds + k]);
       t.rows.push_back(s);
     }
   return t;
@@ -69,6 +82,22 @@ std::string StageTable::csv() const {
                   s.mpiWall, s.mpiCpu, s.compute(), s.peakRssMb);
     out += buf;
   }
+  return out;
+}
+
+std::string StageTable::mpiCallsCsv() const {
+  std::string out = "rank,stage,call,calls,wall_s\n";
+  const size_t n = names.size();
+  for (size_t j = 0; j < rows.size(); ++j)
+    for (int k = 0; k < kMpiCallKinds; ++k) {
+      const StageTime& s = rows[j];
+      const char* call = mpiCallName(k);
+      if (!call || s.callCount[k] == 0) continue;
+      char buf[256];
+      std::snprintf(buf, sizeof buf, "%zu,%s,%s,%lld,%.6f\n", j / n, s.name.c_str(), call, s.callCount[k],
+                    s.callWall[k]);
+      out += buf;
+    }
   return out;
 }
 

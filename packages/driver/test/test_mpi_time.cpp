@@ -3,19 +3,33 @@
 //  - it registers itself: mpiTimeAvailable();
 //  - calls made by a shared library (Teuchos' MpiComm in libteuchoscomm.so, as Tpetra and HDF5
 //    make theirs) reach it: the executable exports its MPI_* symbols;
+//  - each MPI function is a kind of its own: the kinds' calls add up to the total exactly, their
+//    wall seconds to the total's up to the conversion from nanoseconds, and a barrier is counted
+//    as MPI_Barrier;
 //  - on 2 ranks, a rank that waits in a barrier for a sleeping one has that wait counted as time
-//    inside MPI, and its compute seconds (CPU outside MPI) stay near zero although it spun.
+//    inside MPI (and as MPI_Barrier's), and its compute seconds (CPU outside MPI) stay near zero
+//    although it spun.
 #include <gtest/gtest.h>
 
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_DefaultComm.hpp>
 
 #include <chrono>
+#include <cstring>
 #include <thread>
 
 #include "gphr/core/StageClock.hpp"
 
 using namespace gphr;
+
+namespace {
+// The interposer's kind of MPI function `name`, or -1.
+int kindOf(const char* name) {
+  for (int k = 0; k < kMpiCallKinds; ++k)
+    if (mpiCallName(k) && std::strcmp(mpiCallName(k), name) == 0) return k;
+  return -1;
+}
+}  // namespace
 
 TEST(MpiTime, InterposerRegistersAndCountsCallsFromSharedLibraries) {
   ASSERT_TRUE(mpiTimeAvailable());
@@ -30,6 +44,26 @@ TEST(MpiTime, InterposerRegistersAndCountsCallsFromSharedLibraries) {
   EXPECT_GE(after.calls - before.calls, 2);
   EXPECT_GE(after.wall, before.wall);
   EXPECT_GE(after.cpu, before.cpu);
+  // Exactly one MPI_Barrier; the allreduce is MPI_Allreduce (Teuchos might add calls of its own).
+  const int barrier = kindOf("MPI_Barrier"), allreduce = kindOf("MPI_Allreduce");
+  ASSERT_GE(barrier, 0);
+  ASSERT_GE(allreduce, 0);
+  EXPECT_EQ(after.callCount[barrier] - before.callCount[barrier], 1);
+  EXPECT_GE(after.callCount[allreduce] - before.callCount[allreduce], 1);
+  // The kinds split the totals: the same nanosecond differences are added to both, so the calls
+  // agree exactly and the seconds to the conversion of each sum (kMpiCallKinds + 1 roundings of
+  // at most 1e-16 relative each on totals of seconds: 1e-12 s is far above it and far below a call).
+  long long calls = 0;
+  double wall = 0.0;
+  for (int k = 0; k < kMpiCallKinds; ++k) {
+    calls += after.callCount[k];
+    wall += after.callWall[k];
+    if (!mpiCallName(k)) {
+      EXPECT_EQ(after.callCount[k], 0) << "kind " << k << " has no name but calls";
+    }
+  }
+  EXPECT_EQ(calls, after.calls);
+  EXPECT_NEAR(wall, after.wall, 1e-12 + 1e-14 * after.wall);
 }
 
 TEST(MpiTime, WaitInMpiIsNotCompute) {
@@ -50,6 +84,12 @@ TEST(MpiTime, WaitInMpiIsNotCompute) {
     // the only thing that shortens it.
     EXPECT_GE(w.mpiWall, sleep - 0.1);
     EXPECT_LE(w.mpiWall, w.wall);
+    // ... and it is the barrier's: the stage's one MPI_Barrier holds all but the clock reads'
+    // microseconds (no other MPI call is made inside the stage).
+    const int barrier = kindOf("MPI_Barrier");
+    ASSERT_GE(barrier, 0);
+    EXPECT_EQ(w.callCount[barrier], 1);
+    EXPECT_NEAR(w.callWall[barrier], w.mpiWall, 1e-9);
     // Outside MPI rank 0 only reads clocks: microseconds. 0.02 s leaves room for Open MPI's own
     // threads, which CLOCK_PROCESS_CPUTIME_ID counts; a wait not subtracted (Open MPI polls while
     // it waits) would show a large part of the 0.3 s here.

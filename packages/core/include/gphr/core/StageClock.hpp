@@ -10,16 +10,27 @@
 /// (packages/driver/src/MpiTimeInterposer.cpp): it registers its counters with
 /// setMpiTimeSource(). Libraries only read them; without the interposer mpiTimeAvailable() is false
 /// and the MPI columns read 0, so no library depends on it.
+#include <array>
 #include <string>
 #include <vector>
 
 namespace gphr {
+
+/// The most MPI functions the interposer may time one by one (it has a kind per function it wraps).
+constexpr int kMpiCallKinds = 64;
 
 /// Accumulated time inside MPI calls of this process (outermost calls only).
 struct MpiTime {
   double wall = 0.0;    ///< wall seconds
   double cpu = 0.0;     ///< CPU seconds of the calling threads
   long long calls = 0;  ///< calls counted
+  /// The same wall seconds and calls per MPI function (index: the function's kind, mpiCallName);
+  /// they add up to `wall` and `calls`, so a stage's MPI time can be told apart (a wait in a
+  /// receive, a collective write, a broadcast). Empty kinds stay 0.
+  /// @{
+  std::array<double, kMpiCallKinds> callWall{};
+  std::array<long long, kMpiCallKinds> callCount{};
+  /// @}
 };
 
 /// Reads the interposer's counters; thread-safe.
@@ -30,6 +41,13 @@ void setMpiTimeSource(MpiTimeSource source);
 
 /// Whether an interposer registered: false means the MPI columns are not measured (0).
 bool mpiTimeAvailable();
+
+/// Registers the names of the interposer's kinds: names[kind], "MPI_Recv" etc., nullptr where unused
+/// (an array of kMpiCallKinds that lives as long as the process).
+void setMpiCallNames(const char* const* names);
+
+/// The MPI function timed as `kind` (0 <= kind < kMpiCallKinds), or nullptr (no such kind, or no interposer).
+const char* mpiCallName(int kind);
 
 /// The counters now (all 0 without an interposer).
 MpiTime mpiTimeNow();
@@ -53,6 +71,11 @@ struct StageTime {
   double mpiWall = 0.0;    ///< wall seconds inside MPI calls
   double mpiCpu = 0.0;     ///< CPU seconds inside MPI calls
   double peakRssMb = 0.0;  ///< peak resident memory of the process at the stage's end, MB
+  /// mpiWall and the calls per MPI function (MpiTime::callWall, callCount)
+  /// @{
+  std::array<double, kMpiCallKinds> callWall{};
+  std::array<long long, kMpiCallKinds> callCount{};
+  /// @}
   /// CPU seconds outside MPI calls: the stage's own work, waits excluded.
   double compute() const { return cpu - mpiCpu; }
 };

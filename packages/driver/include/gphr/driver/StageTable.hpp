@@ -1,7 +1,8 @@
 #pragma once
 /// @file
-/// `gphr build`'s per-stage clocks of every rank (StageClock.hpp) as DIR/stages.csv and a short
-/// table on the console (doc/user-guide.md, "stages.csv"; bench/scaling.sh reads the file).
+/// `gphr build`'s per-stage clocks of every rank (StageClock.hpp) as DIR/stages.csv, their time
+/// inside MPI per MPI function as DIR/mpi_calls.csv, and a short table on the console
+/// (doc/user-guide.md, "stages.csv"; bench/scaling.sh reads both files).
 #include <string>
 #include <vector>
 
@@ -17,6 +18,9 @@ struct StageTable {
   std::vector<StageTime> rows;     ///< rank-major
   /// The CSV text: rank,stage,wall_s,cpu_s,mpi_wall_s,mpi_cpu_s,compute_s,peak_rss_mb.
   std::string csv() const;
+  /// The CSV text rank,stage,call,calls,wall_s: per rank and stage each MPI function it called
+  /// (mpi_wall_s split by function; empty without the PMPI interposer).
+  std::string mpiCallsCsv() const;
   /// One line per stage: max over ranks of wall and compute seconds, and of peak memory.
   std::string summary() const;
 };
