@@ -81,19 +81,25 @@ RCP<MultiVector> gradientDeimBasis(const SystemSet& systems,
   GPHR_REQUIRE(snapshotEvery >= 1, InputError, "gradient DEIM: snapshotEvery = ", snapshotEvery, " (need >= 1)");
   const auto& map = systems[0]->map();
   const bool projected = kind == GradientSnapshots::Projected;
-  StreamingPod pod(map, static_cast<int>(std::min<GO>(maxRank, map->getGlobalNumElements())), 64);
+  constexpr int kPodColumns = 64;  // per POD step
+  static_assert(kSnapshotReadColumns % kPodColumns == 0, "a read must end on a POD step");
+  StreamingPod pod(map, static_cast<int>(std::min<GO>(maxRank, map->getGlobalNumElements())), kPodColumns);
   Vector zero(map), g0(map);
   for (size_t j = 0; j < systems.size(); ++j) {
-    RCP<const MultiVector> Y = states.everyNth(j, static_cast<size_t>(snapshotEvery));  // only those states read
-    if (projected) Y = projectOnto(A, *Y);
-    const size_t used = Y->getNumVectors();
-    MultiVector G(map, used);
-    for (size_t c = 0; c < used; ++c) systems[j]->nonlinearGradient(*Y->getVector(c), *G.getVectorNonConst(c));
-    if (!projected) {  // minus grad N at the training system's state 0 (its y0)
-      systems[j]->nonlinearGradient(zero, g0);
-      for (size_t c = 0; c < used; ++c) G.getVectorNonConst(c)->update(-1.0, g0, 1.0);
+    if (!projected) systems[j]->nonlinearGradient(zero, g0);  // grad N at the training system's y0
+    const size_t every = static_cast<size_t>(snapshotEvery), usedInBlock = (states.numColumns(j) + every - 1) / every;
+    // Only the used states are read, kSnapshotReadColumns at a time (a multiple of the POD's
+    // columns per step, so its steps are those of the whole block).
+    for (size_t u0 = 0; u0 < usedInBlock; u0 += kSnapshotReadColumns) {
+      RCP<const MultiVector> Y = states.columns(j, every, u0, std::min(kSnapshotReadColumns, usedInBlock - u0));
+      if (projected) Y = projectOnto(A, *Y);
+      const size_t used = Y->getNumVectors();
+      MultiVector G(map, used);
+      for (size_t c = 0; c < used; ++c) systems[j]->nonlinearGradient(*Y->getVector(c), *G.getVectorNonConst(c));
+      if (!projected)  // minus grad N at y0
+        for (size_t c = 0; c < used; ++c) G.getVectorNonConst(c)->update(-1.0, g0, 1.0);
+      pod.add(G);
     }
-    pod.add(G);
   }
   GPHR_REQUIRE(pod.rank() > 0, InputError, "gradient DEIM: every grad N snapshot is zero (nothing to hyper-reduce)");
   if (singularValues) *singularValues = pod.singularValues();

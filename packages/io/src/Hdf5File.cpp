@@ -103,19 +103,31 @@ namespace {
 // Rows 0, every, 2 every, ... of `count`: how many.
 hsize_t everyNth(hsize_t count, hsize_t every) { return (count + every - 1) / every; }
 
-// File-space selection of this rank's entries of rows 0, every, ... of `count` states: columns
-// [a, a+m) and [n+a, n+a+m). HDF5 orders the selected elements row-major, which is the local layout
-// (q block then p block) of each state.
-void selectLocal(hid_t space, hsize_t count, hsize_t every, const PhaseSpace& ps) {
+// File-space selection of this rank's entries of `rows` states, rows first, first + every, ...:
+// columns [a, a+m) and [n+a, n+a+m). HDF5 orders the selected elements row-major, which is the
+// local layout (q block then p block) of each state.
+void selectLocal(hid_t space, hsize_t first, hsize_t every, hsize_t rows, const PhaseSpace& ps) {
   const hsize_t m = ps.numLocalDofs(), a = ps.firstLocalDof(), n = ps.n();
-  if (m == 0 || count == 0) {
+  if (m == 0 || rows == 0) {
     H5Sselect_none(space);
     return;
   }
-  hsize_t start[2] = {0, a}, stride[2] = {every, 1}, cnt[2] = {everyNth(count, every), m};
+  hsize_t start[2] = {first, a}, stride[2] = {every, 1}, cnt[2] = {rows, m};
   H5Sselect_hyperslab(space, H5S_SELECT_SET, start, stride, cnt, nullptr);
   start[1] = n + a;
   H5Sselect_hyperslab(space, H5S_SELECT_OR, start, stride, cnt, nullptr);
+}
+
+// X's columns, each rank's entries, row after row (the memory order of a row-major selection).
+std::vector<double> rowMajor(const MultiVector* X) {
+  const hsize_t local = X ? X->getLocalLength() : 0, count = X ? X->getNumVectors() : 0;
+  std::vector<double> buf(std::max<hsize_t>(count * local, 1));
+  if (X) {
+    auto v = X->getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (hsize_t j = 0; j < count; ++j)
+      for (hsize_t i = 0; i < local; ++i) buf[j * local + i] = v(i, j);
+  }
+  return buf;
 }
 }  // namespace
 
@@ -125,31 +137,45 @@ void Hdf5File::writeDistributed(const std::string& name, hsize_t count, hsize_t 
                                 const Selector& select) {
   GPHR_REQUIRE(!X || X->getNumVectors() == count, InputError, "writing dataset '", name, "': ", X ? X->getNumVectors() : 0,
                " columns for ", count, " rows");
-  const hsize_t local = X ? X->getLocalLength() : 0;
-  hsize_t dims[2] = {count, N};
+  createStates(name, count, N);
+  writeRows(name, 0, count, X, select);
+}
+
+void Hdf5File::createStates(const std::string& name, hsize_t count, hsize_t fullDim) {
+  hsize_t dims[2] = {count, fullDim};
   Id fspace{H5Screate_simple(2, dims, nullptr), H5Sclose};
   Id dset{H5Dcreate2(file_, name.c_str(), H5T_NATIVE_DOUBLE, fspace.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
           H5Dclose};
   check(dset.id, "creating dataset '" + name + "'", path_);
-  std::vector<double> buf(std::max<hsize_t>(count * local, 1));
-  if (X) {
-    auto v = X->getLocalViewHost(Tpetra::Access::ReadOnly);
-    for (hsize_t j = 0; j < count; ++j)
-      for (hsize_t i = 0; i < local; ++i) buf[j * local + i] = v(i, j);
-    select(fspace.id, count, 1);
-  } else {
+}
+
+void Hdf5File::writeRows(const std::string& name, hsize_t first, hsize_t rows, const MultiVector* X,
+                         const Selector& select) {
+  GPHR_REQUIRE(!X || X->getNumVectors() == rows, InputError, "writing dataset '", name, "': ",
+               X ? X->getNumVectors() : 0, " columns for ", rows, " rows");
+  Id dset{openDataset(name), H5Dclose};
+  Id fspace{H5Dget_space(dset.id), H5Sclose};
+  hsize_t dims[2] = {0, 0};
+  H5Sget_simple_extent_dims(fspace.id, dims, nullptr);
+  GPHR_REQUIRE(first + rows <= dims[0], InputError, "writing rows ", first, " to ", first + rows, " of dataset '", name,
+               "' of ", dims[0], " rows (allowed: within them)");
+  const hsize_t local = X ? X->getLocalLength() : 0;
+  const std::vector<double> buf = rowMajor(X);
+  if (X)
+    select(fspace.id, first, 1, rows);
+  else
     H5Sselect_none(fspace.id);
-  }
-  hsize_t mdims[1] = {std::max<hsize_t>(count * local, 1)};
+  hsize_t mdims[1] = {std::max<hsize_t>(rows * local, 1)};
   Id mspace{H5Screate_simple(1, mdims, nullptr), H5Sclose};
-  if (count * local == 0) H5Sselect_none(mspace.id);
+  if (rows * local == 0) H5Sselect_none(mspace.id);
   Id xfer{collectiveTransfer(), H5Pclose};
   check(H5Dwrite(dset.id, H5T_NATIVE_DOUBLE, mspace.id, fspace.id, xfer.id, buf.data()),
         "writing dataset '" + name + "'", path_);
 }
 
 RCP<MultiVector> Hdf5File::readDistributed(const std::string& name, const RCP<const Map>& map, hsize_t N,
-                                           const Selector& select, const char* what, hsize_t every) const {
+                                           const Selector& select, const char* what, hsize_t every, hsize_t first,
+                                           hsize_t columns) const {
   Id dset{openDataset(name), H5Dclose};
   Id fspace{H5Dget_space(dset.id), H5Sclose};
   hsize_t dims[2] = {0, 0};
@@ -159,9 +185,13 @@ RCP<MultiVector> Hdf5File::readDistributed(const std::string& name, const RCP<co
   GPHR_REQUIRE(dims[1] == N, InputError, "HDF5 file '", path_, "': dataset '", name, "' holds ", what,
                "s of size ", dims[1], " but the model has size ", N);
   GPHR_REQUIRE(every >= 1, InputError, "reading dataset '", name, "': every ", every, " th row; allowed: >= 1");
-  const hsize_t count = everyNth(dims[0], every), local = map->getNodeNumElements();
+  const hsize_t used = everyNth(dims[0], every);
+  GPHR_REQUIRE(first <= used && (columns == kAllRows || columns <= used - first), InputError, "reading dataset '",
+               name, "': ", columns == kAllRows ? std::string("all") : std::to_string(columns), " of its every-",
+               every, " rows from the ", first, "-th; allowed: within its ", used, " such rows");
+  const hsize_t count = columns == kAllRows ? used - first : columns, local = map->getNodeNumElements();
   std::vector<double> buf(std::max<hsize_t>(count * local, 1));
-  select(fspace.id, dims[0], every);
+  select(fspace.id, first * every, every, count);
   hsize_t mdims[1] = {std::max<hsize_t>(count * local, 1)};
   Id mspace{H5Screate_simple(1, mdims, nullptr), H5Sclose};
   if (count * local == 0) H5Sselect_none(mspace.id);
@@ -177,7 +207,7 @@ RCP<MultiVector> Hdf5File::readDistributed(const std::string& name, const RCP<co
 
 void Hdf5File::writeStates(const std::string& name, const MultiVector& states, const PhaseSpace& ps) {
   writeDistributed(name, states.getNumVectors(), ps.fullDim(), &states,
-                   [&](hid_t sp, hsize_t count, hsize_t every) { selectLocal(sp, count, every, ps); });
+                   [&](hid_t sp, hsize_t first, hsize_t every, hsize_t rows) { selectLocal(sp, first, every, rows, ps); });
 }
 
 void Hdf5File::writeStatesFrom(const std::string& name, hsize_t count, hsize_t fullDim, const MultiVector* states,
@@ -185,8 +215,17 @@ void Hdf5File::writeStatesFrom(const std::string& name, hsize_t count, hsize_t f
   GPHR_REQUIRE(!states == !groupSpace && (!groupSpace || static_cast<hsize_t>(groupSpace->fullDim()) == fullDim),
                InputError, "writing states '", name, "' from a rank group: states and phase space of ",
                groupSpace ? groupSpace->fullDim() : 0, " entries for states of ", fullDim, " (need both or neither)");
-  writeDistributed(name, count, fullDim, states,
-                   [&](hid_t sp, hsize_t c, hsize_t every) { selectLocal(sp, c, every, *groupSpace); });
+  createStates(name, count, fullDim);
+  writeStateRows(name, 0, count, states, groupSpace);
+}
+
+void Hdf5File::writeStateRows(const std::string& name, hsize_t first, hsize_t b, const MultiVector* states,
+                              const PhaseSpace* groupSpace) {
+  GPHR_REQUIRE(!states == !groupSpace, InputError, "writing states '", name,
+               "' from a rank group: states and phase space (need both or neither)");
+  writeRows(name, first, b, states, [&](hid_t sp, hsize_t f, hsize_t every, hsize_t rows) {
+    selectLocal(sp, f, every, rows, *groupSpace);
+  });
 }
 
 RCP<MultiVector> Hdf5File::readStates(const std::string& name, const PhaseSpace& ps) const {
@@ -194,19 +233,26 @@ RCP<MultiVector> Hdf5File::readStates(const std::string& name, const PhaseSpace&
 }
 
 RCP<MultiVector> Hdf5File::readStates(const std::string& name, const PhaseSpace& ps, hsize_t every) const {
-  return readDistributed(name, ps.map(), ps.fullDim(),
-                         [&](hid_t sp, hsize_t count, hsize_t ev) { selectLocal(sp, count, ev, ps); }, "state", every);
+  return readStates(name, ps, every, 0, kAllRows);
+}
+
+RCP<MultiVector> Hdf5File::readStates(const std::string& name, const PhaseSpace& ps, hsize_t every, hsize_t first,
+                                      hsize_t columns) const {
+  return readDistributed(
+      name, ps.map(), ps.fullDim(),
+      [&](hid_t sp, hsize_t f, hsize_t ev, hsize_t rows) { selectLocal(sp, f, ev, rows, ps); }, "state", every, first,
+      columns);
 }
 
 namespace {
-void selectContiguous(hid_t space, hsize_t count, hsize_t every, const Map& map) {
+void selectContiguous(hid_t space, hsize_t first, hsize_t every, hsize_t rows, const Map& map) {
   const hsize_t m = map.getNodeNumElements();
-  if (m == 0 || count == 0) {
+  if (m == 0 || rows == 0) {
     H5Sselect_none(space);
     return;
   }
-  hsize_t start[2] = {0, static_cast<hsize_t>(map.getMinGlobalIndex() - map.getMinAllGlobalIndex())};
-  hsize_t stride[2] = {every, 1}, cnt[2] = {everyNth(count, every), m};
+  hsize_t start[2] = {first, static_cast<hsize_t>(map.getMinGlobalIndex() - map.getMinAllGlobalIndex())};
+  hsize_t stride[2] = {every, 1}, cnt[2] = {rows, m};
   H5Sselect_hyperslab(space, H5S_SELECT_SET, start, stride, cnt, nullptr);
 }
 }  // namespace
@@ -215,13 +261,17 @@ void Hdf5File::writeColumns(const std::string& name, const MultiVector& X) {
   const Map& map = *X.getMap();
   GPHR_REQUIRE(map.isContiguous(), InputError, "writeColumns '", name, "': the map must be contiguous");
   writeDistributed(name, X.getNumVectors(), map.getGlobalNumElements(), &X,
-                   [&](hid_t sp, hsize_t count, hsize_t every) { selectContiguous(sp, count, every, map); });
+                   [&](hid_t sp, hsize_t first, hsize_t every, hsize_t rows) {
+                     selectContiguous(sp, first, every, rows, map);
+                   });
 }
 
 RCP<MultiVector> Hdf5File::readColumns(const std::string& name, const RCP<const Map>& map) const {
   GPHR_REQUIRE(map->isContiguous(), InputError, "readColumns '", name, "': the map must be contiguous");
   return readDistributed(name, map, map->getGlobalNumElements(),
-                         [&](hid_t sp, hsize_t count, hsize_t every) { selectContiguous(sp, count, every, *map); },
+                         [&](hid_t sp, hsize_t first, hsize_t every, hsize_t rows) {
+                           selectContiguous(sp, first, every, rows, *map);
+                         },
                          "row");
 }
 

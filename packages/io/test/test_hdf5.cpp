@@ -178,6 +178,57 @@ TEST(Hdf5, StatesWrittenByOneRankGroup) {
   }
 }
 
+// Column blocks (the training writes its states in blocks as it integrates them, the stages read
+// them back in blocks): rows written block by block by one rank group (writeStateRows, blocks of
+// 3, 3 and 1 of 7 states) equal the states bit for bit; a block read alone (readStates with a
+// first row and a count, every 1 and every 2) is those states bit for bit, and SnapshotSet::columns
+// of a held block the same columns; a range past the rows is refused by name.
+TEST(Hdf5, ColumnBlocksWrittenAndReadAlone) {
+  const auto world = test::comm();
+  const PhaseSpace ps(23, world);
+  MultiVector states(ps.map(), 7);
+  for (size_t j = 0; j < 7; ++j) test::fillByGid(*states.getVectorNonConst(j), 1.0 + j, j);
+  const RankGroups g(world, 1);  // groups of one rank: group 0 writes, the others take part with nothing
+  const PhaseSpace groupPs(23, g.sub());
+  MultiVector mine(groupPs.map(), 7);
+  for (size_t j = 0; j < 7; ++j) test::fillByGid(*mine.getVectorNonConst(j), 1.0 + j, j);
+  const std::string path = tmpName("blocks");
+  {
+    Hdf5File f(path, world, Hdf5File::Mode::Create);
+    f.createStates("traj", 7, 46);
+    for (size_t first : {0u, 3u, 6u}) {
+      const size_t b = std::min<size_t>(3, 7 - first);
+      const auto block = mine.subView(Teuchos::Range1D(first, first + b - 1));
+      const bool ours = g.group() == 0;
+      f.writeStateRows("traj", first, b, ours ? block.get() : nullptr, ours ? &groupPs : nullptr);
+    }
+    EXPECT_THROW(f.writeStateRows("traj", 6, 2, nullptr, nullptr), InputError);  // rows 6, 7 of 7
+  }
+  Hdf5File f(path, world, Hdf5File::Mode::ReadOnly);
+  const SnapshotSet held({rcp(new MultiVector(states, Teuchos::Copy))});
+  for (size_t every : {1u, 2u})
+    for (size_t first : {0u, 1u, 2u}) {
+      const size_t count = 2;
+      const auto back = f.readStates("traj", ps, every, first, count);
+      const auto view = held.columns(0, every, first, count);
+      ASSERT_EQ(back->getNumVectors(), count);
+      ASSERT_EQ(view->getNumVectors(), count);
+      for (size_t u = 0; u < count; ++u) {
+        Vector d(*back->getVector(u), Teuchos::Copy);
+        d.update(-1.0, *states.getVector((first + u) * every), 1.0);
+        EXPECT_EQ(d.normInf(), 0.0) << "every " << every << ", state " << (first + u) * every;
+        d.update(1.0, *view->getVector(u), -1.0, *back->getVector(u), 1.0);  // d = 0 + view - back
+        EXPECT_EQ(d.normInf(), 0.0) << "held view, every " << every << ", state " << (first + u) * every;
+      }
+    }
+  try {
+    f.readStates("traj", ps, 2, 3, 2);  // rows 6 and 8 of the 4 every-2nd rows 0, 2, 4, 6
+    ADD_FAILURE() << "a range past the rows was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("within its 4 such rows"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Hdf5, BadFilesNameTheFile) {
   PhaseSpace ps(10, test::comm());
   const std::string junk = tmpName("junk");

@@ -3,6 +3,7 @@
 #include <Teuchos_Time.hpp>
 #include <algorithm>
 #include <cstdio>
+#include <functional>
 #include <sstream>
 
 #include "gphr/core/Error.hpp"
@@ -68,6 +69,12 @@ namespace {
 
 std::string datasetName(size_t j) { return "/training/p" + std::to_string(j); }
 
+// A SnapshotSet::Loader's read of parameter j's states (count kAll: all from first on).
+RCP<const MultiVector> readBlock(const Hdf5File& f, size_t j, const PhaseSpace& ps, size_t every, size_t first,
+                                 size_t count) {
+  return f.readStates(datasetName(j), ps, every, first, count == SnapshotSet::kAll ? Hdf5File::kAllRows : count);
+}
+
 // One line per parameter on rank 0: which, reused or done, elapsed and an estimate of what is left.
 class Progress {
  public:
@@ -111,6 +118,34 @@ RCP<MultiVector> integrate(const SceneInstance& inst, const TrainingOptions& o) 
   return snaps;
 }
 
+// The same states handed to `store` kSnapshotReadColumns at a time, in order (the last block
+// shorter), so that a trajectory of any length holds one block: the sequence of block sizes is
+// blockSizes(columns), the same for every parameter.
+void integrateInBlocks(const SceneInstance& inst, const TrainingOptions& o,
+                       const std::function<void(const MultiVector&)>& store) {
+  FullModelIntegrator integ(inst.system, o.integrator);
+  const size_t columns = static_cast<size_t>(o.steps / o.snapshotEvery + 1);
+  MultiVector block(inst.system->map(), std::min(kSnapshotReadColumns, columns));
+  size_t filled = 0, stored = 0;
+  Vector y(*inst.y0, Teuchos::Copy);
+  integ.run(y, o.dt, o.steps, [&](long s, double, const Vector& ys, const StepReport&) {
+    if (s % o.snapshotEvery != 0) return;
+    Tpetra::deep_copy(*block.getVectorNonConst(filled), ys);
+    if (++filled < block.getNumVectors() && stored + filled < columns) return;
+    store(*block.subView(Teuchos::Range1D(0, filled - 1)));
+    stored += filled, filled = 0;
+  });
+  GPHR_REQUIRE(stored == columns, SolverError, "training: the integrator handed ", stored, " of the ", columns,
+               " states to store");
+}
+
+// The sizes of the blocks integrateInBlocks hands over for `columns` states.
+std::vector<size_t> blockSizes(size_t columns) {
+  std::vector<size_t> b;
+  for (size_t c0 = 0; c0 < columns; c0 += kSnapshotReadColumns) b.push_back(std::min(kSnapshotReadColumns, columns - c0));
+  return b;
+}
+
 }  // namespace
 
 // The group count G that finishes the P parameters soonest with ideal scaling inside a group:
@@ -146,54 +181,77 @@ std::vector<char> completeInCache(const ArtifactsCache& cache, size_t count, con
   return done;
 }
 
-// Parameter j's snapshots into the cache, sealed (collective over the cache's ranks). `write`
-// writes the dataset. Written when the parameter has finished, the file closed between
-// parameters: a kill during the next one leaves this one intact.
-template <class Write>
-void storeInCache(const ArtifactsCache& cache, size_t j, const std::vector<double>& mu, const std::string& key,
-                  Write&& write) {
-  const auto f = cache.open();
-  write(*f, datasetName(j));
-  f->setAttribute(datasetName(j), "parameters", mu);
-  ArtifactsCache::seal(*f, datasetName(j), key);
-}
-
-// Rank groups (TrainingOptions::groupSize), in rounds: in round t group g integrates parameter
-// t G + g on its own ranks; then each of the round's parameters goes into the cache in parameter
-// order, sealed, written by its group's ranks straight from their rows (Hdf5File::writeStatesFrom;
-// the other ranks select nothing). A round's parameters are kept when a later round is killed.
+// One round of the training with the cache (collective over the cache's ranks): group g of G
+// integrates parameter first + g on `groupComm` (the round's parameters not yet done) while the
+// round's datasets fill block by block: at each of integrateInBlocks' blocks every rank of the
+// world opens the file, each dataset's rows are written by its group's ranks straight from their
+// rows (Hdf5File::writeStateRows; the other ranks select nothing, and a group with nothing to
+// integrate takes part with nothing) and the file is closed. At the end the round's parameters are
+// sealed in parameter order. So the training holds one block of states per rank, not a
+// trajectory; the file is closed between blocks, and a kill loses the unfinished round only (its
+// datasets carry no complete mark). Returns how many of the round's parameters were integrated.
 // (Each group writing a parallel HDF5 file of its own, copied into the cache at the end, moved
 // every snapshot through the file system twice more: 0.68 s of the 7.4 s training of SWE 256^2 on
 // 16 ranks. Moving each parameter to all ranks first by a Tpetra Import, then writing, took
 // 0.18-0.27 s a parameter of SWE 256^2 on the 2-core VM's 2 ranks, against 0.06 s for the write;
 // Teuchos timers in a local build, not kept.)
-void trainInGroups(const Scene& scene, const RCP<const Comm>& comm, const TrainingOptions& o, const ArtifactsCache& cache,
-                   const std::string& key, const std::vector<char>& done, int size, const PhaseSpace& ps) {
-  const RankGroups split(comm, size);
-  const size_t groups = static_cast<size_t>(split.count()), count = o.parameters.size();
+size_t trainRound(const Scene& scene, const RCP<const Comm>& groupComm, int group, size_t G, size_t first,
+                  const TrainingOptions& o, const ArtifactsCache& cache, const std::string& key,
+                  const std::vector<char>& done, hsize_t fullDim) {
+  const size_t count = o.parameters.size(), last = std::min(first + G, count), j = first + static_cast<size_t>(group);
   const size_t columns = static_cast<size_t>(o.steps / o.snapshotEvery + 1);
-  Progress progress(o.progress && comm->getRank() == 0);
-  size_t computed = 0;
-  for (size_t first = 0; first < count; first += groups) {
-    const size_t j = first + static_cast<size_t>(split.group()), last = std::min(first + groups, count);
-    RCP<MultiVector> mine;
-    SceneInstance inst;  // the group's system: its phase space says which rows this rank writes
-    if (j < count && !done[j]) {
-      inst = scene.instantiate(split.sub(), o.parameters[j], true);
-      mine = integrate(inst, o);
-    }
-    for (size_t c = first; c < last; ++c) {
-      const bool ours = c == j && !mine.is_null();
-      if (!done[c])
-        storeInCache(cache, c, o.parameters[c], key, [&](Hdf5File& f, const std::string& name) {
-          f.writeStatesFrom(name, columns, static_cast<hsize_t>(ps.fullDim()), ours ? mine.get() : nullptr,
-                            ours ? &inst.system->space() : nullptr);
-        });
-      progress.done(c, count, done[c] ? computed : ++computed, o.parameters[c], done[c]);
+  std::vector<size_t> round;
+  for (size_t c = first; c < last; ++c)
+    if (!done[c]) round.push_back(c);
+  if (round.empty()) return 0;
+  {
+    const auto f = cache.open();
+    for (size_t c : round) {
+      ArtifactsCache::clear(*f, datasetName(c));
+      f->createStates(datasetName(c), columns, fullDim);
     }
   }
-  if (o.progress && comm->getRank() == 0)
-    std::fprintf(stderr, "[gphr] train: %zu groups of %d rank(s) integrated side by side\n", groups, size);
+  hsize_t row = 0;
+  auto store = [&](const MultiVector* block, const PhaseSpace* space, size_t b) {
+    const auto f = cache.open();
+    for (size_t c : round)
+      f->writeStateRows(datasetName(c), row, b, c == j ? block : nullptr, c == j ? space : nullptr);
+    row += b;
+  };
+  if (j < count && !done[j]) {
+    const SceneInstance inst = scene.instantiate(groupComm, o.parameters[j], true);
+    integrateInBlocks(inst, o, [&](const MultiVector& block) {
+      store(&block, &inst.system->space(), block.getNumVectors());
+    });
+  } else {
+    for (size_t b : blockSizes(columns)) store(nullptr, nullptr, b);
+  }
+  const auto f = cache.open();
+  for (size_t c : round) {
+    f->setAttribute(datasetName(c), "parameters", o.parameters[c]);
+    ArtifactsCache::seal(*f, datasetName(c), key);
+  }
+  return round.size();
+}
+
+// All parameters in rounds of G: rank groups (TrainingOptions::groupSize) when size < the ranks,
+// one group of all ranks (a round per parameter) otherwise.
+void trainInRounds(const Scene& scene, const RCP<const Comm>& comm, const TrainingOptions& o,
+                   const ArtifactsCache& cache, const std::string& key, const std::vector<char>& done, int size,
+                   const PhaseSpace& ps) {
+  const bool split = size < comm->getSize();
+  const RankGroups groups(comm, split ? size : comm->getSize());
+  const size_t G = static_cast<size_t>(groups.count()), count = o.parameters.size();
+  Progress progress(o.progress && comm->getRank() == 0);
+  size_t computed = 0;
+  for (size_t first = 0; first < count; first += G) {
+    trainRound(scene, split ? groups.sub() : comm, split ? groups.group() : 0, G, first, o, cache, key, done,
+               static_cast<hsize_t>(ps.fullDim()));
+    for (size_t c = first; c < std::min(first + G, count); ++c)
+      progress.done(c, count, done[c] ? computed : ++computed, o.parameters[c], done[c]);
+  }
+  if (split && o.progress && comm->getRank() == 0)
+    std::fprintf(stderr, "[gphr] train: %zu groups of %d rank(s) integrated side by side\n", G, size);
 }
 
 }  // namespace
@@ -227,26 +285,13 @@ TrainingResult runTraining(const Scene& scene, const RCP<const Comm>& comm, cons
                                    : trainingGroupSize(ps.fullDim(), comm->getSize(), static_cast<long>(count));
   res.groupSize = size;
   res.cachePath = cache->path();
-  if (size < comm->getSize()) {
-    trainInGroups(scene, comm, o, *cache, key, done, size, ps);
-  } else {
-    Progress progress(o.progress && comm->getRank() == 0);
-    size_t computed = 0;
-    for (size_t j = 0; j < count; ++j) {
-      if (!done[j]) {  // integrated before the file opens: a kill while integrating leaves it closed
-        const RCP<const MultiVector> snaps = integrate(scene.instantiate(comm, o.parameters[j], true), o);
-        storeInCache(*cache, j, o.parameters[j], key,
-                     [&](Hdf5File& f, const std::string& name) { f.writeStates(name, *snaps, ps); });
-      }
-      progress.done(j, count, done[j] ? computed : ++computed, o.parameters[j], done[j]);
-    }
-  }
+  trainInRounds(scene, comm, o, *cache, key, done, size, ps);
   const std::string path = cache->path();
   const RCP<const HamiltonianSystem> system = probe.system;  // keeps the phase space of the blocks
   res.snapshots = SnapshotSet(std::vector<size_t>(count, columns),
-                              [path, comm, system](size_t j, size_t every) -> RCP<const MultiVector> {
+                              [path, comm, system](size_t j, size_t every, size_t first, size_t n) {
                                 Hdf5File f(path, comm, Hdf5File::Mode::ReadOnly);
-                                return f.readStates(datasetName(j), system->space(), every);
+                                return readBlock(f, j, system->space(), every, first, n);
                               });
   res.seconds = clock.stop();
   return res;
@@ -260,9 +305,9 @@ SnapshotSet trainingSnapshotsOn(const TrainingResult& training, const RCP<const 
   for (size_t j = 0; j < training.snapshots.size(); ++j) columns.push_back(training.snapshots.numColumns(j));
   const std::string path = training.cachePath;
   const PhaseSpace* ps = &space;  // the caller's system keeps it alive while the set is used
-  return SnapshotSet(columns, [path, comm, ps](size_t j, size_t every) -> RCP<const MultiVector> {
+  return SnapshotSet(columns, [path, comm, ps](size_t j, size_t every, size_t first, size_t n) {
     Hdf5File f(path, comm, Hdf5File::Mode::ReadOnly);
-    return f.readStates(datasetName(j), *ps, every);
+    return readBlock(f, j, *ps, every, first, n);
   });
 }
 

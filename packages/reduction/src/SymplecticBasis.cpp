@@ -146,20 +146,22 @@ ReducedBasis computeSymplecticBasis(const SnapshotSet& snapshots, const PhaseSpa
     energy = resume->energy, first = resume->blocks;
   }
   for (size_t block = first; block < snapshots.size(); ++block) {
-    const RCP<const MultiVector> Ys = snapshots[block];
-    std::vector<double> nrm(Ys->getNumVectors());
-    Ys->norm2(Teuchos::ArrayView<double>(nrm));
-    for (double x : nrm) energy += x * x;
-    // One POD step per blockColumns snapshots: only that chunk's data is ever formed.
-    for (size_t c0 = 0; c0 < Ys->getNumVectors(); c0 += opt.blockColumns) {
-      const size_t c1 = std::min(Ys->getNumVectors(), c0 + static_cast<size_t>(opt.blockColumns));
+    // One POD step per blockColumns snapshots, and only those read (a streamed set reads them from
+    // the file): a trajectory of any length costs one chunk of memory.
+    const size_t columns = snapshots.numColumns(block);
+    for (size_t c0 = 0; c0 < columns; c0 += opt.blockColumns) {
+      const size_t c1 = std::min(columns, c0 + static_cast<size_t>(opt.blockColumns));
       const int b = static_cast<int>(c1 - c0);
+      const RCP<const MultiVector> Ys = snapshots.columns(block, 1, c0, c1 - c0);
+      std::vector<double> nrm(Ys->getNumVectors());
+      Ys->norm2(Teuchos::ArrayView<double>(nrm));
+      for (double x : nrm) energy += x * x;
       MultiVector X(pod.map(), 2 * b);
       auto x = X.getLocalViewHost(Tpetra::Access::OverwriteAll);
       auto sv = Ys->getLocalViewHost(Tpetra::Access::ReadOnly);
       for (int j = 0; j < b; ++j)
         for (LO i = 0; i < nl; ++i) {
-          const double q = sv(i, c0 + j), p = sv(nl + i, c0 + j);
+          const double q = sv(i, j), p = sv(nl + i, j);
           if (cot) {
             x(i, 2 * j) = q, x(i, 2 * j + 1) = p;  // [Q, P]
           } else {  // (d, J^T d) with d = [q; p], J^T d = [-p; q]

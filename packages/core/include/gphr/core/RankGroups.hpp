@@ -9,7 +9,7 @@
 ///             (a group fills the columns it computed and leaves the others zero: the sum is then
 ///             exact, x + 0 = x, and independent of the number of groups).
 /// (A group's training snapshots need no move: its ranks write them to the artifacts file
-/// themselves, Hdf5File::writeStatesFrom.)
+/// themselves, Hdf5File::writeStateRows.)
 /// Each is one Tpetra Import/Export between the world map and the group map's rows seen from the
 /// world communicator (a map that holds every row once per group).
 #include "gphr/core/Types.hpp"

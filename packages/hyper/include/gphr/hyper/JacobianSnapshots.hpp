@@ -5,6 +5,7 @@
 /// and the row kernel of G at y0_j + A z on this rank's own rows of G. Both offline rules that
 /// choose terms read their snapshots here: the DEIM basis (rows of J_G A, eq:snaps_JG) and the
 /// empirical quadrature (the same rows, read as each term's reduced gradient, and G_e - G_e(y0)).
+#include <algorithm>
 #include <limits>
 #include <type_traits>
 #include <utility>
@@ -65,9 +66,14 @@ long forEachJacobianSnapshotIn(const SystemSet& systems,
     ReducedRowKernel kernel(sys.nonlinearTermPtr(), ownedRowSample(sys, A), sys.space().comm());
     ReducedStateCache own;
     ReducedStateCache& zc = cache ? *cache : own;
-    if (zc.block != j || zc.Z.is_null()) {  // z = A^T y_s of the used states only (only they are read)
+    if (zc.block != j || zc.Z.is_null()) {  // z = A^T y_s of the used states only, read in column blocks
       zc.Z = rcp(new MultiVector(local, static_cast<size_t>(inBlock)));
-      zc.Z->multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, A, *states.everyNth(j, static_cast<size_t>(every)), 0.0);
+      for (size_t u0 = 0; u0 < static_cast<size_t>(inBlock); u0 += kSnapshotReadColumns) {
+        const size_t n = std::min(kSnapshotReadColumns, static_cast<size_t>(inBlock) - u0);
+        const RCP<const MultiVector> Y = states.columns(j, static_cast<size_t>(every), u0, n);
+        zc.Z->subViewNonConst(Teuchos::Range1D(u0, u0 + n - 1))
+            ->multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, A, *Y, 0.0);
+      }
       zc.block = j;
     }
     auto zv = zc.Z->getLocalViewHost(Tpetra::Access::ReadOnly);

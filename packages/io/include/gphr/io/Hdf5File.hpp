@@ -47,6 +47,19 @@ class Hdf5File {
   RCP<MultiVector> readStates(const std::string& name, const PhaseSpace& space) const;
   /// Rows 0, every, 2 every, ... of a (count, 2n) dataset of states: ceil(count / every) columns.
   RCP<MultiVector> readStates(const std::string& name, const PhaseSpace& space, hsize_t every) const;
+  static constexpr hsize_t kAllRows = static_cast<hsize_t>(-1);  ///< readStates' `columns`: all from `first` on.
+  /// `columns` of those rows from the `first`-th on (rows first every, (first + 1) every, ...): a
+  /// column block of the states, so that a reader holds a block, not the dataset. The range must lie
+  /// within the ceil(count / every) rows (an InputError naming it otherwise).
+  RCP<MultiVector> readStates(const std::string& name, const PhaseSpace& space, hsize_t every, hsize_t first,
+                              hsize_t columns) const;
+  /// Creates a (count, fullDim) dataset of states to be filled by writeStateRows (collective).
+  void createStates(const std::string& name, hsize_t count, hsize_t fullDim);
+  /// Rows first .. first + b - 1 of dataset `name` (createStates) from one rank group, as
+  /// writeStatesFrom writes all of them: the b columns of `states` on the group's ranks, null (with
+  /// `groupSpace`) on every other rank, which must still call (collective); `b` the same on all ranks.
+  void writeStateRows(const std::string& name, hsize_t first, hsize_t b, const MultiVector* states,
+                      const PhaseSpace* groupSpace);
   /// Columns of a MultiVector on a contiguous map (e.g.\ the DEIM basis on the rows of G) as rows
   /// of dataset `name` (shape (cols, global length)), each rank its own hyperslab.
   void writeColumns(const std::string& name, const MultiVector& X);
@@ -67,12 +80,18 @@ class Hdf5File {
   std::vector<double> doubleAttribute(const std::string& object, const std::string& key) const;
 
  private:
-  using Selector = std::function<void(hid_t, hsize_t count, hsize_t every)>;  // rows 0, every, ... of count
+  /// Selects this rank's entries of `rows` rows first, first + every, ... of a file space.
+  using Selector = std::function<void(hid_t space, hsize_t first, hsize_t every, hsize_t rows)>;
   /// A (count, N) dataset; this rank's entries the columns of X (none where X is null).
   void writeDistributed(const std::string& name, hsize_t count, hsize_t N, const MultiVector* X,
                         const Selector& select);
+  /// Rows first, first + 1, ... (X's columns) of an existing dataset, this rank's entries (none where X is null).
+  void writeRows(const std::string& name, hsize_t first, hsize_t rows, const MultiVector* X, const Selector& select);
+  /// Rows first every, (first + 1) every, ... (`columns` of them; all from `first` on if columns
+  /// is kAllRows) of a (count, N) dataset, distributed on `map`.
   RCP<MultiVector> readDistributed(const std::string& name, const RCP<const Map>& map, hsize_t N,
-                                   const Selector& select, const char* what, hsize_t every = 1) const;
+                                   const Selector& select, const char* what, hsize_t every = 1, hsize_t first = 0,
+                                   hsize_t columns = kAllRows) const;
   hid_t openDataset(const std::string& name) const;
   std::string path_;
   RCP<const Comm> comm_;

@@ -62,11 +62,13 @@ struct TrainingResult {
 };
 
 /// Integrates the scene at every training parameter. With `cache`, each parameter's snapshots are
-/// written as it finishes and released: the result streams them from the file. A parameter whose
-/// dataset is complete for `key` is not integrated again, one without its mark (killed
-/// mid-write) is redone, and a cache trained with another key is trained again. With a cache the
-/// ranks train in groups (TrainingOptions::groupSize); each group writes its parameters to a file
-/// of its own beside the cache, and all ranks then copy them into it. Collective over `comm`.
+/// written to it while they are integrated, kSnapshotReadColumns states at a time, so the training
+/// holds one such block per rank however long the trajectory; the result streams them from the
+/// file. A parameter whose dataset is complete for `key` is not integrated again, one without its
+/// mark (killed mid-way) is redone, and a cache trained with another key is trained again. With a
+/// cache the ranks train in groups (TrainingOptions::groupSize), a round of parameters side by
+/// side, each group's ranks writing their own rows of its parameter (Hdf5File::writeStateRows).
+/// Collective over `comm`.
 TrainingResult runTraining(const Scene& scene, const RCP<const Comm>& comm, const TrainingOptions& options,
                            const ArtifactsCache* cache = nullptr, const std::string& key = "");
 
