@@ -1,5 +1,6 @@
 #include "gphr/offline/Training.hpp"
 
+#include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_Time.hpp>
 #include <algorithm>
 #include <cstdio>
@@ -181,6 +182,21 @@ std::vector<char> completeInCache(const ArtifactsCache& cache, size_t count, con
   return done;
 }
 
+// Throws on every rank of `world` when the full model failed on any (`failure` non-empty there,
+// at parameter j of count): the failure of the lowest such rank, with its parameter, broadcast.
+void agreeOnFailure(const Comm& world, const std::string& failure, size_t j, size_t count) {
+  const int mine = failure.empty() ? world.getSize() : world.getRank();
+  int from = 0;
+  Teuchos::reduceAll(world, Teuchos::REDUCE_MIN, mine, Teuchos::outArg(from));
+  if (from == world.getSize()) return;
+  long which = static_cast<long>(j), length = static_cast<long>(failure.size());
+  Teuchos::broadcast(world, from, Teuchos::outArg(which));
+  Teuchos::broadcast(world, from, Teuchos::outArg(length));
+  std::string text = world.getRank() == from ? failure : std::string(static_cast<size_t>(length), ' ');
+  if (length > 0) Teuchos::broadcast(world, from, static_cast<int>(length), &text[0]);
+  throw SolverError(detail::concat("training parameter ", which + 1, " of ", count, ": the full model failed: ", text));
+}
+
 // One round of the training with the cache (collective over the cache's ranks): group g of G
 // integrates parameter first + g on `groupComm` (the round's parameters not yet done) while the
 // round's datasets fill block by block: at each of integrateInBlocks' blocks every rank of the
@@ -189,21 +205,24 @@ std::vector<char> completeInCache(const ArtifactsCache& cache, size_t count, con
 // integrate takes part with nothing) and the file is closed. At the end the round's parameters are
 // sealed in parameter order. So the training holds one block of states per rank, not a
 // trajectory; the file is closed between blocks, and a kill loses the unfinished round only (its
-// datasets carry no complete mark). Returns how many of the round's parameters were integrated.
+// datasets carry no complete mark). A group whose full model fails (a SolverError: Newton did not
+// converge) stops integrating but still takes part in the round's remaining block writes, and all
+// ranks then agree on the failure and throw it, naming the parameter: no group is left waiting in
+// a collective write for one that stopped.
 // (Each group writing a parallel HDF5 file of its own, copied into the cache at the end, moved
 // every snapshot through the file system twice more: 0.68 s of the 7.4 s training of SWE 256^2 on
 // 16 ranks. Moving each parameter to all ranks first by a Tpetra Import, then writing, took
 // 0.18-0.27 s a parameter of SWE 256^2 on the 2-core VM's 2 ranks, against 0.06 s for the write;
 // Teuchos timers in a local build, not kept.)
-size_t trainRound(const Scene& scene, const RCP<const Comm>& groupComm, int group, size_t G, size_t first,
-                  const TrainingOptions& o, const ArtifactsCache& cache, const std::string& key,
-                  const std::vector<char>& done, hsize_t fullDim) {
+void trainRound(const Scene& scene, const RCP<const Comm>& groupComm, int group, size_t G, size_t first,
+                const TrainingOptions& o, const ArtifactsCache& cache, const std::string& key,
+                const std::vector<char>& done, hsize_t fullDim) {
   const size_t count = o.parameters.size(), last = std::min(first + G, count), j = first + static_cast<size_t>(group);
   const size_t columns = static_cast<size_t>(o.steps / o.snapshotEvery + 1);
   std::vector<size_t> round;
   for (size_t c = first; c < last; ++c)
     if (!done[c]) round.push_back(c);
-  if (round.empty()) return 0;
+  if (round.empty()) return;
   {
     const auto f = cache.open();
     for (size_t c : round) {
@@ -218,20 +237,27 @@ size_t trainRound(const Scene& scene, const RCP<const Comm>& groupComm, int grou
       f->writeStateRows(datasetName(c), row, b, c == j ? block : nullptr, c == j ? space : nullptr);
     row += b;
   };
+  size_t stored = 0;    // blocks this rank's group stored
+  std::string failure;  // its full model's SolverError, if any
   if (j < count && !done[j]) {
     const SceneInstance inst = scene.instantiate(groupComm, o.parameters[j], true);
-    integrateInBlocks(inst, o, [&](const MultiVector& block) {
-      store(&block, &inst.system->space(), block.getNumVectors());
-    });
-  } else {
-    for (size_t b : blockSizes(columns)) store(nullptr, nullptr, b);
+    try {
+      integrateInBlocks(inst, o, [&](const MultiVector& block) {
+        store(&block, &inst.system->space(), block.getNumVectors());
+        ++stored;
+      });
+    } catch (const SolverError& e) {
+      failure = e.what();
+    }
   }
+  const std::vector<size_t> sizes = blockSizes(columns);
+  for (size_t b = stored; b < sizes.size(); ++b) store(nullptr, nullptr, sizes[b]);  // nothing (more) of ours
+  agreeOnFailure(*cache.comm(), failure, j, o.parameters.size());
   const auto f = cache.open();
   for (size_t c : round) {
     f->setAttribute(datasetName(c), "parameters", o.parameters[c]);
     ArtifactsCache::seal(*f, datasetName(c), key);
   }
-  return round.size();
 }
 
 // All parameters in rounds of G: rank groups (TrainingOptions::groupSize) when size < the ranks,

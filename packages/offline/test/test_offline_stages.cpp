@@ -375,6 +375,37 @@ TEST(Training, TheStagesAfterItHoldOneColumnBlockAtATime) {
       << "states of one parameter are " << heldExtra << " B on this rank";
 }
 
+// A training parameter whose full model fails (Newton: 4 iterations at most, tolerance 3e-13, dt =
+// 0.5: after its first step's 4 iterations eps = 0.9 is at a residual of 1.7e-14 and eps = 1.1 at
+// 6.5e-12, a factor of ~20 on either side of the tolerance) ends the training on every rank with
+// one SolverError naming it, in groups of one rank too: the other groups, which finish, are not
+// left waiting in a block write for the group that stopped (they were, before: a hang).
+TEST(Training, AFailedParameterEndsItOnEveryRank) {
+  auto comm = Tpetra::getDefaultComm();
+  TempDir dir;
+  const Nls1d scene(64);
+  TrainingOptions o = smallTraining();
+  o.parameters = {{0.9}, {1.1}};
+  o.dt = 0.5;
+  o.steps = 1;
+  o.snapshotEvery = 1;
+  o.groupSize = 1;
+  o.integrator.set("maxNewtonIterations", 4);
+  o.integrator.set("newtonTolerance", 3e-13);
+  const ArtifactsCache cache(dir.file("fail.h5"), comm, scene.name(), 128);
+  try {
+    runTraining(scene, comm, o, &cache, "key");
+    ADD_FAILURE() << "the training of a parameter whose Newton fails went through";
+  } catch (const SolverError& e) {
+    EXPECT_NE(std::string(e.what()).find("training parameter 2 of 2: the full model failed: Newton did not converge"),
+              std::string::npos)
+        << e.what();
+  }
+  int everyRank = 1, all = 0;  // every rank got here: none is still waiting
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, everyRank, Teuchos::outArg(all));
+  EXPECT_EQ(all, comm->getSize());
+}
+
 // The peak of the heap in use (malloc's bytes, both from its arenas and mmap'ed) over `work`,
 // above the heap before it: a thread samples it every 0.2 ms. A block of states held for the
 // whole integration (seconds) is seen by thousands of samples.
