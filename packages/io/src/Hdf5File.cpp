@@ -6,6 +6,7 @@
 #include <cstring>
 #include <cerrno>
 #include <filesystem>
+#include <utility>
 
 #include "gphr/core/Error.hpp"
 
@@ -118,6 +119,9 @@ void selectLocal(hid_t space, hsize_t first, hsize_t every, hsize_t rows, const 
   H5Sselect_hyperslab(space, H5S_SELECT_OR, start, stride, cnt, nullptr);
 }
 
+// A MultiVector's host view, read-only (kept alive while HDF5 reads from it).
+using HostView = decltype(std::declval<const MultiVector&>().getLocalViewHost(Tpetra::Access::ReadOnly));
+
 // X's columns, each rank's entries, row after row (the memory order of a row-major selection).
 std::vector<double> rowMajor(const MultiVector* X) {
   const hsize_t local = X ? X->getLocalLength() : 0, count = X ? X->getNumVectors() : 0;
@@ -160,7 +164,18 @@ void Hdf5File::writeRows(const std::string& name, hsize_t first, hsize_t rows, c
   GPHR_REQUIRE(first + rows <= dims[0], InputError, "writing rows ", first, " to ", first + rows, " of dataset '", name,
                "' of ", dims[0], " rows (allowed: within them)");
   const hsize_t local = X ? X->getLocalLength() : 0;
-  const std::vector<double> buf = rowMajor(X);
+  // Columns that lie back to back (constant stride = the local rows) are already in the
+  // selection's order, row after row: HDF5 takes them where they are; others go through a copy.
+  std::vector<double> copy;
+  HostView view;
+  const double* data = nullptr;
+  if (X && rows * local > 0 && X->isConstantStride() && (rows == 1 || X->getStride() == local)) {
+    view = X->getLocalViewHost(Tpetra::Access::ReadOnly);
+    data = view.data();
+  } else {
+    copy = rowMajor(X);
+    data = copy.data();
+  }
   if (X)
     select(fspace.id, first, 1, rows);
   else
@@ -169,8 +184,8 @@ void Hdf5File::writeRows(const std::string& name, hsize_t first, hsize_t rows, c
   Id mspace{H5Screate_simple(1, mdims, nullptr), H5Sclose};
   if (rows * local == 0) H5Sselect_none(mspace.id);
   Id xfer{collectiveTransfer(), H5Pclose};
-  check(H5Dwrite(dset.id, H5T_NATIVE_DOUBLE, mspace.id, fspace.id, xfer.id, buf.data()),
-        "writing dataset '" + name + "'", path_);
+  check(H5Dwrite(dset.id, H5T_NATIVE_DOUBLE, mspace.id, fspace.id, xfer.id, data), "writing dataset '" + name + "'",
+        path_);
 }
 
 RCP<MultiVector> Hdf5File::readDistributed(const std::string& name, const RCP<const Map>& map, hsize_t N,
@@ -190,18 +205,22 @@ RCP<MultiVector> Hdf5File::readDistributed(const std::string& name, const RCP<co
                name, "': ", columns == kAllRows ? std::string("all") : std::to_string(columns), " of its every-",
                every, " rows from the ", first, "-th; allowed: within its ", used, " such rows");
   const hsize_t count = columns == kAllRows ? used - first : columns, local = map->getNodeNumElements();
-  std::vector<double> buf(std::max<hsize_t>(count * local, 1));
   select(fspace.id, first * every, every, count);
   hsize_t mdims[1] = {std::max<hsize_t>(count * local, 1)};
   Id mspace{H5Screate_simple(1, mdims, nullptr), H5Sclose};
   if (count * local == 0) H5Sselect_none(mspace.id);
   Id xfer{collectiveTransfer(), H5Pclose};
-  check(H5Dread(dset.id, H5T_NATIVE_DOUBLE, mspace.id, fspace.id, xfer.id, buf.data()),
-        "reading dataset '" + name + "' (truncated file?)", path_);
   auto out = rcp(new MultiVector(map, std::max<hsize_t>(count, 1)));
   auto v = out->getLocalViewHost(Tpetra::Access::OverwriteAll);
-  for (hsize_t j = 0; j < count; ++j)
-    for (hsize_t i = 0; i < local; ++i) v(i, j) = buf[j * local + i];
+  // The selection's order (row after row) is the columns' when they lie back to back: read into
+  // the MultiVector itself; otherwise through a copy.
+  const bool inPlace = count * local > 0 && out->isConstantStride() && (count == 1 || out->getStride() == local);
+  std::vector<double> buf(inPlace ? 1 : std::max<hsize_t>(count * local, 1));
+  check(H5Dread(dset.id, H5T_NATIVE_DOUBLE, mspace.id, fspace.id, xfer.id, inPlace ? v.data() : buf.data()),
+        "reading dataset '" + name + "' (truncated file?)", path_);
+  if (!inPlace)
+    for (hsize_t j = 0; j < count; ++j)
+      for (hsize_t i = 0; i < local; ++i) v(i, j) = buf[j * local + i];
   return out;
 }
 
