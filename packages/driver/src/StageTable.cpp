@@ -88,9 +88,9 @@ std::string StageTable::csv() const {
 std::string StageTable::mpiCallsCsv() const {
   std::string out = "rank,stage,call,calls,wall_s\n";
   const size_t n = names.size();
-  for (size_t j = 0; j < rows.size(); ++j)
+  for (size_t j = 0; j < rows.size(); ++j) {
+    const StageTime& s = rows[j];
     for (int k = 0; k < kMpiCallKinds; ++k) {
-      const StageTime& s = rows[j];
       const char* call = mpiCallName(k);
       if (!call || s.callCount[k] == 0) continue;
       char buf[256];
@@ -98,6 +98,7 @@ std::string StageTable::mpiCallsCsv() const {
                     s.callWall[k]);
       out += buf;
     }
+  }
   return out;
 }
 

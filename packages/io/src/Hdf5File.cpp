@@ -154,7 +154,7 @@ void Hdf5File::createStates(const std::string& name, hsize_t count, hsize_t full
 }
 
 void Hdf5File::writeRows(const std::string& name, hsize_t first, hsize_t rows, const MultiVector* X,
-                         const Selector& select) {
+                         const Selector& select, hsize_t width) {
   GPHR_REQUIRE(!X || X->getNumVectors() == rows, InputError, "writing dataset '", name, "': ",
                X ? X->getNumVectors() : 0, " columns for ", rows, " rows");
   Id dset{openDataset(name), H5Dclose};
@@ -163,6 +163,8 @@ void Hdf5File::writeRows(const std::string& name, hsize_t first, hsize_t rows, c
   H5Sget_simple_extent_dims(fspace.id, dims, nullptr);
   GPHR_REQUIRE(first + rows <= dims[0], InputError, "writing rows ", first, " to ", first + rows, " of dataset '", name,
                "' of ", dims[0], " rows (allowed: within them)");
+  GPHR_REQUIRE(width == 0 || width == dims[1], InputError, "writing states of ", width, " entries into dataset '", name,
+               "' of states of ", dims[1]);
   const hsize_t local = X ? X->getLocalLength() : 0;
   // Columns that lie back to back (constant stride = the local rows) are already in the
   // selection's order, row after row: HDF5 takes them where they are; others go through a copy.
@@ -229,22 +231,14 @@ void Hdf5File::writeStates(const std::string& name, const MultiVector& states, c
                    [&](hid_t sp, hsize_t first, hsize_t every, hsize_t rows) { selectLocal(sp, first, every, rows, ps); });
 }
 
-void Hdf5File::writeStatesFrom(const std::string& name, hsize_t count, hsize_t fullDim, const MultiVector* states,
-                               const PhaseSpace* groupSpace) {
-  GPHR_REQUIRE(!states == !groupSpace && (!groupSpace || static_cast<hsize_t>(groupSpace->fullDim()) == fullDim),
-               InputError, "writing states '", name, "' from a rank group: states and phase space of ",
-               groupSpace ? groupSpace->fullDim() : 0, " entries for states of ", fullDim, " (need both or neither)");
-  createStates(name, count, fullDim);
-  writeStateRows(name, 0, count, states, groupSpace);
-}
-
 void Hdf5File::writeStateRows(const std::string& name, hsize_t first, hsize_t b, const MultiVector* states,
                               const PhaseSpace* groupSpace) {
   GPHR_REQUIRE(!states == !groupSpace, InputError, "writing states '", name,
                "' from a rank group: states and phase space (need both or neither)");
-  writeRows(name, first, b, states, [&](hid_t sp, hsize_t f, hsize_t every, hsize_t rows) {
-    selectLocal(sp, f, every, rows, *groupSpace);
-  });
+  writeRows(
+      name, first, b, states,
+      [&](hid_t sp, hsize_t f, hsize_t every, hsize_t rows) { selectLocal(sp, f, every, rows, *groupSpace); },
+      groupSpace ? static_cast<hsize_t>(groupSpace->fullDim()) : 0);
 }
 
 RCP<MultiVector> Hdf5File::readStates(const std::string& name, const PhaseSpace& ps) const {

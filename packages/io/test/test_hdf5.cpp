@@ -140,7 +140,7 @@ TEST(Hdf5, EveryNthStateReadAlone) {
   EXPECT_THROW(f.readStates("traj", ps, 0), InputError);
 }
 
-// A rank group's states written by its own ranks (writeStatesFrom; the training's groups): read
+// A rank group's states written by its own ranks (writeStateRows; the training's groups): read
 // back on all ranks they are the group's states bit for bit, for every group of every group size
 // (each group's entries carry its number, so a row written by the wrong group shows).
 TEST(Hdf5, StatesWrittenByOneRankGroup) {
@@ -160,9 +160,11 @@ TEST(Hdf5, StatesWrittenByOneRankGroup) {
       Hdf5File f(path, world, Hdf5File::Mode::Create);
       for (int from = 0; from < g.count(); ++from) {
         const bool ours = g.group() == from;
-        f.writeStatesFrom("g" + std::to_string(from), count, 46, ours ? &mine : nullptr, ours ? &groupPs : nullptr);
+        f.createStates("g" + std::to_string(from), count, 46);
+        f.writeStateRows("g" + std::to_string(from), 0, count, ours ? &mine : nullptr, ours ? &groupPs : nullptr);
       }
-      EXPECT_THROW(f.writeStatesFrom("bad", count, 46, &mine, nullptr), InputError);
+      f.createStates("bad", count, 46);
+      EXPECT_THROW(f.writeStateRows("bad", 0, count, &mine, nullptr), InputError);
     }
     Hdf5File f(path, world, Hdf5File::Mode::ReadOnly);
     for (int from = 0; from < g.count(); ++from) {

@@ -37,12 +37,6 @@ class Hdf5File {
 
   /// States: columns of `states` (vectors on space.map()) as rows of dataset `name`.
   void writeStates(const std::string& name, const MultiVector& states, const PhaseSpace& space);
-  /// States written by one rank group (collective over the file's ranks): `count` states of
-  /// `fullDim` entries, the columns of `states` on the ranks of the group that integrated them
-  /// (`groupSpace` its phase space, whose dofs are the world's, split over the group's ranks), null
-  /// (both) on every other rank. The same dataset as writeStates() of those states moved to all ranks.
-  void writeStatesFrom(const std::string& name, hsize_t count, hsize_t fullDim, const MultiVector* states,
-                       const PhaseSpace* groupSpace);
   /// The states written by writeStates(), distributed on space.map().
   RCP<MultiVector> readStates(const std::string& name, const PhaseSpace& space) const;
   /// Rows 0, every, 2 every, ... of a (count, 2n) dataset of states: ceil(count / every) columns.
@@ -55,9 +49,11 @@ class Hdf5File {
                               hsize_t columns) const;
   /// Creates a (count, fullDim) dataset of states to be filled by writeStateRows (collective).
   void createStates(const std::string& name, hsize_t count, hsize_t fullDim);
-  /// Rows first .. first + b - 1 of dataset `name` (createStates) from one rank group, as
-  /// writeStatesFrom writes all of them: the b columns of `states` on the group's ranks, null (with
-  /// `groupSpace`) on every other rank, which must still call (collective); `b` the same on all ranks.
+  /// Rows first .. first + b - 1 of dataset `name` (createStates), written by one rank group
+  /// (collective over the file's ranks): the b columns of `states` on the ranks of the group that
+  /// integrated them (`groupSpace` its phase space, whose dofs are the world's, split over the
+  /// group's ranks), null (both) on every other rank, which must still call; `b` the same on all
+  /// ranks. The same rows as writeStates() of those states moved to all ranks.
   void writeStateRows(const std::string& name, hsize_t first, hsize_t b, const MultiVector* states,
                       const PhaseSpace* groupSpace);
   /// Columns of a MultiVector on a contiguous map (e.g.\ the DEIM basis on the rows of G) as rows
@@ -85,8 +81,10 @@ class Hdf5File {
   /// A (count, N) dataset; this rank's entries the columns of X (none where X is null).
   void writeDistributed(const std::string& name, hsize_t count, hsize_t N, const MultiVector* X,
                         const Selector& select);
-  /// Rows first, first + 1, ... (X's columns) of an existing dataset, this rank's entries (none where X is null).
-  void writeRows(const std::string& name, hsize_t first, hsize_t rows, const MultiVector* X, const Selector& select);
+  /// Rows first, first + 1, ... (X's columns) of an existing dataset, this rank's entries (none where X is null);
+  /// `width`, when not 0, the row length X's selection expects (an InputError where the dataset's differs).
+  void writeRows(const std::string& name, hsize_t first, hsize_t rows, const MultiVector* X, const Selector& select,
+                 hsize_t width = 0);
   /// Rows first every, (first + 1) every, ... (`columns` of them; all from `first` on if columns
   /// is kAllRows) of a (count, N) dataset, distributed on `map`.
   RCP<MultiVector> readDistributed(const std::string& name, const RCP<const Map>& map, hsize_t N,
