@@ -19,6 +19,9 @@
 # where a stage waits); every case also has a whole-process row per rank (GPHR_PROCESS_CLOCKS),
 # fom a "time loop" row (summary.json t_online_s) and query a "queries" row (query_summary.json).
 # Environment: RANKS (default "1 2 4 8"), SIZE (issue | small), CASES (default "nls swe fom query"),
+# CRITICAL=1 (each stage's compute critical path as well, GPHR_CRITICAL_PATH=1: one extra 8-byte
+# allreduce per collective call; its columns "crit max" and "crit x" estimate the wall seconds with
+# a core per rank where the ranks outnumber the cores, doc/scaling.md "Critical path"),
 # G (the gphr binary; default build/packages/driver/gphr), OUT_CSV (default
 # bench-out/scaling/scaling-SIZE.csv), MPIRUN (default mpirun), BIND (mpirun --bind-to: none, the
 # default and the issue's, or core). Runs with rank counts above the core count are oversubscribed
@@ -36,6 +39,8 @@ MPI_CSV=${OUT_CSV%.csv}-mpi.csv
 cores=$(nproc)  # before OMP_NUM_THREADS is set: GNU nproc honours it
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
+case ${CRITICAL:-0} in 1) export GPHR_CRITICAL_PATH=1 ;; 0) unset GPHR_CRITICAL_PATH ;;
+  *) echo "CRITICAL=$CRITICAL; allowed: 0, 1" >&2; exit 2 ;; esac
 
 describe=$(git describe --always --dirty 2>/dev/null || echo "not a git checkout")
 # physical cores and hardware threads: ranks on the two threads of one core share its FPU and caches
@@ -95,7 +100,7 @@ queries:
   grid: {eps: [0.9, 1.1, 64]}
 YAML
 
-echo "case,size,ranks,rank,stage,wall_s,cpu_s,mpi_wall_s,mpi_cpu_s,compute_s,peak_rss_mb,sizes" > "$OUT_CSV.tmp"
+echo "case,size,ranks,rank,stage,wall_s,cpu_s,mpi_wall_s,mpi_cpu_s,compute_s,peak_rss_mb,critical_s,sizes" > "$OUT_CSV.tmp"
 echo "case,size,ranks,rank,stage,call,calls,wall_s" > "$MPI_CSV.tmp"
 # rows CASE P SIZES FILE...: the CSV lines of FILE... (stages.csv format, header skipped) with the case columns.
 rows() {
@@ -124,14 +129,14 @@ for c in $CASES; do
         [ "$p" = 1 ] && awk -v c="$c" -v z="$SIZE" -v s="${!sizes}" \
           '/train: parameter [0-9]+\/[0-9]+ .* done, [0-9.]+ s elapsed/ {
              split($4, ij, "/"); for (i = 1; i <= NF; ++i) if ($i == "elapsed,") t = $(i - 2)
-             printf "%s,%s,1,0,training parameter %d,%.3f,,,,,,%s\n", c, z, ij[1], t - last, s; last = t }' \
+             printf "%s,%s,1,0,training parameter %d,%.3f,,,,,,,%s\n", c, z, ij[1], t - last, s; last = t }' \
           "$d/log" >> "$OUT_CSV.tmp"
         [ $c = nls ] && [ -z "$model" ] && model=$d/model.h5 ;;
       fom)
         mpi "$p" "$d" "$G" run "$work/fom.yaml" --output "$d/out" > "$d/log" 2>&1 || { tail -20 "$d/log"; exit 1; }
         rows fom "$p" "$fom_sizes" "$d"/process.*
         t=$(python3 -c "import json; print(json.load(open('$d/out/summary.json'))['runs'][0]['t_online_s'])")
-        echo "fom,$SIZE,$p,,time loop,$t,,,,,,$fom_sizes" >> "$OUT_CSV.tmp" ;;
+        echo "fom,$SIZE,$p,,time loop,$t,,,,,,,$fom_sizes" >> "$OUT_CSV.tmp" ;;
       query)
         if [ -z "$model" ]; then  # the nls case's model, built once on one rank
           mkdir -p "$work/model"
@@ -143,7 +148,7 @@ for c in $CASES; do
           || { tail -20 "$d/log"; exit 1; }
         rows query "$p" "$q_sizes" "$d"/process.*
         t=$(python3 -c "import json; print(json.load(open('$d/out/query_summary.json'))['wall_s'])")
-        echo "query,$SIZE,$p,,queries,$t,,,,,,$q_sizes" >> "$OUT_CSV.tmp" ;;
+        echo "query,$SIZE,$p,,queries,$t,,,,,,,$q_sizes" >> "$OUT_CSV.tmp" ;;
       *) echo "unknown case '$c'; allowed: nls, swe, fom, query" >&2; exit 2 ;;
     esac
   done
@@ -159,8 +164,9 @@ titles = {"nls": "gphr build, NLS", "swe": "gphr build, SWE", "fom": "full model
 for case in OrderedDict.fromkeys(r["case"] for r in rows):
     mine = [r for r in rows if r["case"] == case]
     print(f"\n{titles.get(case, case)} ({mine[0]['sizes']})")
+    crit = any(float(r.get("critical_s") or 0) > 0 for r in mine)  # measured (CRITICAL=1)
     print(f"{'ranks':>5} {'stage':<20} {'wall max':>9} {'comp max':>9} {'comp mean':>9} {'cpu max':>9} "
-          f"{'MB max':>8} {'wall x':>7} {'comp x':>7}")
+          f"{'MB max':>8} {'wall x':>7} {'comp x':>7}" + (f" {'crit max':>9} {'crit x':>7}" if crit else ""))
     ranks = list(OrderedDict.fromkeys(int(r["ranks"]) for r in mine))
     stages = list(OrderedDict.fromkeys(r["stage"] for r in mine
                                        if r["stage"] != "process" and not r["stage"].startswith("training parameter")))
@@ -175,23 +181,27 @@ for case in OrderedDict.fromkeys(r["case"] for r in rows):
                 per = {}
                 for r in at:
                     if r["stage"] != "process" and r["compute_s"] and not r["stage"].startswith("training parameter"):
-                        a = per.setdefault(r["rank"], [0.0] * 4)
+                        a = per.setdefault(r["rank"], [0.0] * 5)
                         a[0] += float(r["wall_s"]); a[1] += float(r["compute_s"]); a[2] += float(r["cpu_s"])
-                        a[3] = max(a[3], float(r["peak_rss_mb"]))
+                        a[3] = max(a[3], float(r["peak_rss_mb"])); a[4] += float(r.get("critical_s") or "nan")
                 vals = list(per.values())
             else:
                 vals = [[float(r["wall_s"]), float(r["compute_s"] or "nan"), float(r["cpu_s"] or "nan"),
-                         float(r["peak_rss_mb"] or "nan")] for r in at if r["stage"] == st]
+                         float(r["peak_rss_mb"] or "nan"), float(r.get("critical_s") or "nan")]
+                        for r in at if r["stage"] == st]
             if not vals:
                 continue
             wall = max(v[0] for v in vals); comp = max(v[1] for v in vals)
             mean = sum(v[1] for v in vals) / len(vals); cpu = max(v[2] for v in vals); mb = max(v[3] for v in vals)
-            first.setdefault(st, (wall, comp))
-            w0, c0 = first[st]
+            cr = max(v[4] for v in vals)
+            first.setdefault(st, (wall, comp, cr))
+            w0, c0, r0 = first[st]
             sw = f"{w0 / wall:.2f}" if wall > 0 else "-"
             sc = f"{c0 / comp:.2f}" if comp == comp and comp > 0 else "-"
             f = lambda x, d=3: "-" if x != x else f"{x:.{d}f}"
-            print(f"{p:>5} {st:<20} {f(wall):>9} {f(comp):>9} {f(mean):>9} {f(cpu):>9} {f(mb, 1):>8} {sw:>7} {sc:>7}")
+            sr = f"{r0 / cr:.2f}" if cr == cr and cr > 0 and r0 == r0 else "-"
+            print(f"{p:>5} {st:<20} {f(wall):>9} {f(comp):>9} {f(mean):>9} {f(cpu):>9} {f(mb, 1):>8} {sw:>7} {sc:>7}"
+                  + (f" {f(cr):>9} {sr:>7}" if crit else ""))
         if case == "query":
             q = [float(r["wall_s"]) for r in at if r["stage"] == "queries"]
             if q: print(f"{p:>5} {'queries/s':<20} {64 / q[0]:>9.2f}")
@@ -211,5 +221,5 @@ for case in OrderedDict.fromkeys(r["case"] for r in rows):
             text = ", ".join(f"{c[4:]} {sum(v) / max(ranks):.3f} / {max(v):.3f}" for c, v in top if max(v) >= 0.001)
             if text: print(f"      {st:<20} {text}")
 print(f"\nCSV: {sys.argv[1]} (MPI by function: {sys.argv[3]}); wall x, comp x: speed-up over {'the first rank count'} (wall: largest over ranks; "
-      "comp: the largest rank's compute seconds)")
+      "comp: the largest rank's compute seconds; crit: the compute critical path, largest over the ranks)")
 PY

@@ -2,17 +2,19 @@
 # gphr build's per-stage clocks (doc/user-guide.md, "stages.csv"), on 2 ranks:
 #  1. DIR/stages.csv has the documented header and one row per rank and stage, the stages of a
 #     gp-deim + gp-eqp build in order, and no stages.csv.tmp left behind;
-#  2. compute_s = cpu_s - mpi_cpu_s, and no MPI column exceeds its total (wall, cpu);
+#  2. compute_s = cpu_s - mpi_cpu_s, no MPI column exceeds its total (wall, cpu), and critical_s
+#     is 0 (measured only with GPHR_CRITICAL_PATH=1);
 #  3. the PMPI layer of the executable counts: every rank spent time inside MPI (the training's
 #     and the bases' reductions), so mpi_wall_s summed over a rank's stages is > 0;
 #  4. the console prints one line per stage;
 #  5. DIR/mpi_calls.csv splits each rank's and stage's mpi_wall_s by MPI function: its rows add up
 #     to stages.csv's column, every name is an MPI function, and the bases' tree reduction shows
-#     as point-to-point calls.
+#     as point-to-point calls, and the training flushes the file once per round of parameters.
 # usage: build_stages.sh GPHR MPIEXEC
 set -u
 gphr=$1; mpi=$2
 here=$(cd "$(dirname "$0")" && pwd)
+unset GPHR_CRITICAL_PATH
 export OPENBLAS_NUM_THREADS=1 OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
@@ -21,6 +23,7 @@ cd "$work"
 sed 's/methods: \[gp-deim\]/methods: [gp-deim, gp-eqp]/' "$here/../support/small_nls_model.yaml" > build.yaml
 grep -q "gp-eqp" build.yaml || fail "could not add gp-eqp to the shared config"
 "$mpi" -np 2 "$gphr" build build.yaml --model nls.h5 --output art > build.out 2> build.err || { cat build.err; fail "build"; }
+grep -q "train: 2 groups of 1 rank(s)" build.err || fail "the training did not run in 2 groups of one rank: $(cat build.err)"
 [ -f art/stages.csv ] || fail "no art/stages.csv"
 [ -e art/stages.csv.tmp ] && fail "stages.csv.tmp left behind"
 grep -q "stages (max over 2 rank(s))" build.out || fail "no stage table on the console: $(cat build.out)"
@@ -28,7 +31,7 @@ grep -qE "^ +deim basis k=6 +[0-9.]+ +[0-9.]+ +[0-9.]+$" build.out || fail "no c
 python3 - art/stages.csv <<'PY' || fail "stages.csv: see above"
 import csv, sys
 rows = list(csv.reader(open(sys.argv[1])))
-head = ["rank", "stage", "wall_s", "cpu_s", "mpi_wall_s", "mpi_cpu_s", "compute_s", "peak_rss_mb"]
+head = ["rank", "stage", "wall_s", "cpu_s", "mpi_wall_s", "mpi_cpu_s", "compute_s", "peak_rss_mb", "critical_s"]
 assert rows[0] == head, rows[0]
 want = ["setup", "training", "instance", "basis", "header", "deim basis k=6", "gp-deim k=6", "fits k=6",
         "interpolation k=6", "write"]
@@ -38,7 +41,9 @@ for r in (0, 1):
     mine = [x for x in body if x[0] == str(r)]
     assert [x[1] for x in mine] == want, [x[1] for x in mine]
     for x in mine:
-        wall, cpu, mw, mc, comp, rss = map(float, x[2:])
+        wall, cpu, mw, mc, comp, rss, critical = map(float, x[2:])
+        # The critical path is measured only with GPHR_CRITICAL_PATH=1 (test_mpi_time checks it).
+        assert critical == 0, x
         # The file prints 6 decimals: compute_s is cpu_s - mpi_cpu_s up to their rounding (1.5e-6).
         assert abs(comp - (cpu - mc)) <= 2e-6, x
         # Inside MPI is part of the total, up to the two clocks' reads (a few microseconds apart).
@@ -69,6 +74,11 @@ for key, mpi in stages.items():
 # The basis' streaming POD on 2 ranks takes the tree route: the R factor goes from rank 1 to rank 0.
 assert any(c == "MPI_Send" for c, _ in split.get(("1", "basis"), [])), split.get(("1", "basis"))
 assert any(c == "MPI_Recv" for c, _ in split.get(("0", "basis"), [])), split.get(("0", "basis"))
+# The training's 3 parameters on 2 groups of one rank are 2 rounds, each sealed with one flush
+# (MPI_File_sync) of artifacts.h5 for all its parameters: 2 per rank, not one per parameter.
+for r in ("0", "1"):
+    syncs = [int(x[3]) for x in rows[1:] if x[0] == r and x[1] == "training" and x[2] == "MPI_File_sync"]
+    assert syncs == [2], f"rank {r}: the training's MPI_File_sync calls {syncs}, want [2] (one per round)"
 print("mpi_calls.csv ok")
 PY
 echo PASS

@@ -14,6 +14,7 @@ namespace {
 // register before or after this file's static initialisation runs.
 std::atomic<MpiTimeSource> g_source{nullptr};
 std::atomic<const char* const*> g_callNames{nullptr};
+std::atomic<bool> g_critical{false};
 
 double seconds(const timespec& t) { return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec); }
 
@@ -22,6 +23,10 @@ double seconds(const timespec& t) { return static_cast<double>(t.tv_sec) + 1e-9 
 void setMpiTimeSource(MpiTimeSource source) { g_source.store(source); }
 
 bool mpiTimeAvailable() { return g_source.load() != nullptr; }
+
+bool criticalPathMeasured() { return g_critical.load(std::memory_order_relaxed); }
+
+void setCriticalPathMeasured(bool on) { g_critical.store(on, std::memory_order_relaxed); }
 
 void setMpiCallNames(const char* const* names) { g_callNames.store(names); }
 
@@ -71,6 +76,7 @@ void StageClocks::end() {
   d.cpu = now.cpu - o.start.cpu;
   d.mpiWall = now.mpi.wall - o.start.mpi.wall;
   d.mpiCpu = now.mpi.cpu - o.start.mpi.cpu;
+  d.critical = now.mpi.critical - o.start.mpi.critical;
   for (int k = 0; k < kMpiCallKinds; ++k) {
     d.callWall[k] = now.mpi.callWall[k] - o.start.mpi.callWall[k];
     d.callCount[k] = now.mpi.callCount[k] - o.start.mpi.callCount[k];
@@ -80,6 +86,7 @@ void StageClocks::end() {
   s.cpu += d.cpu - o.inner.cpu;
   s.mpiWall += d.mpiWall - o.inner.mpiWall;
   s.mpiCpu += d.mpiCpu - o.inner.mpiCpu;
+  s.critical += d.critical - o.inner.critical;
   for (int k = 0; k < kMpiCallKinds; ++k) {
     s.callWall[k] += d.callWall[k] - o.inner.callWall[k];
     s.callCount[k] += d.callCount[k] - o.inner.callCount[k];
@@ -88,6 +95,7 @@ void StageClocks::end() {
   if (!open_.empty()) {
     StageTime& parent = open_.back().inner;
     parent.wall += d.wall, parent.cpu += d.cpu, parent.mpiWall += d.mpiWall, parent.mpiCpu += d.mpiCpu;
+    parent.critical += d.critical;
     for (int k = 0; k < kMpiCallKinds; ++k) parent.callWall[k] += d.callWall[k], parent.callCount[k] += d.callCount[k];
   }
 }

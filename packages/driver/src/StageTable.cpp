@@ -12,7 +12,7 @@ namespace gphr {
 
 namespace {
 
-constexpr int kFields = 6;  // wall, cpu, mpiWall, mpiCpu, peakRssMb, and a check of the name
+constexpr int kFields = 7;  // wall, cpu, mpiWall, mpiCpu, peakRssMb, critical, and a check of the name
 
 // A cheap fingerprint of a stage name, so that ranks that ran different stages are caught.
 double nameHash(const std::string& s) {
@@ -39,7 +39,7 @@ StageTable gatherStages(const RCP<const Comm>& comm, const std::vector<StageTime
                            " stages; every rank runs the same stages");
   std::vector<double> mine;
   for (const auto& s : stages)
-    mine.insert(mine.end(), {s.wall, s.cpu, s.mpiWall, s.mpiCpu, s.peakRssMb, nameHash(s.name)});
+    mine.insert(mine.end(), {s.wall, s.cpu, s.mpiWall, s.mpiCpu, s.peakRssMb, s.critical, nameHash(s.name)});
   StageTable t;
   t.ranks = comm->getSize();
   std::vector<double> all(mine.size() * static_cast<size_t>(t.ranks));
@@ -58,12 +58,12 @@ StageTable gatherStages(const RCP<const Comm>& comm, const std::vector<StageTime
   for (int r = 0; r < t.ranks; ++r)
     for (int i = 0; i < count; ++i) {
       const double* v = &all[(static_cast<size_t>(r) * count + i) * kFields];
-      if (v[5] != nameHash(t.names[i]))
+      if (v[6] != nameHash(t.names[i]))
         throw std::logic_error("gphr build: rank " + std::to_string(r) + " timed other stages than rank 0 (stage " +
                                std::to_string(i) + " is '" + t.names[i] + "' on rank 0)");
       StageTime s;
       s.name = t.names[i];
-      s.wall = v[0], s.cpu = v[1], s.mpiWall = v[2], s.mpiCpu = v[3], s.peakRssMb = v[4];
+      s.wall = v[0], s.cpu = v[1], s.mpiWall = v[2], s.mpiCpu = v[3], s.peakRssMb = v[4], s.critical = v[5];
       const double* c = &allCalls[(static_cast<size_t>(r) * count + i) * 2 * kMpiCallKinds];
       for (int k = 0; k < kMpiCallKinds; ++k)
         s.callWall[k] = c[k], s.callCount[k] = static_cast<long long>(c[kMpiCallKinds + k]);
@@ -73,13 +73,13 @@ StageTable gatherStages(const RCP<const Comm>& comm, const std::vector<StageTime
 }
 
 std::string StageTable::csv() const {
-  std::string out = "rank,stage,wall_s,cpu_s,mpi_wall_s,mpi_cpu_s,compute_s,peak_rss_mb\n";
+  std::string out = "rank,stage,wall_s,cpu_s,mpi_wall_s,mpi_cpu_s,compute_s,peak_rss_mb,critical_s\n";
   const size_t n = names.size();
   for (size_t j = 0; j < rows.size(); ++j) {
     const StageTime& s = rows[j];
     char buf[256];
-    std::snprintf(buf, sizeof buf, "%zu,%s,%.6f,%.6f,%.6f,%.6f,%.6f,%.1f\n", j / n, s.name.c_str(), s.wall, s.cpu,
-                  s.mpiWall, s.mpiCpu, s.compute(), s.peakRssMb);
+    std::snprintf(buf, sizeof buf, "%zu,%s,%.6f,%.6f,%.6f,%.6f,%.6f,%.1f,%.6f\n", j / n, s.name.c_str(), s.wall,
+                  s.cpu, s.mpiWall, s.mpiCpu, s.compute(), s.peakRssMb, s.critical);
     out += buf;
   }
   return out;

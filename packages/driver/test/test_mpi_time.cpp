@@ -8,7 +8,9 @@
 //    as MPI_Barrier;
 //  - on 2 ranks, a rank that waits in a barrier for a sleeping one has that wait counted as time
 //    inside MPI (and as MPI_Barrier's), and its compute seconds (CPU outside MPI) stay near zero
-//    although it spun.
+//    although it spun;
+//  - with the critical path switched on, a collective lifts every rank's counter to the slowest
+//    rank's: a rank that waited has the working rank's seconds as its share, not its own ~0.
 #include <gtest/gtest.h>
 
 #include <Teuchos_CommHelpers.hpp>
@@ -16,6 +18,7 @@
 
 #include <chrono>
 #include <cstring>
+#include <ctime>
 #include <thread>
 
 #include "gphr/core/StageClock.hpp"
@@ -94,5 +97,52 @@ TEST(MpiTime, WaitInMpiIsNotCompute) {
     // threads, which CLOCK_PROCESS_CPUTIME_ID counts; a wait not subtracted (Open MPI polls while
     // it waits) would show a large part of the 0.3 s here.
     EXPECT_LT(w.compute(), 0.02);
+  }
+}
+
+namespace {
+// Spends `seconds` of this thread's CPU outside MPI.
+void burnCpu(double seconds) {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  const double start = static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+  volatile double x = 1.0;
+  for (double now = start; now - start < seconds;) {
+    for (int i = 0; i < 10000; ++i) x = x * 1.0000001 + 1e-9;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    now = static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+  }
+}
+}  // namespace
+
+TEST(MpiTime, CriticalPathWaitsForTheSlowestRankAtACollective) {
+  const auto comm = Teuchos::DefaultComm<int>::getComm();
+  const double work = 0.25;
+  // Off (the default): nothing is kept.
+  ASSERT_FALSE(criticalPathMeasured()) << "run without GPHR_CRITICAL_PATH=1 in the environment";
+  EXPECT_EQ(mpiTimeNow().critical, 0.0);
+  // On, on every rank before the same collective (the switch must agree at each one).
+  setCriticalPathMeasured(true);
+  Teuchos::barrier(*comm);
+  StageClocks c;
+  {
+    const StageClocks::Scope s(c, "work");
+    if (comm->getRank() == comm->getSize() - 1) burnCpu(work);  // the last rank works, the others wait
+    Teuchos::barrier(*comm);
+  }
+  setCriticalPathMeasured(false);
+  Teuchos::barrier(*comm);
+  const StageTime& w = c.stages().at(0);
+  // Every rank's share of the critical path is the working rank's `work` seconds: the barrier
+  // lifted the waiting ranks' counters to it although their own compute is near zero (without the
+  // agreement rank 0 of 2 would read ~0). Upper bound: the burn overshoots by one inner loop
+  // (microseconds), and the clock reads and the barrier's bookkeeping add microseconds; 0.05 s
+  // leaves room for a scheduler slice, which CLOCK_THREAD_CPUTIME_ID does not count anyway.
+  // Lower bound: the working rank's burn, less the waiting rank's own microseconds between the
+  // first barrier and the stage's start (read at its start, not added by the working rank).
+  EXPECT_GE(w.critical, work - 0.005);
+  EXPECT_LE(w.critical, work + 0.05);
+  if (comm->getRank() != comm->getSize() - 1) {
+    EXPECT_LT(w.compute(), 0.02);  // the waiting rank's own work: clock reads (as in the test above)
   }
 }

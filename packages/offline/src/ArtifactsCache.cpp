@@ -39,9 +39,16 @@ bool ArtifactsCache::holds(const Hdf5File& file, const std::string& name, const 
 }
 
 void ArtifactsCache::seal(Hdf5File& file, const std::string& name, const std::string& key) {
+  seal(file, std::vector<std::string>{name}, key);
+}
+
+// The data reach the disk before any mark: a crash may lose marks, never leave one on missing data.
+void ArtifactsCache::seal(Hdf5File& file, const std::vector<std::string>& names, const std::string& key) {
   file.flush();
-  file.setAttribute(name, "config", key);
-  file.setAttribute(name, "complete", std::string("yes"));
+  for (const std::string& name : names) {
+    file.setAttribute(name, "config", key);
+    file.setAttribute(name, "complete", std::string("yes"));
+  }
 }
 
 void ArtifactsCache::clear(Hdf5File& file, const std::string& name) {

@@ -203,7 +203,7 @@ void agreeOnFailure(const Comm& world, const std::string& failure, size_t j, siz
 // world opens the file, each dataset's rows are written by its group's ranks straight from their
 // rows (Hdf5File::writeStateRows; the other ranks select nothing, and a group with nothing to
 // integrate takes part with nothing) and the file is closed. At the end the round's parameters are
-// sealed in parameter order. So the training holds one block of states per rank, not a
+// sealed together (one flush, then their marks). So the training holds one block of states per rank, not a
 // trajectory; the file is closed between blocks, and a kill loses the unfinished round only (its
 // datasets carry no complete mark). A group whose full model fails (a SolverError: Newton did not
 // converge) stops integrating but still takes part in the round's remaining block writes, and all
@@ -254,10 +254,12 @@ void trainRound(const Scene& scene, const RCP<const Comm>& groupComm, int group,
   for (size_t b = stored; b < sizes.size(); ++b) store(nullptr, nullptr, sizes[b]);  // nothing (more) of ours
   agreeOnFailure(*cache.comm(), failure, j, o.parameters.size());
   const auto f = cache.open();
+  std::vector<std::string> names;
   for (size_t c : round) {
     f->setAttribute(datasetName(c), "parameters", o.parameters[c]);
-    ArtifactsCache::seal(*f, datasetName(c), key);
+    names.push_back(datasetName(c));
   }
+  ArtifactsCache::seal(*f, names, key);  // one flush for the round
 }
 
 // All parameters in rounds of G: rank groups (TrainingOptions::groupSize) when size < the ranks,

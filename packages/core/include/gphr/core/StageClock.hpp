@@ -31,7 +31,20 @@ struct MpiTime {
   std::array<double, kMpiCallKinds> callWall{};
   std::array<long long, kMpiCallKinds> callCount{};
   /// @}
+  /// The compute critical path so far, seconds (0 unless criticalPathMeasured()): the calling
+  /// thread's CPU seconds outside MPI, raised at every collective call to the largest value among
+  /// the communicator's ranks. On ranks that share cores it estimates the wall seconds the run
+  /// would take with a core per rank and waits only for work (doc/scaling.md, "Critical path").
+  double critical = 0.0;
 };
+
+/// Whether the interposer measures MpiTime::critical. Each collective call then makes one extra
+/// MPI_Allreduce of 8 bytes, so the switch must be the same on every rank at every collective:
+/// the interposer sets it before main() from GPHR_CRITICAL_PATH=1 in the environment.
+bool criticalPathMeasured();
+
+/// Switches MpiTime::critical on or off (on every rank alike, between collectives).
+void setCriticalPathMeasured(bool on);
 
 /// Reads the interposer's counters; thread-safe.
 using MpiTimeSource = MpiTime (*)();
@@ -76,6 +89,7 @@ struct StageTime {
   std::array<double, kMpiCallKinds> callWall{};
   std::array<long long, kMpiCallKinds> callCount{};
   /// @}
+  double critical = 0.0;  ///< the stage's share of the compute critical path (MpiTime::critical), s
   /// CPU seconds outside MPI calls: the stage's own work, waits excluded.
   double compute() const { return cpu - mpiCpu; }
 };

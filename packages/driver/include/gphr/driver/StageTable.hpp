@@ -16,7 +16,7 @@ struct StageTable {
   std::vector<std::string> names;  ///< the stages, in order (rank 0's; every rank has the same)
   int ranks = 0;                   ///< the communicator's size
   std::vector<StageTime> rows;     ///< rank-major
-  /// The CSV text: rank,stage,wall_s,cpu_s,mpi_wall_s,mpi_cpu_s,compute_s,peak_rss_mb.
+  /// The CSV text: rank,stage,wall_s,cpu_s,mpi_wall_s,mpi_cpu_s,compute_s,peak_rss_mb,critical_s.
   std::string csv() const;
   /// The CSV text rank,stage,call,calls,wall_s: per rank and stage each MPI function it called
   /// (mpi_wall_s split by function; empty without the PMPI interposer).

@@ -8,6 +8,7 @@
 /// the next run. A file of another scene or state size is refused, naming the file.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "gphr/core/Types.hpp"
 #include "gphr/io/Hdf5File.hpp"
@@ -29,6 +30,9 @@ class ArtifactsCache {
   static bool holds(const Hdf5File& file, const std::string& name, const std::string& key);
   /// Marks `name` complete for `key`, after its data and attributes: flush, the key, the mark.
   static void seal(Hdf5File& file, const std::string& name, const std::string& key);
+  /// The same for several datasets with one flush (one fsync: on 16 ranks of the 2-core VM each
+  /// MPI_File_sync of artifacts.h5 took ~0.14 s, which a round of the training paid per parameter).
+  static void seal(Hdf5File& file, const std::vector<std::string>& names, const std::string& key);
   /// Removes `name` and creates its parent groups if missing: the dataset can be written anew.
   static void clear(Hdf5File& file, const std::string& name);
   /// Seconds of a stage's work between two checkpoints of its streaming POD (PodCheckpoint; 0:
