@@ -346,6 +346,10 @@ double peakGrowthOfStages(const Nls1d& scene, const TrainingResult& training) {
 // a quarter of it. (What does grow with the states is small: their reduced coordinates, 2k = 8
 // numbers each, and the MPI library's own buffers, a few 100 kB on 2-3 ranks, which is why the
 // long case is bounded by the held states' size rather than by a ratio of two small growths.)
+// Both bounds allow the basis POD's step array, which the POD keeps from step to step (the leaf's
+// rows x (carried + new) columns: 2 (2k + 32) + 2 blockColumns = 336 here, 2.75 MB on one rank):
+// its size is set by the options, not by the snapshots; it shows once the POD's rank reaches its
+// cap, which the longer trainings reach and the 2 x 400 one does not.
 TEST(Training, TheStagesAfterItHoldOneColumnBlockAtATime) {
   auto comm = Tpetra::getDefaultComm();
   TempDir dir;
@@ -366,11 +370,12 @@ TEST(Training, TheStagesAfterItHoldOneColumnBlockAtATime) {
   }
   std::printf("peak heap growth while the stages read the snapshots: %.0f B (2 parameters), %.0f B (6 parameters), "
               "%.0f B (2 parameters, 4x the steps)\n", growth[0], growth[1], growth[2]);
-  EXPECT_LE(growth[1], 1.2 * growth[0]) << "peak heap growth " << growth[0] << " B (2 parameters), " << growth[1]
-                                        << " B (6 parameters)";
   const double rows = static_cast<double>(scene.instantiate(comm, {1.0}, true).system->map()->getNodeNumElements());
+  const double podArray = rows * (2.0 * (2 * 4 + 32) + 2.0 * BasisOptions().blockColumns) * sizeof(double);
+  EXPECT_LE(growth[1], 1.2 * growth[0] + podArray) << "peak heap growth " << growth[0] << " B (2 parameters), "
+                                                   << growth[1] << " B (6 parameters)";
   const double heldExtra = (1601.0 - 401.0) * rows * sizeof(double);  // one parameter's extra states, held
-  EXPECT_LE(growth[2] - growth[0], 0.25 * heldExtra)
+  EXPECT_LE(growth[2] - growth[0], 0.25 * heldExtra + podArray)
       << "peak heap growth " << growth[0] << " B (400 steps), " << growth[2] << " B (1600 steps): the 1200 more "
       << "states of one parameter are " << heldExtra << " B on this rank";
 }

@@ -58,6 +58,12 @@ HouseholderQr::HouseholderQr(int m, int n, std::vector<double> a, int chunkRows)
   }
 }
 
+std::vector<double> HouseholderQr::releaseStorage() {
+  std::vector<double> a = std::move(a_);
+  *this = HouseholderQr();
+  return a;
+}
+
 std::vector<double> HouseholderQr::r() const {
   const int kk = k();
   std::vector<double> R(static_cast<size_t>(kk) * n_, 0.0);

@@ -89,7 +89,7 @@ class StreamingPod {
   void replicatedStep(const MultiVector& Y);
   void stackedStep(std::vector<double> y, int nc);  // y: this rank's rows of Y, column-major
   void treeStep(std::vector<double> y, int nc);
-  void setLeftVectors(const HouseholderQr& leaf, const std::vector<double>& C, int keep);
+  void setLeftVectors(HouseholderQr& leaf, const std::vector<double>& C, int keep);
   int truncate(const std::vector<double>& S, int nc);
   RCP<const Map> map_;
   int maxRank_, blockColumns_;
@@ -98,6 +98,7 @@ class StreamingPod {
   int cap_;
   int tsqrSteps_ = 0, replicatedSteps_ = 0, stackedSteps_ = 0, treeSteps_ = 0;
   RCP<MultiVector> U_;
+  std::vector<double> work_;  // the leaf's array, kept from step to step (see step())
   std::vector<double> sigma_;
   double energy_ = 0.0;
   long columns_ = 0;

@@ -45,6 +45,9 @@ class HouseholderQr {
   std::vector<double> applyQ(const std::vector<double>& C, int cols) const;
   /// The same into `out` (m x cols, leading dimension ldo >= m), e.g.\ a MultiVector's own storage.
   void applyQInto(const std::vector<double>& C, int cols, double* out, int ldo) const;
+  /// Hands back the array the block was factored in (its reflectors; at least rows() x n numbers)
+  /// for the caller to reuse; the QR is empty afterwards.
+  std::vector<double> releaseStorage();
 
  private:
   double* t(int chunk) { return t_.data() + static_cast<size_t>(nb_) * n_ * chunk; }
