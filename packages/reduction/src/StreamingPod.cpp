@@ -1,5 +1,6 @@
 #include "gphr/reduction/StreamingPod.hpp"
 
+#include <Teuchos_BLAS.hpp>
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_LAPACK.hpp>
 #include <Teuchos_SerialDenseMatrix.hpp>
@@ -47,14 +48,26 @@ StreamingPod::StreamingPod(RCP<const Map> map, int maxRank, int blockColumns, do
   U_ = rcp(new MultiVector(map_, 1));
 }
 
+std::vector<double> columnSquaredNorms(const MultiVector& X) {
+  const size_t n = X.getNumVectors();
+  const int rows = static_cast<int>(X.getLocalLength());
+  std::vector<double> mine(n, 0.0), all(n, 0.0);
+  const Teuchos::BLAS<int, double> blas;
+  for (size_t j = 0; j < n; ++j) {
+    const Teuchos::ArrayRCP<const double> x = X.getData(j);
+    if (rows > 0) mine[j] = blas.DOT(rows, x.getRawPtr(), 1, x.getRawPtr(), 1);
+  }
+  if (n > 0) Teuchos::reduceAll(*X.getMap()->getComm(), Teuchos::REDUCE_SUM, static_cast<int>(n), mine.data(), all.data());
+  return all;
+}
+
 void StreamingPod::add(const MultiVector& X) {
   GPHR_REQUIRE(X.getMap()->isSameAs(*map_), InputError, "streaming POD: a block of ", X.getGlobalLength(),
                " rows does not match the POD's map of ", map_->getGlobalNumElements(), " rows");
-  std::vector<double> nrm(X.getNumVectors());
-  X.norm2(Teuchos::ArrayView<double>(nrm));
-  for (double x : nrm) {
-    GPHR_REQUIRE(std::isfinite(x), InputError, "streaming POD: a snapshot column is not finite (norm ", x, ")");
-    energy_ += x * x;
+  for (double x : columnSquaredNorms(X)) {
+    GPHR_REQUIRE(std::isfinite(x), InputError, "streaming POD: a snapshot column is not finite (squared norm ", x,
+                 ")");
+    energy_ += x;
   }
   columns_ += static_cast<long>(X.getNumVectors());
   // Steps of blockColumns columns whatever the rank count, so that the truncations (and the

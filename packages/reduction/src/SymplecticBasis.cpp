@@ -153,9 +153,7 @@ ReducedBasis computeSymplecticBasis(const SnapshotSet& snapshots, const PhaseSpa
       const size_t c1 = std::min(columns, c0 + static_cast<size_t>(opt.blockColumns));
       const int b = static_cast<int>(c1 - c0);
       const RCP<const MultiVector> Ys = snapshots.columns(block, 1, c0, c1 - c0);
-      std::vector<double> nrm(Ys->getNumVectors());
-      Ys->norm2(Teuchos::ArrayView<double>(nrm));
-      for (double x : nrm) energy += x * x;
+      for (double x : columnSquaredNorms(*Ys)) energy += x;
       MultiVector X(pod.map(), 2 * b);
       auto x = X.getLocalViewHost(Tpetra::Access::OverwriteAll);
       auto sv = Ys->getLocalViewHost(Tpetra::Access::ReadOnly);

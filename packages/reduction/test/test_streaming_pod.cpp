@@ -372,6 +372,33 @@ TEST(TreeRoute, MatchesTheDenseSvdOnAGradedSpectrum) {
               "||P_tree - P_dense||_F (5 vectors) = %.1e\n", dSigma, dExact, tree.singularValues()[29], sdense[29], dU);
 }
 
+// ||X||_F^2 and each column's squared norm against their exact values: X = F diag(s) G^T with
+// orthonormal F, so column c's squared norm is sum_j s_j^2 G(c, j)^2 and the whole sum_j s_j^2.
+// Each is a sum of d (or N) positive terms, exact to ~d eps relative (d = 301 here): 1e-13. A
+// subview of scattered columns (not of constant stride) gives the same numbers bit for bit. The
+// POD's total energy is the same sum over the blocks it was given.
+TEST(StreamingPod, ColumnNormsAndEnergyAreExact) {
+  const auto comm = test::comm();
+  const RCP<const Map> map = rcp(new Map(301, 0, comm));
+  const int N = 12;
+  const auto s = linearSpectrum(8, 0.1);
+  const MultiVector X = knownSvdData(map, N, s);
+  const std::vector<double> norms = columnSquaredNorms(X);
+  ASSERT_EQ(norms.size(), static_cast<size_t>(N));
+  double total = 0.0;
+  for (int c = 0; c < N; ++c) {
+    double exact = 0.0;
+    for (size_t j = 0; j < s.size(); ++j) exact += s[j] * s[j] * dct(c, static_cast<int>(j), N) * dct(c, static_cast<int>(j), N);
+    EXPECT_NEAR(norms[c], exact, 1e-13 * exact) << "column " << c;
+    total += exact;
+  }
+  const std::vector<size_t> picked = {1, 4, 9};
+  const std::vector<double> sub = columnSquaredNorms(*X.subView(Teuchos::ArrayView<const size_t>(picked)));
+  for (size_t i = 0; i < picked.size(); ++i) EXPECT_EQ(sub[i], norms[picked[i]]);
+  const StreamingPod pod = podOf(X, 8, 5, PodRoute::Auto);
+  EXPECT_NEAR(pod.totalEnergy(), total, 1e-13 * total);
+}
+
 // A step reuses the previous step's arrays (the leaf's rows x c array and U's storage) instead of
 // allocating them anew: fresh arrays cost their pages' faults and the kernel's zeroing every step
 // (~10 % of the SWE 256^2 DEIM basis). glibc hands arrays above its mmap threshold (at most
