@@ -3,10 +3,9 @@
 #include <Teuchos_YamlParameterListCoreHelpers.hpp>
 #include <sstream>
 
-// Set by packages/core/CMakeLists.txt at configure time.
-#ifndef GPHR_VERSION_STRING
-#define GPHR_VERSION_STRING "unknown"
-#endif
+#include "GphrVersion.h"  // GPHR_VERSION_STRING, written at build time (cmake/GPHRGitDescribe.cmake)
+
+// Set by packages/core/CMakeLists.txt at configure time (they change only with a new configuration).
 #ifndef GPHR_BUILD_TYPE
 #define GPHR_BUILD_TYPE "unknown"
 #endif
