@@ -175,6 +175,7 @@ grep -q "point 1/6 (grid-0000) reused" vresumed.err || fail "validate's resume r
 python3 - <<'PY' || fail "the resumed validation differs from the clean one"
 import json
 a, b = (json.load(open(d + "/validation_summary.json"))["models"] for d in ("vclean", "vkilled"))
+assert a and [m["model"] for m in a] == [m["model"] for m in b], ([m["model"] for m in a], [m["model"] for m in b])
 for x, y in zip(a, b):
     for key in ("E_L2_max", "E_L2_mean", "E_L2_p95"):
         assert x[key] == y[key], (x["model"], key, x[key], y[key])

@@ -65,11 +65,24 @@ TEST(ParameterInterpolant, ConvergesGeometricallyForAnAnalyticFunction) {
 }
 
 TEST(ParameterInterpolant, CheckPointsLieBetweenTheNodes) {
+  // 3 Chebyshev-Lobatto nodes on [a, b] are a, (a + b) / 2, b: the midpoints of consecutive nodes
+  // are (a + 3b) / 4 and (3a + b) / 4 in the nodes' order (x_i = cos(pi i / 2) mapped: b first), on
+  // [1.1, 1.7] x [0.7, 1.3] the 2 x 2 grid below, the last parameter fastest; to the round-off of
+  // the cosines (1e-15).
   const auto I = fitted(3);
   const auto pts = I.checkPoints(100);
-  ASSERT_EQ(pts.size(), 4u);  // 2 x 2 midpoints
-  for (const auto& mu : pts)
-    for (size_t j = 0; j < I.numNodes(); ++j) EXPECT_NE(mu, I.node(j));
+  const std::vector<std::vector<double>> expected = {{1.55, 1.15}, {1.55, 0.85}, {1.25, 1.15}, {1.25, 0.85}};
+  ASSERT_EQ(pts.size(), expected.size());
+  for (size_t i = 0; i < pts.size(); ++i) {
+    ASSERT_EQ(pts[i].size(), 2u);
+    for (size_t p = 0; p < 2; ++p) EXPECT_NEAR(pts[i][p], expected[i][p], 1e-15) << "point " << i << ", parameter " << p;
+    for (size_t j = 0; j < I.numNodes(); ++j) EXPECT_NE(pts[i], I.node(j));
+  }
+  // At most maxPoints, evenly strided through the same grid: 2 of 4 are the 1st and the 3rd.
+  const auto two = I.checkPoints(2);
+  ASSERT_EQ(two.size(), 2u);
+  EXPECT_EQ(two[0], pts[0]);
+  EXPECT_EQ(two[1], pts[2]);
 }
 
 TEST(ParameterInterpolant, RefusesBadInput) {

@@ -10,6 +10,8 @@
 //  - extremes run or fail with a message naming the cause.
 #include <gtest/gtest.h>
 
+#include <Teuchos_LAPACK.hpp>
+
 #include "HyperTestUtils.hpp"
 #include "gphr/hyper/GradientDeimModel.hpp"
 #include "gphr/reduction/ReducedRowKernel.hpp"
@@ -413,6 +415,62 @@ DeimBasis svdOfSnapshots(const TrainedBasis& t, DeimBasisOptions& opt) {
   return computeDeimBasis({t.tr.system}, {t.snaps}, *t.basis.A, opt);
 }
 
+// M_J (eq:snaps_JG) stacked here without the offline machinery (no snapshot set, stride, chunk or
+// POD): for every every-th training state y_s, z = A^T y_s and the kernel's rows J_G(y0 + A z) A
+// (checked against finite differences above), d x (N_s 2k) column-major; its LAPACK singular values.
+std::vector<double> denseSnapshotSingularValues(const TrainedBasis& t, int every) {
+  ReducedRowKernel kernel(t.tr.system->nonlinearTermPtr(), ownedRowSample(*t.tr.system, *t.basis.A),
+                          Teuchos::null);
+  const int r = kernel.reducedDim(), d = kernel.numRows(), states = static_cast<int>(t.snaps->getNumVectors());
+  const std::vector<double> Z = test::transposeTimes(*t.basis.A, *t.snaps);  // r x states, row-major
+  std::vector<double> M, J(static_cast<size_t>(d) * r);
+  DenseVector z(r);
+  for (int s = 0; s < states; s += every) {
+    for (int i = 0; i < r; ++i) z(i) = Z[static_cast<size_t>(i) * states + s];
+    kernel.evaluate(z, true, false);
+    kernel.reducedJacobian(J.data());
+    for (int c = 0; c < r; ++c)
+      for (int i = 0; i < d; ++i) M.push_back(J[static_cast<size_t>(i) * r + c]);
+  }
+  const int cols = static_cast<int>(M.size()) / d;
+  std::vector<double> sv(std::min(d, cols)), dummy(1), work(1);
+  Teuchos::LAPACK<int, double> lapack;
+  int info = 0;
+  lapack.GESVD('N', 'N', d, cols, M.data(), d, sv.data(), dummy.data(), 1, dummy.data(), 1, work.data(), -1,
+               nullptr, &info);
+  work.resize(static_cast<size_t>(work[0]));
+  lapack.GESVD('N', 'N', d, cols, M.data(), d, sv.data(), dummy.data(), 1, dummy.data(), 1, work.data(),
+               static_cast<int>(work.size()), nullptr, &info);
+  EXPECT_EQ(info, 0);
+  return sv;
+}
+
+TEST(GpDeim, DeimBasisSingularValuesAreThoseOfTheStackedReducedJacobians) {
+  // The DEIM basis's singular values against a dense SVD of M_J formed above, for every state and
+  // for every 3rd (the stride picks states 0, 3, ...). maxRank = d truncates nothing; a backward-
+  // stable SVD per POD step keeps sigma_j to a few eps sigma_1 per step (~20 steps): 1e-12 sigma_1.
+  // A skipped, repeated or mis-strided state, or rows of another state, changes the spectrum
+  // far beyond that. The dense reference is formed on one rank (the kernel's rows are local).
+  if (test::comm()->getSize() > 1) GTEST_SKIP() << "the dense reference stacks one rank's rows";
+  const TrainedBasis t = trainedBasis(Nls1d(64, 5.0), 60, 4);
+  for (int every : {1, 3}) {
+    DeimBasisOptions opt;
+    opt.snapshotEvery = every;
+    const auto b = svdOfSnapshots(t, opt);
+    const std::vector<double> dense = denseSnapshotSingularValues(t, every);
+    EXPECT_EQ(b.snapshots, (static_cast<long>(t.snaps->getNumVectors()) + every - 1) / every);
+    const double s1 = dense[0];
+    size_t resolved = 0;
+    while (resolved < dense.size() && dense[resolved] > 1e-10 * s1) ++resolved;
+    ASSERT_GT(resolved, 20u);
+    ASSERT_GE(b.singularValues.size(), resolved);
+    for (size_t j = 0; j < resolved; ++j)
+      EXPECT_NEAR(b.singularValues[j], dense[j], 1e-12 * s1) << "every " << every << ", j = " << j;
+  }
+}
+
+// The hierarchical POD against the streaming POD of all snapshots at once (whose singular values
+// are those of the dense M_J: the test above).
 TEST(GpDeim, HierarchicalPodWithoutTruncationIsTheSvd) {
   // maxRank = d: no chunk and no root truncates beyond the numerical rank, so the hierarchical POD
   // (11 chunks of 6 snapshots, then the root) and one streaming POD of all snapshots (one chunk)

@@ -248,7 +248,8 @@ TEST(Training, RankGroupsGiveTheSameSnapshots) {
   const ArtifactsCache grouped(dir.file("grouped.h5"), comm, scene.name(), 128);
   const TrainingResult groups = runTraining(scene, comm, o, &grouped, "key");
   ASSERT_EQ(groups.snapshots.size(), 5u);
-  for (size_t j = 0; j < 5; ++j) {
+  // On one rank both runs are one group of one rank: only the resume below is checked there.
+  for (size_t j = 0; j < 5 && comm->getSize() > 1; ++j) {
     const auto a = one.snapshots[j], b = groups.snapshots[j];
     std::vector<double> n(a->getNumVectors());
     a->normInf(n);
@@ -264,6 +265,7 @@ TEST(Training, RankGroupsGiveTheSameSnapshots) {
 // each (~40 steps here), so 1e-11 sigma_1^2 leaves a margin of ~20x.
 TEST(DeimBasisStage, RankGroupsGiveTheBasisAllRanksGive) {
   auto comm = Tpetra::getDefaultComm();
+  if (comm->getSize() == 1) GTEST_SKIP() << "one rank: groups of one rank are all ranks together";
   TempDir dir;
   const Nls1d scene(64);
   TrainingOptions o = smallTraining();
