@@ -25,6 +25,11 @@ case $case in
   eqp_floor)       printf '%s\n  eqp:\n    columnFloor: 1.5\n' "$base" > "$cfg"; expect="eqp.columnFloor' has value 1.5" ;;
   field_models)    printf '%s\n  output:\n    fieldModels: [rom, gp-dim]\n' "$base" > "$cfg"; expect="output.fieldModels' has entry 'gp-dim'; allowed: best or one of" ;;
   field_times)     printf '%s\n  output:\n    fieldTimes: [0.05, 0.2]\n' "$base" > "$cfg"; expect="output.fieldTimes' has entry 0.2; allowed: times in [0, 0.1]" ;;
+  too_many_steps)  printf '%s\n' "$base" | sed 's/dt: 0.01/dt: 1.0e-12/' > "$cfg"; expect="time.T / time.dt = 100000000000 steps (T = 0.1, dt = 1e-12); allowed: at most 10000000" ;;
+  top_level_key)   printf '%s\npipeline: [rom]\n' "$base" > "$cfg"; expect="has the top-level key 'pipeline' at line 8; allowed: the single key 'gphr'" ;;
+  no_key)          printf '# a comment only\n' > "$cfg"; expect="has no top-level key; allowed: a YAML mapping under the key 'gphr'" ;;
+  malformed_xml)   cfg=$work/config.xml; printf '<ParameterList name="gphr"><ParameterList name="time">\n' > "$cfg"
+                   expect="is malformed XML: XML parse error at line 2: file ended before closing element 'ParameterList'" ;;
   # the full model's Newton cannot meet 1e-15 in one iteration: a solver failure (exit 3), not a status
   fom_newton)      printf '%s\n  integrator:\n    newtonTolerance: 1.0e-15\n    maxNewtonIterations: 1\n' "$base" > "$cfg"
                    expect="solver failure: Newton did not converge at step 1"; want_rc=3; after_start=1 ;;

@@ -211,6 +211,15 @@ bad bad_section "unknown section 'queries.point'" 'queries:
     a: {eps: 1.0}'
 bad not_steps "is not a whole number of steps" "$q
     a: {eps: 1.0, T: 0.015}"
+bad too_many_steps "query 'a': T / dt = 1e+300 steps (T = 1, dt = 1e-300); allowed: at most 10000000" "$q
+    a: {eps: 1.0, dt: 1.0e-300}"
+bad grid_count "queries.grid: key 'eps' is [0.9, 1.1, 0]; allowed: [from, to, count]" 'queries:
+  grid: {eps: [0.9, 1.1, 0]}'
+bad points_not_mapping "queries.points is 7; allowed: a mapping (name: {keys}, ...)" 'queries:
+  points: 7'
+bad top_level_key "has the top-level key 'extra' at line 5; allowed: the single key 'queries'" "$q
+    a: {eps: 1.0}
+extra: 1"
 head -c 20000 m/nls.h5 > m/cut.h5
 MODEL=m/cut.h5 bad truncated "reduced-model file 'm/cut.h5'" "$q
     a: {eps: 1.0}"

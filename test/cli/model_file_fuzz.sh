@@ -57,6 +57,28 @@ for name in offsets_1000 nan_k6_constant_values flipped_k6_gp-deim_m12_basis_row
   run 2 "validate $name (2 ranks)" "$mpiexec" -np 2 "$gphr" validate "bad/$name.h5" v.yaml --output out
 done
 
+# The basis A is read only to lift (validate, setup: exact, states: true) and is outside the
+# checksum: where it is read, a value that is not finite or a changed one (its fingerprint) is an
+# error naming the dataset.
+printf 'queries:\n  defaults: {T: 0.2, setup: exact}\n  points:\n    a: {eps: 1.0}\n' > qexact.yaml
+/usr/bin/python3 - <<'PY' || fail "deriving the damaged bases"
+import shutil
+import h5py
+import numpy as np
+for name, index, value in (("basis_nan", 5, np.nan), ("basis_changed", 40, None)):
+    shutil.copy("good.h5", f"bad/{name}.h5")
+    with h5py.File(f"bad/{name}.h5", "r+") as f:
+        g = sorted(k for k in f if k.startswith("k"))[0] + "/basis"
+        a = f[g][()]
+        a.flat[index] = value if value is not None else a.flat[index] + 0.5
+        f[g][...] = a
+PY
+for name in basis_nan basis_changed; do
+  run 2 "query (setup: exact) $name" "$gphr" query "bad/$name.h5" qexact.yaml --output out
+  grep -q "/basis" stderr.txt || fail "query $name: the message does not name the basis: $(cat stderr.txt)"
+  run 2 "validate $name (2 ranks)" "$mpiexec" -np 2 "$gphr" validate "bad/$name.h5" v.yaml --output out
+done
+
 # bad queries files against the good model
 mkdir qdir; : > empty.yaml; head -c 200 "$gphr" > binary.yaml
 printf 'queries:\n  points:\n    a: {eps: 1.0}\n    a: {eps: 1.05}\n' > duplicate.yaml

@@ -57,6 +57,7 @@ printf 'validate:\n  defaults: {T: 0.5}\n  points:\n    p1: {eps: 0.95}\n' > v.y
 "$gphr" validate a.h5 v.yaml --output busy > out 2> err
 [ $? -eq 2 ] || fail "validate into a busy directory did not exit 2"
 grep -q "output directory is in use: .* held by gphr query (pid $first " err || fail "validate: $(cat err)"
+[ ! -e busy/fom ] && [ ! -e busy/points ] || fail "the refused validate made its directories in busy/"
 wait $first || fail "the first query failed: $(tail -2 err1)"
 [ ! -e busy/.gphr.lock ] || fail "the lock file outlived its query"
 grep -q "(400 run, 0 reused, 400 ok)" out1 || fail "the first query: $(cat out1)"

@@ -1,5 +1,6 @@
 #include "gphr/core/RankGroups.hpp"
 
+#include <Teuchos_CommHelpers.hpp>
 #include <Tpetra_Export.hpp>
 #include <Tpetra_Import.hpp>
 #include <algorithm>
@@ -49,6 +50,18 @@ RCP<MultiVector> RankGroups::toWorld(const MultiVector& Xg, const RCP<const Map>
   auto out = rcp(new MultiVector(worldMap, Xg.getNumVectors()));
   out->doExport(onWorld, Export(source, worldMap), Tpetra::ADD);
   return out;
+}
+
+void agreeOnFailure(const Comm& world, const std::string& failure) {
+  const int mine = failure.empty() ? world.getSize() : world.getRank();
+  int from = 0;
+  Teuchos::reduceAll(world, Teuchos::REDUCE_MIN, mine, Teuchos::outArg(from));
+  if (from == world.getSize()) return;
+  long length = static_cast<long>(failure.size());
+  Teuchos::broadcast(world, from, Teuchos::outArg(length));
+  std::string text = world.getRank() == from ? failure : std::string(static_cast<size_t>(length), ' ');
+  if (length > 0) Teuchos::broadcast(world, from, static_cast<int>(length), &text[0]);
+  throw SolverError(text);
 }
 
 }  // namespace gphr

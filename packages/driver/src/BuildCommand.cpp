@@ -75,6 +75,32 @@ void printBuild(const std::string& path, const ReducedModelData& data, double se
 
 }  // namespace
 
+namespace {
+
+// The model file replaces what is at --model (written beside it, then renamed over it): refuse,
+// before any work, a path whose replacement would destroy something that is not a model file.
+void checkModelPath(const std::string& modelPath, const std::string& configPath, const std::string& artifactsDir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(modelPath, ec);
+  if (st.type() != fs::file_type::not_found) {
+    const char* kind = st.type() == fs::file_type::directory ? "a directory"
+                       : st.type() == fs::file_type::symlink ? "a symbolic link (give its target)"
+                       : st.type() == fs::file_type::regular ? nullptr
+                                                               : "not a regular file (a device, FIFO or socket)";
+    GPHR_REQUIRE(kind == nullptr, InputError, "--model '", modelPath, "' is ", kind,
+                 "; allowed: a new path or a regular file to replace");
+  }
+  // One spelling per file: "a/../a/x.h5" and "./a/x.h5" (lexically), links in the existing part.
+  auto resolved = [&ec](const std::string& p) { return fs::weakly_canonical(fs::absolute(p).lexically_normal(), ec); };
+  const fs::path model = resolved(modelPath);
+  for (const auto& [other, what] : {std::pair<std::string, const char*>{configPath, "the config file"},
+                                    {artifactsDir + "/artifacts.h5", "the artifacts file of --output"}})
+    GPHR_REQUIRE(model != resolved(other), InputError, "--model '", modelPath, "' is ", what, "; allowed: another path");
+}
+
+}  // namespace
+
 int runBuild(const std::string& configPath, const std::string& modelPath, const std::string& artifactsDir,
              const RCP<const Comm>& comm) {
   // The command's own set-up (config, output directory, the scene's instance for the cache) is a
@@ -83,6 +109,7 @@ int runBuild(const std::string& configPath, const std::string& modelPath, const 
   auto setupClock = std::make_unique<StageClocks::Scope>(setup, "setup");
   RunContext ctx;
   ctx.config = loadConfig(configPath);
+  checkModelPath(modelPath, configPath, artifactsDir);
   ctx.scene = makeScene(ctx.config.sublist("scene"));
   ctx.mu = sceneParameters(*ctx.scene, ctx.config.sublist("parameters"));
   ctx.comm = comm;

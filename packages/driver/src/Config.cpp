@@ -198,6 +198,10 @@ long numSteps(const Teuchos::ParameterList& cfg) {
   const double T = t.get<double>("T"), dt = t.get<double>("dt");
   GPHR_REQUIRE(T >= dt, InputError, "key 'time.T' has value ", T, " which is smaller than time.dt = ", dt,
                "; allowed: T >= dt");
+  // Before the whole-number test and before anything of the run's length is sized (the artifacts
+  // file's datasets, the stored states and energies).
+  GPHR_REQUIRE(T / dt <= kMaxRunSteps + 0.5, InputError, "time.T / time.dt = ", T / dt, " steps (T = ", T, ", dt = ",
+               dt, "); allowed: at most ", kMaxRunSteps);
   const long steps = std::lround(T / dt);
   GPHR_REQUIRE(std::abs(steps * dt - T) <= 1e-9 * T, InputError, "key 'time.T' has value ", T,
                ", not a whole number of steps of time.dt = ", dt, "; allowed: T = k dt");

@@ -1,5 +1,6 @@
 #include "gphr/driver/InputFile.hpp"
 
+#include <Teuchos_StringInputSource.hpp>
 #include <Teuchos_XMLParameterListCoreHelpers.hpp>
 #include <Teuchos_YamlParameterListCoreHelpers.hpp>
 
@@ -23,6 +24,9 @@ std::string firstLineOf(const std::string& s) {
   return line;
 }
 
+// The single key a file of this kind has at its top level.
+std::string rootKey(const std::string& what) { return what == "config" ? "gphr" : what; }
+
 // The file's bytes, after the checks that need no parsing.
 std::string readText(const std::string& path, const std::string& what) {
   namespace fs = std::filesystem;
@@ -41,13 +45,54 @@ std::string readText(const std::string& path, const std::string& what) {
   GPHR_REQUIRE(in.good(), InputError, "cannot read ", what, " file '", path, "'");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   GPHR_REQUIRE(text.find_first_not_of(" \t\r\n") != std::string::npos, InputError, what, " file '", path,
-               "' is empty; allowed: a YAML mapping under the key '", what == "config" ? "gphr" : what, "'");
+               "' is empty; allowed: a YAML mapping under the key '", rootKey(what), "'");
   for (size_t i = 0; i < text.size(); ++i) {
     const unsigned char c = static_cast<unsigned char>(text[i]);
     GPHR_REQUIRE(c >= 0x20 || c == '\t' || c == '\n' || c == '\r', InputError, what, " file '", path,
                  "' is not a text file (byte ", static_cast<int>(c), " at offset ", i, "); allowed: a YAML file");
   }
   return text;
+}
+
+// Teuchos' message without its source positions and throw counters ("file.cpp:N:", "Throw ...").
+std::string teuchosReason(const std::string& s) {
+  std::istringstream in(s);
+  std::string out;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || (line.find(".cpp:") != std::string::npos && line.back() == ':') ||
+        line.rfind("Throw ", 0) == 0)
+      continue;
+    out += (out.empty() ? "" : " ") + line;
+  }
+  return out.empty() ? firstLineOf(s) : out;
+}
+
+// A YAML file's top level must be the one mapping key of its kind: Teuchos' reader silently drops
+// a second key whose value is a scalar or a list (a mis-indented "pipeline: [rom]" at column 0),
+// and fails on a second flow mapping with a message about flow mappings. Lines at column 0 that
+// are comments, directives, document markers or list items are not keys.
+void requireSingleTopLevelKey(const std::string& text, const std::string& path, const std::string& what) {
+  std::istringstream in(text);
+  int lineNo = 0, keys = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++lineNo;
+    if (line.empty() || std::string(" \t\r#-%.").find(line[0]) != std::string::npos) continue;
+    ++keys;
+    const std::string key = line.substr(0, line.find(':'));
+    const std::string name = key.size() >= 2 && (key[0] == '"' || key[0] == '\'') ? key.substr(1, key.size() - 2) : key;
+    GPHR_REQUIRE(name == rootKey(what), InputError, what, " file '", path, "' has the top-level key '", name,
+                 "' at line ", lineNo, "; allowed: the single key '", rootKey(what), "' (other keys are indented under it)");
+  }
+  GPHR_REQUIRE(keys > 0, InputError, what, " file '", path, "' has no top-level key; allowed: a YAML mapping under the key '",
+               rootKey(what), "'");
+}
+
+// Teuchos' XML reader returns the root list's entries in a list named ANONYMOUS: name it after the
+// root element's name attribute, as the YAML reader names it after the top-level key.
+void nameAfterXmlRoot(const std::string& text, Teuchos::ParameterList& pl) {
+  Teuchos::StringInputSource source(text);
+  const Teuchos::XMLObject root = source.getObject();
+  if (root.hasAttribute("name")) pl.setName(root.getAttribute("name"));
 }
 
 }  // namespace
@@ -79,8 +124,12 @@ std::string duplicateYamlKey(const std::string& text) {
 
 Teuchos::RCP<Teuchos::ParameterList> readParameterFile(const std::string& path, const std::string& what, bool xml) {
   const std::string text = readText(path, what);
+  if (!xml) requireSingleTopLevelKey(text, path, what);
   try {
-    return xml ? Teuchos::getParametersFromXmlString(text) : Teuchos::getParametersFromYamlString(text);
+    if (!xml) return Teuchos::getParametersFromYamlString(text);
+    auto pl = Teuchos::getParametersFromXmlString(text);
+    nameAfterXmlRoot(text, *pl);
+    return pl;
   } catch (const std::exception& e) {
     const std::string dup = xml ? "" : duplicateYamlKey(text);
     GPHR_REQUIRE(dup.empty(), InputError, what, " file '", path, "' has a duplicate ", dup,
@@ -88,7 +137,7 @@ Teuchos::RCP<Teuchos::ParameterList> readParameterFile(const std::string& path, 
     // Teuchos' YAML reader takes a flow mapping {a: 1, b: 2} on one line only: say so, since its
     // own message gives just a position.
     throw InputError(detail::concat(what, " file '", path, "' is malformed ", xml ? "XML" : "YAML", ": ",
-                                    firstLineOf(e.what()),
+                                    xml ? teuchosReason(e.what()) : firstLineOf(e.what()),
                                     xml ? "" : " (a {key: value, ...} mapping must fit on one line; "
                                                "write longer sections in block style, one key per line)"));
   }

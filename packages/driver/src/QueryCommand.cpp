@@ -274,8 +274,10 @@ int runQuery(const std::string& modelPath, const std::string& queriesPath, const
   const int rank = comm->getRank(), size = comm->getSize();
   const ReducedModel model(modelPath);
   const auto queries = readQueries(queriesPath, model);
+  checkLiftingBases(model, queries, QueryFileKind::Queries, comm);
+  makeDirectory(outputDir, comm);
+  const OutputLock lock(outputDir, "query", comm);  // before anything is made inside: a refused run leaves nothing
   makeDirectory(outputDir + "/queries", comm);
-  const OutputLock lock(outputDir, "query", comm);
   Teuchos::Time wall("queries");
   wall.start();
   std::vector<QueryOutcome> outs(queries.size());

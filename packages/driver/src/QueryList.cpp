@@ -6,10 +6,13 @@
 #include <cmath>
 #include <fstream>
 #include <set>
+#include <sstream>
 
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/OutputDirectory.hpp"
 #include "gphr/driver/InputFile.hpp"
+#include "gphr/hyper/ReducedModelFile.hpp"
+#include "gphr/online/Method.hpp"
 
 namespace gphr {
 
@@ -128,9 +131,11 @@ void check(const Query& q, const ReducedModel& model, QueryFileKind kind, const 
                  "build.withBasis: true)");
   }
   try {
-    const long steps = wholeSteps(q.T, q.dt);
-    // checked before anything of the run's length is allocated (H_hr is kept at every step)
-    GPHR_REQUIRE(steps <= kMaxQuerySteps, InputError, "T / dt = ", steps, " steps; allowed: at most ", kMaxQuerySteps);
+    // checked before anything of the run's length is allocated (H_hr is kept at every step), and
+    // before the whole-number test, which cannot resolve a ratio beyond 2^53
+    GPHR_REQUIRE(!(q.dt > 0 && q.T / q.dt > kMaxQuerySteps + 0.5), InputError, "T / dt = ", q.T / q.dt, " steps (T = ", q.T,
+                 ", dt = ", q.dt, "); allowed: at most ", kMaxQuerySteps);
+    wholeSteps(q.T, q.dt);
   } catch (const InputError& e) {
     throw InputError(detail::concat(where, ": ", e.what()));
   }
@@ -142,10 +147,13 @@ std::vector<double> gridValues(const Teuchos::ParameterList& grid, const std::st
     for (double x : grid.get<Teuchos::Array<double>>(key)) spec.push_back(x);
   else if (grid.isType<Teuchos::Array<int>>(key))
     for (int x : grid.get<Teuchos::Array<int>>(key)) spec.push_back(x);
+  std::ostringstream given;  // the value as given, for the message
+  if (spec.empty()) given << grid.getEntry(key).getAny(false);
+  for (size_t i = 0; i < spec.size(); ++i) given << (i ? ", " : "[") << spec[i] << (i + 1 == spec.size() ? "]" : "");
   GPHR_REQUIRE(spec.size() == 3 && std::isfinite(spec[0]) && std::isfinite(spec[1]) && spec[2] >= 1 &&
                    spec[2] == std::floor(spec[2]) && spec[2] <= kMaxQueries,
-               InputError, "queries.grid: key '", key, "' must be [from, to, count] with a whole count from 1 to ",
-               kMaxQueries);
+               InputError, "queries.grid: key '", key, "' is ", given.str(),
+               "; allowed: [from, to, count], finite ends and a whole count from 1 to ", kMaxQueries);
   // one point is [x, x, 1]: [from, to, 1] with from != to would silently drop `to`
   GPHR_REQUIRE(spec[2] != 1 || spec[0] == spec[1], InputError, "queries.grid: key '", key, "' is [", spec[0], ", ",
                spec[1], ", 1], one point of two ends; allowed: a count >= 2, or [x, x, 1] for the one point x");
@@ -196,6 +204,25 @@ std::string resultKey(const Query& q, const ReducedModelData& data) {
   return q.key() + ";model=" + data.checksum + ";gphr=" + gphrVersion();
 }
 
+void checkLiftingBases(const ReducedModel& model, const std::vector<Query>& queries, QueryFileKind kind,
+                       const RCP<const Comm>& comm) {
+  std::set<int> ks;
+  const std::vector<double>* mu = nullptr;
+  for (const auto& q : queries) {
+    const bool lifts = kind == QueryFileKind::Validation || q.setup == SetupRoute::Exact || q.states ||
+                       methodInfo(q.method).needsFullResidual;
+    if (!lifts) continue;
+    if (kind == QueryFileKind::Validation)
+      for (const auto& b : model.data().bases) ks.insert(b.k);
+    else
+      ks.insert(q.k);
+    if (!mu) mu = &q.mu;
+  }
+  if (ks.empty()) return;
+  const auto inst = model.scene().instantiate(comm, *mu, true);
+  for (int k : ks) readReducedModelBasis(model.path(), k, inst.system->space());
+}
+
 std::vector<Query> readQueries(const std::string& path, const ReducedModel& model, QueryFileKind kind) {
   const std::string root = kind == QueryFileKind::Queries ? "queries" : "validate";
   const auto pl = readParameterFile(path, root);
@@ -204,9 +231,17 @@ std::vector<Query> readQueries(const std::string& path, const ReducedModel& mode
   try {
     GPHR_REQUIRE(pl->name() == root, InputError, "the top level must be the single key '", root, "' (found '",
                  pl->name(), "')");
-    for (auto it = pl->begin(); it != pl->end(); ++it)
-      GPHR_REQUIRE(pl->name(it) == "defaults" || pl->name(it) == "points" || pl->name(it) == "grid", InputError,
-                   "unknown section '", root, ".", pl->name(it), "'; allowed: defaults, points, grid");
+    for (auto it = pl->begin(); it != pl->end(); ++it) {
+      const std::string& section = pl->name(it);
+      GPHR_REQUIRE(section == "defaults" || section == "points" || section == "grid", InputError,
+                   "unknown section '", root, ".", section, "'; allowed: defaults, points, grid");
+      std::ostringstream given;
+      if (!pl->isSublist(section)) given << pl->entry(it).getAny(false);
+      GPHR_REQUIRE(pl->isSublist(section), InputError, root, ".", section, " is ", given.str(),
+                   "; allowed: a mapping (",
+                   section == "grid" ? "parameter: [from, to, count]" : section == "points" ? "name: {keys}" : "key: value",
+                   ", ...)");
+    }
     Query base = fileDefaults(d);
     if (pl->isSublist("defaults")) apply(pl->sublist("defaults"), d, kind, root + ".defaults", base);
     if (pl->isSublist("points")) {

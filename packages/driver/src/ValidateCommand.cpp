@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/core/RankGroups.hpp"
 #include "gphr/driver/ValidateCommand.hpp"
 #include "gphr/driver/OutputDirectory.hpp"
 #include "gphr/driver/Config.hpp"
@@ -50,6 +51,14 @@ std::string fomKey(const Query& q, const ReducedModelData& d) {
   for (double x : q.mu) std::snprintf(buf, sizeof buf, "mu=%.17g;", x), s += buf;
   std::snprintf(buf, sizeof buf, "T=%.17g;dt=%.17g;save=%ld", q.T, q.dt, q.saveEvery);
   return s + buf + ";gphr=" + gphrVersion();
+}
+
+// "validate: point 'NAME' (eps = 1e+08)": what a failure at a point names.
+std::string pointName(const Query& q, const ReducedModelData& d) {
+  std::string s = "validate: point '" + q.name + "' (";
+  for (size_t j = 0; j < q.mu.size(); ++j)
+    s += detail::concat(j ? ", " : "", j < d.parameterNames.size() ? d.parameterNames[j] : "mu", " = ", q.mu[j]);
+  return s + ")";
 }
 
 // The full model at the point, from DIR/fom/<point>.h5 when its key matches, else run and cached.
@@ -104,13 +113,18 @@ void fullModelsOverGroups(const RunContext& ctx, const ReducedModel& rm, const s
   const int group = std::min(ctx.comm->getRank() / size, groups - 1);
   RunContext sub = ctx;
   sub.comm = ctx.comm->split(group, ctx.comm->getRank());
-  for (size_t i = group; i < points.size(); i += groups) {
+  std::string failure;  // this group's full-model failure: agreed on below, so no group waits for it
+  for (size_t i = group; i < points.size() && failure.empty(); i += groups) {
     if (reused[i]) continue;
     const auto inst = rm.scene().instantiate(sub.comm, points[i].mu, true);
     bool cached = false;
-    fullModel(sub, rm.scene(), d, points[i], pointSettings(d, points[i]), inst.system->space(), cached);
+    try {
+      fullModel(sub, rm.scene(), d, points[i], pointSettings(d, points[i]), inst.system->space(), cached);
+    } catch (const SolverError& e) {
+      failure = detail::concat(pointName(points[i], d), ": the full model failed: ", e.what());
+    }
   }
-  ctx.comm->barrier();
+  agreeOnFailure(*ctx.comm, failure);
   if (ctx.comm->getRank() == 0)
     std::fprintf(stderr, "[gphr] validate: full models in %d groups of %d rank(s)\n", groups, size);
 }
@@ -168,11 +182,13 @@ int runValidate(const std::string& modelPath, const std::string& testsPath, cons
                  ": gphr validate lifts the reduced states to compare them with the full model; build the file with "
                  "build.withBasis: true");
   const auto points = readQueries(testsPath, rm, QueryFileKind::Validation);
+  checkLiftingBases(rm, points, QueryFileKind::Validation, comm);
   RunContext ctx;
   ctx.comm = comm;
   ctx.outputDir = outputDir;
+  makeDirectory(outputDir, comm);
+  const OutputLock lock(outputDir, "validate", comm);  // before anything is made inside: a refused run leaves nothing
   makeDirectory(outputDir + "/fom", comm);
-  const OutputLock lock(outputDir, "validate", comm);
   makeDirectory(outputDir + "/points", comm);
   std::vector<ValidationRecord> all;
   std::vector<double> fomSeconds;
@@ -192,7 +208,11 @@ int runValidate(const std::string& modelPath, const std::string& testsPath, cons
     double tFom = storedFom[i];
     bool cachedFom = false, reused = done[i];
     if (!reused) {
-      recs = evaluatePoint(ctx, rm, q, tFom, cachedFom);
+      try {
+        recs = evaluatePoint(ctx, rm, q, tFom, cachedFom);
+      } catch (const SolverError& e) {  // collective: every rank of the run fails at the same point
+        throw SolverError(detail::concat(pointName(q, d), ": ", e.what()));
+      }
       writePointRecords(outputDir + "/points/" + q.name + ".txt", key, recs, tFom, comm);
     }
     all.insert(all.end(), recs.begin(), recs.end());

@@ -4,12 +4,16 @@
 #include <Teuchos_TimeMonitor.hpp>
 #include <Tpetra_Core.hpp>
 
+#include <mpi.h>
+
 #include <algorithm>
+#include <chrono>
 #include <ctime>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <thread>
 #include <unistd.h>
 #include <vector>
 
@@ -43,9 +47,17 @@ const char* kUsage = "usage: gphr [--output DIR] | run CONFIG [--output DIR] | b
 // --output DIR, --model FILE (build), --threads N (query), --verbose and --quiet after the
 // positional arguments.
 void options(Args& a, const std::vector<std::string>& v, size_t from, bool model, bool threads = false) {
+  // The path after --output or --model: present and not empty ("" would name the current
+  // directory's parent for query's files, the file system's root).
+  auto path = [&](size_t& i) {
+    GPHR_REQUIRE(i + 1 < v.size(), gphr::InputError, "'", v[i], "' needs a path after it (", kUsage, ")");
+    GPHR_REQUIRE(!v[i + 1].empty(), gphr::InputError, "'", v[i], "' is given an empty path; allowed: a ",
+                 v[i] == "--model" ? "file" : "directory", " path");
+    return v[++i];
+  };
   for (size_t i = from; i < v.size(); ++i) {
-    if (v[i] == "--output" && i + 1 < v.size()) a.output = v[++i];
-    else if (model && v[i] == "--model" && i + 1 < v.size()) a.model = v[++i];
+    if (v[i] == "--output") a.output = path(i);
+    else if (model && v[i] == "--model") a.model = path(i);
     else if (threads && v[i] == "--threads")
       a.threads = gphr::queryThreadsFromText(i + 1 < v.size() ? v[++i] : std::string());
     else if (v[i] == "--verbose") a.verbosity = Args::Verbose;
@@ -123,6 +135,37 @@ int runMain(const Args& args, const gphr::RCP<const gphr::Comm>& comm) {
   return 0;
 }
 
+// How long a rank that failed waits for the others to fail too before it aborts the job. Errors
+// of bad input and collective solver failures reach every rank within milliseconds of each other.
+constexpr double kErrorAgreementSeconds = 10.0;
+
+// The end of a run that failed on this rank, with `code`. When every rank failed (the usual case:
+// input is checked and solver failures agreed on every rank), rank 0 prints its message and all
+// return `code`. When some rank did not fail within kErrorAgreementSeconds -- an error only this
+// rank saw, while the others wait for it in a collective -- this rank prints its own message,
+// naming itself, and aborts the job with `code`, rather than leave the others waiting forever.
+// The agreement is a non-blocking barrier on a communicator of its own (`agreement`, a duplicate
+// of the world's), so it cannot match a collective that other ranks are blocked in.
+int failed(MPI_Comm agreement, int rank, int size, FILE* errors, const char* kind, const char* what, int code) {
+  if (size > 1) {
+    MPI_Request request;
+    MPI_Ibarrier(agreement, &request);
+    int all = 0;
+    const auto start = std::chrono::steady_clock::now();
+    for (MPI_Test(&request, &all, MPI_STATUS_IGNORE); !all; MPI_Test(&request, &all, MPI_STATUS_IGNORE)) {
+      if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > kErrorAgreementSeconds) {
+        std::fprintf(errors, "gphr: %s (rank %d of %d; the other ranks did not fail with it: aborting): %s\n", kind,
+                     rank, size, what);
+        std::fflush(errors);
+        MPI_Abort(MPI_COMM_WORLD, code);
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+  }
+  if (rank == 0) std::fprintf(errors, "gphr: %s: %s\n", kind, what);
+  return code;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -144,6 +187,9 @@ int main(int argc, char** argv) {
   Tpetra::ScopeGuard scope(&kokkosArgc, &kokkosArgv);
   auto comm = Tpetra::getDefaultComm();
   const bool root = comm->getRank() == 0;
+  MPI_Comm agreement = MPI_COMM_NULL;  // for failed(): its own communicator, freed by MPI_Finalize
+  MPI_Comm_dup(MPI_COMM_WORLD, &agreement);
+  const int rank = comm->getRank(), size = comm->getSize();
   FILE* errors = stderr;
   try {
     const Args args = parseArgs(argc, argv);
@@ -157,13 +203,10 @@ int main(int argc, char** argv) {
     if (args.command == Args::Validate) return gphr::runValidate(args.model, args.queries, args.output, comm);
     return runMain(args, comm);
   } catch (const gphr::InputError& e) {
-    if (root) std::fprintf(errors, "gphr: error: %s\n", e.what());
-    return 2;
+    return failed(agreement, rank, size, errors, "error", e.what(), 2);
   } catch (const gphr::SolverError& e) {
-    if (root) std::fprintf(errors, "gphr: solver failure: %s\n", e.what());
-    return 3;
+    return failed(agreement, rank, size, errors, "solver failure", e.what(), 3);
   } catch (const std::exception& e) {
-    if (root) std::fprintf(errors, "gphr: internal error: %s\n", e.what());
-    return 1;
+    return failed(agreement, rank, size, errors, "internal error", e.what(), 1);
   }
 }

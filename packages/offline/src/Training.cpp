@@ -182,21 +182,6 @@ std::vector<char> completeInCache(const ArtifactsCache& cache, size_t count, con
   return done;
 }
 
-// Throws on every rank of `world` when the full model failed on any (`failure` non-empty there,
-// at parameter j of count): the failure of the lowest such rank, with its parameter, broadcast.
-void agreeOnFailure(const Comm& world, const std::string& failure, size_t j, size_t count) {
-  const int mine = failure.empty() ? world.getSize() : world.getRank();
-  int from = 0;
-  Teuchos::reduceAll(world, Teuchos::REDUCE_MIN, mine, Teuchos::outArg(from));
-  if (from == world.getSize()) return;
-  long which = static_cast<long>(j), length = static_cast<long>(failure.size());
-  Teuchos::broadcast(world, from, Teuchos::outArg(which));
-  Teuchos::broadcast(world, from, Teuchos::outArg(length));
-  std::string text = world.getRank() == from ? failure : std::string(static_cast<size_t>(length), ' ');
-  if (length > 0) Teuchos::broadcast(world, from, static_cast<int>(length), &text[0]);
-  throw SolverError(detail::concat("training parameter ", which + 1, " of ", count, ": the full model failed: ", text));
-}
-
 // One round of the training with the cache (collective over the cache's ranks): group g of G
 // integrates parameter first + g on `groupComm` (the round's parameters not yet done) while the
 // round's datasets fill block by block: at each of integrateInBlocks' blocks every rank of the
@@ -247,12 +232,12 @@ void trainRound(const Scene& scene, const RCP<const Comm>& groupComm, int group,
         ++stored;
       });
     } catch (const SolverError& e) {
-      failure = e.what();
+      failure = detail::concat("training parameter ", j + 1, " of ", count, ": the full model failed: ", e.what());
     }
   }
   const std::vector<size_t> sizes = blockSizes(columns);
   for (size_t b = stored; b < sizes.size(); ++b) store(nullptr, nullptr, sizes[b]);  // nothing (more) of ours
-  agreeOnFailure(*cache.comm(), failure, j, o.parameters.size());
+  agreeOnFailure(*cache.comm(), failure);
   const auto f = cache.open();
   std::vector<std::string> names;
   for (size_t c : round) {

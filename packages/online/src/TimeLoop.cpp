@@ -12,6 +12,8 @@ long wholeSteps(double T, double dt) {
   GPHR_REQUIRE(std::isfinite(dt) && dt > 0 && std::isfinite(T) && T >= dt, InputError, "T = ", T, ", dt = ", dt,
                "; allowed: dt > 0 and T >= dt");
   const double ratio = T / dt;
+  GPHR_REQUIRE(ratio < 9e15, InputError, "T / dt = ", ratio, " (T = ", T, ", dt = ", dt,
+               "); allowed: below 9e15, where steps are still whole numbers in a double");
   const long steps = std::lround(ratio);
   GPHR_REQUIRE(std::abs(ratio - steps) <= 1e-9 * ratio, InputError, "T = ", T, " is not a whole number of steps dt = ",
                dt, " (T / dt = ", ratio, ")");

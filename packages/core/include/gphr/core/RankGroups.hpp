@@ -12,6 +12,8 @@
 /// themselves, Hdf5File::writeStateRows.)
 /// Each is one Tpetra Import/Export between the world map and the group map's rows seen from the
 /// world communicator (a map that holds every row once per group).
+#include <string>
+
 #include "gphr/core/Types.hpp"
 
 namespace gphr {
@@ -40,5 +42,11 @@ class RankGroups {
   RCP<const Comm> world_, sub_;
   int size_, count_, group_;
 };
+
+/// Collective over `world`: returns when `failure` is empty on every rank, else throws SolverError
+/// on every rank with the failure text of the lowest rank that has one. Groups that work apart
+/// (training parameters, validation points) call it before they meet again, so that no group
+/// waits at a collective for one that failed.
+void agreeOnFailure(const Comm& world, const std::string& failure);
 
 }  // namespace gphr

@@ -18,7 +18,10 @@ Teuchos::ParameterList loadConfig(const std::string& path);
 Teuchos::ParameterList validateConfig(Teuchos::ParameterList cfg);
 /// The small default scene `gphr` runs without arguments (NLS, n = 256, T = 5).
 Teuchos::ParameterList defaultConfig();
-/// Number of time steps T / dt; InputError unless T >= dt and T is a whole number of steps.
+/// The most time steps a config may ask for (T / dt): the paper's runs take at most 5,000.
+constexpr long kMaxRunSteps = 10000000;
+/// Number of time steps T / dt; InputError unless T >= dt, T is a whole number of steps and there
+/// are at most kMaxRunSteps.
 long numSteps(const Teuchos::ParameterList& cfg);
 /// The training parameters: training.values (flattened) or the tensor grid training.points.
 std::vector<std::vector<double>> trainingParameters(const Teuchos::ParameterList& cfg);

@@ -49,6 +49,12 @@ enum class QueryFileKind { Queries, Validation };
 /// What a finished result of query q is keyed by: the query (Query::key()), the model file's
 /// checksum and the gphr version. A result is reused only when all three match.
 std::string resultKey(const Query& q, const ReducedModelData& data);
+/// Reads the stored bases these queries lift with (every k of a validation; a query's k with setup
+/// exact, states: true or an adaptive method), so that a damaged basis -- outside the file's
+/// checksum, checked where it is read (readReducedModelBasis) -- is an InputError before any output
+/// is written. Collective.
+void checkLiftingBases(const ReducedModel& model, const std::vector<Query>& queries, QueryFileKind kind,
+                       const RCP<const Comm>& comm);
 /// Reads and checks a queries (or validation) file against `model`; InputError on any problem.
 std::vector<Query> readQueries(const std::string& path, const ReducedModel& model,
                                QueryFileKind kind = QueryFileKind::Queries);

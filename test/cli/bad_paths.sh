@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Paths that would destroy or misplace files are refused before any work, with exit 2 and one line
+# naming the path and what is allowed: --model at a device, FIFO, symbolic link or directory, at
+# the config file or at the artifacts file (the model file is renamed over whatever is there);
+# --output or --model given empty or without a value (query's "" would write into /). A config in
+# Teuchos XML with its root list named gphr runs like the YAML one.
+# usage: bad_paths.sh GPHR
+set -u
+gphr=$1
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+cd "$work"
+fail() { echo "FAIL: $*"; exit 1; }
+printf 'gphr:\n  scene: {name: nls1d, n: 64}\n  time: {T: 0.1, dt: 0.01}\n' > c.yaml
+mknod dev c 1 3 2> /dev/null || mkfifo dev  # a device where the test may make one (root), else a FIFO
+mkfifo fifo; ln -s target.h5 link; mkdir dir
+# refused CMD...: exit 2, one stderr line containing $expect, and neither the target nor art/ touched.
+refused() {
+  "$gphr" "$@" > out.txt 2> err.txt
+  local rc=$?
+  [ $rc -eq 2 ] || fail "$*: exit code $rc, expected 2: $(cat err.txt)"
+  [ "$(wc -l < err.txt)" -eq 1 ] || fail "$*: stderr is not one line: $(cat err.txt)"
+  grep -qF -- "$expect" err.txt || fail "$*: stderr lacks '$expect': $(cat err.txt)"
+  [ ! -e art ] || fail "$*: art/ was created"
+  echo "ok: $(cat err.txt)"
+}
+expect="is not a regular file (a device, FIFO or socket); allowed: a new path or a regular file to replace"
+refused build c.yaml --model dev --output art
+refused build c.yaml --model fifo --output art
+expect="--model 'link' is a symbolic link"; refused build c.yaml --model link --output art
+expect="--model 'dir' is a directory"; refused build c.yaml --model dir --output art
+expect="--model './c.yaml' is the config file"; refused build c.yaml --model ./c.yaml --output art
+expect="is the artifacts file of --output"; refused build c.yaml --model art/../art/artifacts.h5 --output art
+[ -p fifo ] && [ -L link ] && [ -d dir ] && [ -e dev ] && [ ! -f dev ] || fail "a refused --model target was replaced"
+grep -q "^gphr:" c.yaml || fail "the config was overwritten"
+expect="'--output' is given an empty path; allowed: a directory path"
+refused query m.h5 q.yaml --output ""
+refused validate m.h5 t.yaml --output ""
+refused run c.yaml --output ""
+expect="'--model' is given an empty path; allowed: a file path"; refused build c.yaml --model "" --output art
+expect="'--output' needs a path after it"; refused query m.h5 q.yaml --output
+# XML: <ParameterList name="gphr"> is the config's root, as the key gphr is YAML's.
+cat > c.xml <<'XML'
+<ParameterList name="gphr">
+  <ParameterList name="scene"><Parameter name="name" type="string" value="nls1d"/><Parameter name="n" type="int" value="64"/></ParameterList>
+  <ParameterList name="time"><Parameter name="T" type="double" value="0.1"/><Parameter name="dt" type="double" value="0.01"/></ParameterList>
+</ParameterList>
+XML
+"$gphr" run c.xml --output xml > /dev/null 2> xml.err || fail "the XML config did not run: $(cat xml.err)"
+"$gphr" run c.yaml --output yaml > /dev/null 2> yaml.err || fail "the YAML config did not run: $(cat yaml.err)"
+python3 - <<'PY' || fail "the XML and YAML configs ran differently"
+import json
+a, b = (json.load(open(d + "/summary.json")) for d in ("xml", "yaml"))
+assert a["provenance"]["config"] == b["provenance"]["config"], "configs differ"
+assert a["runs"][0]["H0"] == b["runs"][0]["H0"] and a["runs"][0]["H_err_max"] == b["runs"][0]["H_err_max"]
+print("ok: the XML config runs as the YAML one")
+PY

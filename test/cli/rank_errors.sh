@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# An error on some ranks only ends the job with the error, never a hang: the ranks agree on a
+# failure when they all have one (validate's full models over rank groups: the group that failed
+# names its point, the other group does not wait for it), and a rank whose failure the others do
+# not share prints it, naming itself, and aborts the job (main.cpp, failed()) after 10 s.
+# usage: rank_errors.sh GPHR MPIEXEC
+set -u
+gphr=$(cd "$(dirname "$1")" && pwd)/$(basename "$1"); mpiexec=$2
+here=$(cd "$(dirname "$0")" && pwd)
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+cd "$work"
+fail() { echo "FAIL: $*"; exit 1; }
+np2() { timeout 60 "$mpiexec" --allow-run-as-root --oversubscribe -np 2 "$@"; }
+cp "$here/../support/small_nls_model.yaml" b.yaml  # gp-deim k = 6, m = 12, the basis stored
+"$gphr" build b.yaml --model m.h5 --output art > /dev/null 2> build.err || { cat build.err; fail "build"; }
+
+# 1. validate on 2 ranks, two points in two groups of one rank; point b's full model fails
+#    (eps = 1e8: Newton cannot converge) while group 0 runs point a. Exit 3 naming point b.
+printf 'validate:\n  defaults: {T: 1.0, dt: 0.01}\n  points:\n    a: {eps: 1.0}\n    b: {eps: 1.0e8}\n' > v.yaml
+np2 "$gphr" validate m.h5 v.yaml --output v > v.out 2> v.err
+rc=$?
+[ $rc -eq 3 ] || fail "validate with a failing point: exit code $rc, expected 3 (124: hung): $(cat v.err)"
+grep -q "gphr: solver failure: validate: point 'b' (eps = 100000000): the full model failed: Newton did not converge" v.err \
+  || fail "validate's failure does not name point b: $(cat v.err)"
+echo "ok: $(grep 'gphr:' v.err)"
+
+# 2. query on 2 ranks where rank 1's result file cannot be written (a directory stands at its
+#    path); rank 0 finishes its queries and waits at the end. Rank 1 reports and aborts: a
+#    non-zero exit within the 60 s limit, the message naming rank 1 and the path.
+printf 'queries:\n  defaults: {T: 1.0, dt: 0.01, k: 6, m: 12}\n  grid: {eps: [0.9, 1.1, 3]}\n' > q.yaml
+mkdir -p q/queries/grid-0001.h5
+np2 "$gphr" query m.h5 q.yaml --output q > q.out 2> q.err
+rc=$?
+[ $rc -ne 0 ] && [ $rc -ne 124 ] || fail "query with an unwritable result on rank 1: exit code $rc (124: hung): $(cat q.err)"
+grep -q "gphr: error (rank 1 of 2; the other ranks did not fail with it: aborting): cannot rename 'q/queries/grid-0001.h5.partial' to 'q/queries/grid-0001.h5'" q.err \
+  || fail "the query failure does not name rank 1 and the file: $(cat q.err)"
+echo "ok: $(grep 'gphr:' q.err)"
+
+# 3. The same error on both ranks stays one line from rank 0 and its exit code (no abort).
+printf 'queries:\n  defaults: {T: 1.0, dt: 0.01, k: 6, m: 12}\n  points:\n    a: {eps: 5.0}\n' > bad.yaml
+np2 "$gphr" query m.h5 bad.yaml --output bad > bad.out 2> bad.err
+rc=$?
+[ $rc -eq 2 ] || fail "a bad query on both ranks: exit code $rc, expected 2: $(cat bad.err)"
+[ "$(grep -c 'gphr:' bad.err)" -eq 1 ] && ! grep -q "aborting" bad.err || fail "a shared error was not one line: $(cat bad.err)"
+echo "ok: $(grep 'gphr:' bad.err)"
