@@ -2,7 +2,8 @@
 # An error on some ranks only ends the job with the error, never a hang: the ranks agree on a
 # failure when they all have one (validate's full models over rank groups: the group that failed
 # names its point, the other group does not wait for it), and a rank whose failure the others do
-# not share prints it, naming itself, and aborts the job (main.cpp, failed()) after 10 s.
+# not share prints it, naming itself, and aborts the job (main.cpp, failed()) after 10 s; a
+# failure every rank shares (a gp-adeim query's full system) is one line naming the query.
 # usage: rank_errors.sh GPHR MPIEXEC
 set -u
 gphr=$(cd "$(dirname "$1")" && pwd)/$(basename "$1"); mpiexec=$2
@@ -43,3 +44,15 @@ rc=$?
 [ $rc -eq 2 ] || fail "a bad query on both ranks: exit code $rc, expected 2: $(cat bad.err)"
 [ "$(grep -c 'gphr:' bad.err)" -eq 1 ] && ! grep -q "aborting" bad.err || fail "a shared error was not one line: $(cat bad.err)"
 echo "ok: $(grep 'gphr:' bad.err)"
+
+# 4. A gp-adeim query steps the full system on every rank together: its solver failure is every
+#    rank's, one line naming the query, exit 3.
+sed 's/methods: \[gp-deim\]/methods: [gp-adeim]/' b.yaml > adeim.yaml
+"$gphr" build adeim.yaml --model a.h5 --output aart > /dev/null 2> adeim.err || { cat adeim.err; fail "gp-adeim build"; }
+printf 'queries:\n  defaults: {T: 1.0, dt: 0.01, k: 6, m: 12, method: gp-adeim}\n  points:\n    big: {eps: 1.0e8, extrapolate: true}\n' > qa.yaml
+np2 "$gphr" query a.h5 qa.yaml --output qa > qa.out 2> qa.err
+rc=$?
+[ $rc -eq 3 ] || fail "a failing gp-adeim query: exit code $rc, expected 3: $(cat qa.err)"
+[ "$(grep -c 'gphr:' qa.err)" -eq 1 ] && grep -q "gphr: solver failure: query 'big' (gp-adeim k=6 m=12): Newton did not converge" qa.err \
+  || fail "the gp-adeim failure is not one line naming the query: $(cat qa.err)"
+echo "ok: $(grep 'gphr:' qa.err)"

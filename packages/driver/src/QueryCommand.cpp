@@ -186,7 +186,12 @@ QueryOutcome runAdaptive(const ReducedModel& model, const Query& q, const std::s
   Recorder rec;
   rec.probeCount = q.probes ? model.data().basis(q.k).probeGids.size() : 0;
   double setup = NAN;
-  const auto stats = model.simulateAdaptive(q.k, q.m, q.mu, q.T, q.dt, comm, recording(q, rec), &setup, q.extrapolate);
+  SimulationStats stats;
+  try {
+    stats = model.simulateAdaptive(q.k, q.m, q.mu, q.T, q.dt, comm, recording(q, rec), &setup, q.extrapolate);
+  } catch (const SolverError& e) {  // the full system's solver: collective, every rank throws it
+    throw SolverError(detail::concat("query '", q.name, "' (", q.method, " k=", q.k, " m=", q.m, "): ", e.what()));
+  }
   if (comm->getRank() != 0) return QueryOutcome();
   const QueryOutcome out = outcomeOf(q, stats, rec, setup, model.data().outsideBox(q.mu));
   writeQuery(path, model, q, rec, out);
