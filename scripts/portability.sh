@@ -3,7 +3,8 @@
 # and prints one line per combination (kernel, threads, passed/failed). Debian's OpenBLAS picks its
 # kernels by CPU at run time (Prescott: SSE3; Haswell and Zen: AVX2; SkylakeX: AVX-512), so the
 # last bits of a BLAS result differ between machines; no test may depend on them. A test that
-# passes here on every kernel passes on any x86-64 CPU that Debian supports. See doc/portability.md.
+# passes here on every kernel passes on any x86-64 CPU that Debian supports. It builds ./build first
+# (the tests run against the tree as it is). See doc/portability.md.
 #
 # usage: scripts/portability.sh [--kernels "K ..."] [--threads "T ..."] [-- CTEST_ARGS...]
 #   --kernels  the kernels to try (default: all of Prescott Haswell Zen SkylakeX the CPU supports;
@@ -40,6 +41,8 @@ echo "[portability] CPU: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | s
 summary=() failed=0
 for t in $threads; do
   cmake -S . -B build -DGPHR_TEST_BLAS_THREADS="$t" > /dev/null || exit 2
+  # the tree as it is: a binary built before the last commit names an older one (cli_provenance)
+  cmake --build build -j2 > /dev/null || { echo "[portability] the build failed: run cmake --build build" >&2; exit 2; }
   for k in $kernels; do
     log=build/portability-$k-t$t.log
     start=$SECONDS

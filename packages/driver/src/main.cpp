@@ -47,8 +47,8 @@ const char* kUsage = "usage: gphr [--output DIR] | run CONFIG [--output DIR] | b
 // --output DIR, --model FILE (build), --threads N (query), --verbose and --quiet after the
 // positional arguments.
 void options(Args& a, const std::vector<std::string>& v, size_t from, bool model, bool threads = false) {
-  // The path after --output or --model: present and not empty ("" would name the current
-  // directory's parent for query's files, the file system's root).
+  // The path after --output or --model: present and not empty (query's "" + "/queries" is
+  // /queries: it wrote into the file system's root).
   auto path = [&](size_t& i) {
     GPHR_REQUIRE(i + 1 < v.size(), gphr::InputError, "'", v[i], "' needs a path after it (", kUsage, ")");
     GPHR_REQUIRE(!v[i + 1].empty(), gphr::InputError, "'", v[i], "' is given an empty path; allowed: a ",
@@ -187,7 +187,7 @@ int main(int argc, char** argv) {
   Tpetra::ScopeGuard scope(&kokkosArgc, &kokkosArgv);
   auto comm = Tpetra::getDefaultComm();
   const bool root = comm->getRank() == 0;
-  MPI_Comm agreement = MPI_COMM_NULL;  // for failed(): its own communicator, freed by MPI_Finalize
+  MPI_Comm agreement = MPI_COMM_NULL;  // for failed(): its own communicator (not freed: MPI_Finalize ends it)
   MPI_Comm_dup(MPI_COMM_WORLD, &agreement);
   const int rank = comm->getRank(), size = comm->getSize();
   FILE* errors = stderr;
