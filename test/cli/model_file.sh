@@ -213,6 +213,8 @@ bad not_steps "is not a whole number of steps" "$q
     a: {eps: 1.0, T: 0.015}"
 bad too_many_steps "query 'a': T / dt = 1e+300 steps (T = 1, dt = 1e-300); allowed: at most 10000000" "$q
     a: {eps: 1.0, dt: 1.0e-300}"
+bad flow_duplicate "has a duplicate key 'eps' in the flow mapping at line 4; allowed: each key once per mapping" "$q
+    a: {eps: 1.0, eps: 1.05}"
 bad grid_count "queries.grid: key 'eps' is [0.9, 1.1, 0]; allowed: [from, to, count]" 'queries:
   grid: {eps: [0.9, 1.1, 0]}'
 bad points_not_mapping "queries.points is 7; allowed: a mapping (name: {keys}, ...)" 'queries:

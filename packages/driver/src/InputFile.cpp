@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <vector>
 
@@ -95,11 +96,45 @@ void nameAfterXmlRoot(const std::string& text, Teuchos::ParameterList& pl) {
   if (root.hasAttribute("name")) pl.setName(root.getAttribute("name"));
 }
 
+// A key given twice in one of the line's flow mappings {a: 1, b: {c: 2}} (each at its own depth;
+// Teuchos takes them on one line only), as "key 'a' in the flow mapping at line N"; "" if none.
+std::string duplicateFlowKey(const std::string& line, int lineNo) {
+  for (size_t open = line.find('{'); open != std::string::npos; open = line.find('{', open + 1)) {
+    std::set<std::string> keys;
+    std::string item;
+    int depth = 0;
+    char quote = 0;
+    for (size_t i = open + 1; i < line.size(); ++i) {
+      const char c = line[i];
+      if (quote || c == '"' || c == '\'') {
+        quote = quote == c ? 0 : (quote ? quote : c);
+      } else if (depth == 0 && (c == ',' || c == '}')) {
+        const size_t colon = item.find(':');
+        const size_t first = item.find_first_not_of(' '), last = colon == std::string::npos ? 0 : item.find_last_not_of(' ', colon - 1);
+        if (colon != std::string::npos && first < colon) {
+          const std::string key = item.substr(first, last + 1 - first);
+          if (!keys.insert(key).second) return detail::concat("key '", key, "' in the flow mapping at line ", lineNo);
+        }
+        item.clear();
+        if (c == '}') break;
+        continue;
+      } else if (c == '{' || c == '[') {
+        ++depth;
+      } else if (c == '}' || c == ']') {
+        --depth;
+      }
+      item += c;
+    }
+  }
+  return "";
+}
+
 }  // namespace
 
 std::string duplicateYamlKey(const std::string& text) {
   // Block mappings: a key is a line "  name:" (no flow braces before the colon); a mapping's keys
-  // share its indent, and a deeper line opens a child mapping of the key above it.
+  // share its indent, and a deeper line opens a child mapping of the key above it. Flow mappings
+  // on a line: duplicateFlowKey.
   struct Level {
     size_t indent;
     std::map<std::string, int> keys;  // key -> line
@@ -110,7 +145,10 @@ std::string duplicateYamlKey(const std::string& text) {
   for (std::string line; std::getline(in, line);) {
     ++lineNo;
     const size_t indent = line.find_first_not_of(' ');
-    if (indent == std::string::npos || line[indent] == '#' || line[indent] == '-') continue;
+    if (indent == std::string::npos || line[indent] == '#') continue;
+    const std::string flow = duplicateFlowKey(line, lineNo);
+    if (!flow.empty()) return flow;
+    if (line[indent] == '-') continue;
     const size_t colon = line.find(':', indent);
     if (colon == std::string::npos || line.find_first_of("{[\"'", indent) < colon) continue;
     const std::string key = line.substr(indent, colon - indent);
