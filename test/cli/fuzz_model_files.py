@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Derives damaged reduced-model files from a good one, as a hostile-but-honest user editing it with
 h5py would: truncations, deleted and resized datasets, out-of-range and non-finite values, changed
-attribute types, and flipped bits inside the datasets' stored bytes. Writes OUT/<case>.h5 and
+attribute types, and flipped bits inside the datasets' stored bytes and the object headers. Writes OUT/<case>.h5 and
 OUT/cases.txt, one line "<case> <expected exit code>": 2 for a damaged file, 0 for an edit that
 keeps the model (a string attribute rewritten as a variable-length string, as other writers make).
 
@@ -37,6 +37,9 @@ with h5py.File(good, "r") as f:
                 gk + "/interpolation_values", gk + "/constant_values", gk + "/reference_gids", gk + "/probe_rows"]
     offsets = {d: f[d].id.get_offset() for d in datasets}
     sizes = {d: f[d].id.get_storage_size() for d in datasets}
+    # object headers (attributes, links, layouts): address and size of the root's and a model's
+    headers = {name: (info.addr, info.hdr.space.total)
+               for name, info in (("root", h5py.h5o.get_info(f.id)), ("model", h5py.h5o.get_info(f[gm].id)))}
 size = os.path.getsize(good)
 
 
@@ -55,6 +58,18 @@ def flip(dataset):
             b = g.read(1)[0]
             g.seek(at)
             g.write(bytes([b ^ 0x08]))
+    return edit
+
+
+def flip_header(obj, fraction):
+    def edit(path):  # one bit inside an object header: the 1.8 format's checksum must refuse it
+        at, size = headers[obj]
+        at += 16 + int((size - 16) * fraction)
+        with open(path, "r+b") as g:
+            g.seek(at)
+            b = g.read(1)[0]
+            g.seek(at)
+            g.write(bytes([b ^ 0x10]))
     return edit
 
 
@@ -117,6 +132,9 @@ for d in (gm + "/weights", gm + "/basis_rows", gk + "/interpolation_values", gk 
     tag = d.strip("/").replace("/", "_")
     derive("nan_" + tag, set_entry(d, 0, np.nan))
     derive("inf_" + tag, set_entry(d, 0, np.inf))
+for i in range(8):  # the earliest file format (no checksums) took 314 of 1,446 such flips silently
+    derive(f"header_root_{i}", flip_header("root", (i + 0.5) / 8))
+derive("header_model", flip_header("model", 0.5))
 derive("offsets_1000", set_entry(gm + "/stencil_offsets", 1, 1000))
 derive("offsets_negative", set_entry(gm + "/stencil_offsets", 1, -1))
 derive("offsets_fraction", set_entry(gm + "/stencil_offsets", 1, 0.5))

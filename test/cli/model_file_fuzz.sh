@@ -57,6 +57,11 @@ for name in offsets_1000 nan_k6_constant_values flipped_k6_gp-deim_m12_basis_row
   run 2 "validate $name (2 ranks)" "$mpiexec" -np 2 "$gphr" validate "bad/$name.h5" v.yaml --output out
 done
 
+# A damaged object header is named as one (HDF5's checksum of the 1.8 format), not as a
+# missing attribute or dataset.
+run 2 "query header_model (message)" "$gphr" query bad/header_model.h5 q.yaml --output out
+grep -q "incorrect metadata checksum" stderr.txt || fail "header_model: the message does not name the checksum: $(cat stderr.txt)"
+
 # The basis A is read only to lift (validate, setup: exact, states: true) and is outside the
 # checksum: where it is read, a value that is not finite or a changed one (its fingerprint) is an
 # error naming the dataset.

@@ -3,7 +3,8 @@
 # failure when they all have one (validate's full models over rank groups: the group that failed
 # names its point, the other group does not wait for it), and a rank whose failure the others do
 # not share prints it, naming itself, and aborts the job (main.cpp, failed()) after 10 s; a
-# failure every rank shares (a gp-adeim query's full system) is one line naming the query.
+# failure every rank shares (a gp-adeim query's full system, an overflow) is one line naming
+# the query and, for an overflow, saying so.
 # usage: rank_errors.sh GPHR MPIEXEC
 set -u
 gphr=$(cd "$(dirname "$1")" && pwd)/$(basename "$1"); mpiexec=$2
@@ -12,6 +13,15 @@ work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
 fail() { echo "FAIL: $*"; exit 1; }
 np2() { timeout 60 "$mpiexec" --allow-run-as-root --oversubscribe -np 2 "$@"; }
+# one_line NAME RC PATTERN WHAT -- COMMAND...: COMMAND exits RC with one gphr line matching PATTERN
+one_line() {
+  local name=$1 expect=$2 pattern=$3 what=$4; shift 5
+  "$@" > "$name.out" 2> "$name.err"
+  local rc=$?
+  [ $rc -eq "$expect" ] || fail "$what: exit code $rc, expected $expect: $(cat "$name.err")"
+  [ "$(grep -c 'gphr:' "$name.err")" -eq 1 ] && grep -q "$pattern" "$name.err" || fail "$what: not one line matching '$pattern': $(cat "$name.err")"
+  echo "ok: $(grep 'gphr:' "$name.err")"
+}
 cp "$here/../support/small_nls_model.yaml" b.yaml  # gp-deim k = 6, m = 12, the basis stored
 "$gphr" build b.yaml --model m.h5 --output art > /dev/null 2> build.err || { cat build.err; fail "build"; }
 
@@ -50,9 +60,11 @@ echo "ok: $(grep 'gphr:' bad.err)"
 sed 's/methods: \[gp-deim\]/methods: [gp-adeim]/' b.yaml > adeim.yaml
 "$gphr" build adeim.yaml --model a.h5 --output aart > /dev/null 2> adeim.err || { cat adeim.err; fail "gp-adeim build"; }
 printf 'queries:\n  defaults: {T: 1.0, dt: 0.01, k: 6, m: 12, method: gp-adeim}\n  points:\n    big: {eps: 1.0e8, extrapolate: true}\n' > qa.yaml
-np2 "$gphr" query a.h5 qa.yaml --output qa > qa.out 2> qa.err
-rc=$?
-[ $rc -eq 3 ] || fail "a failing gp-adeim query: exit code $rc, expected 3: $(cat qa.err)"
-[ "$(grep -c 'gphr:' qa.err)" -eq 1 ] && grep -q "gphr: solver failure: query 'big' (gp-adeim k=6 m=12): Newton did not converge" qa.err \
-  || fail "the gp-adeim failure is not one line naming the query: $(cat qa.err)"
-echo "ok: $(grep 'gphr:' qa.err)"
+one_line qa 3 "gphr: solver failure: query 'big' (gp-adeim k=6 m=12): Newton did not converge" \
+  "a failing gp-adeim query" -- np2 "$gphr" query a.h5 qa.yaml --output qa
+
+# 5. An overflow is named as one: eps = 1e300 makes the full model's residual infinite at the
+#    first step, which no Newton iteration can mend. Exit 3, one line saying it is not finite.
+printf 'validate:\n  defaults: {T: 1.0, dt: 0.01}\n  points:\n    huge: {eps: 1.0e300}\n' > vo.yaml
+one_line vo 3 "point 'huge' (eps = 1e+300): the full model failed: .*residual norm inf .*not finite: the state or its gradient left the double range" \
+  "validate with eps = 1e300" -- np2 "$gphr" validate m.h5 vo.yaml --output vo

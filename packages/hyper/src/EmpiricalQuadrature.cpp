@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/core/IndexHash.hpp"
 #include "gphr/hyper/JacobianSnapshots.hpp"
 #include "gphr/reduction/Deim.hpp"
 
@@ -45,10 +46,7 @@ struct RowHash {
   double sign;
 };
 RowHash hashRow(unsigned long long seed, long rho, int rows) {
-  unsigned long long x = seed + 0x9E3779B97F4A7C15ull * static_cast<unsigned long long>(rho + 1);
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;  // splitmix64's finaliser
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  x ^= x >> 31;
+  const unsigned long long x = hashIndex(seed, static_cast<unsigned long long>(rho));
   return {static_cast<int>((x >> 1) % static_cast<unsigned long long>(rows)), (x & 1ull) ? 1.0 : -1.0};
 }
 

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/core/IndexHash.hpp"
 #include "gphr/io/Hdf5File.hpp"
 
 namespace gphr {
@@ -125,7 +126,7 @@ void writeProvenance(Hdf5File& f, const ReducedModelData& d) {
 }
 
 // A fingerprint of a stored basis that does not depend on the rank count: A^T w, w_i in [-1, 1]
-// a hash (splitmix64) of row i's global index. The basis is not in the file's checksum (it is
+// hashIndex of row i's global index. The basis is not in the file's checksum (it is
 // distributed, and a query that never lifts never reads it); this catches a changed basis where
 // it is read: a changed entry a_ij moves component j by w_i (a_ij' - a_ij). Collective.
 std::vector<double> basisFingerprint(const MultiVector& A, double* wNorm = nullptr) {
@@ -133,10 +134,7 @@ std::vector<double> basisFingerprint(const MultiVector& A, double* wNorm = nullp
   {
     auto v = w.getLocalViewHost(Tpetra::Access::OverwriteAll);
     for (size_t i = 0; i < v.extent(0); ++i) {
-      unsigned long long x = 0x9E3779B97F4A7C15ull * (static_cast<unsigned long long>(A.getMap()->getGlobalElement(i)) + 1);
-      x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-      x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-      x ^= x >> 31;
+      const unsigned long long x = hashIndex(0, static_cast<unsigned long long>(A.getMap()->getGlobalElement(i)));
       v(i, 0) = static_cast<double>(x >> 11) * 0x1.0p-52 - 1.0;  // [-1, 1)
     }
   }

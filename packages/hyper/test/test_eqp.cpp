@@ -320,6 +320,38 @@ TEST(Eqp, SketchedRowsGiveAFitAndItsExactResidual) {
     // a sketch that lumps rows into few buckets (its fit is near exact on them) or ignores C.
     EXPECT_GT(fit.residual, 0.5 * onExact) << rows << " rows";
     EXPECT_LT(fit.residual, 2.0 * onExact) << rows << " rows";
+    // The sketch keeps squared norms in expectation, E ||S c||^2 = ||c||^2 (by its signs: a
+    // bucketing without them adds the products of the rows sharing a bucket). Summed over all
+    // columns of C, and for b = C v; each ratio's spread is ~ sqrt(2 / rows) (0.1 at 200 rows:
+    // measured 0.93 / 0.85 and 0.98 / 1.01), so [0.5, 2] is 5 standard deviations.
+    const auto full = trainingOf(hc);
+    double local[2] = {0.0, 0.0}, global[2], skb = 0.0, exb = 0.0;
+    for (size_t l = 0; l < t.norms.size(); ++l)
+      local[0] += t.norms[l] * t.norms[l], local[1] += full.norms[l] * full.norms[l];
+    for (double x : t.target) skb += x * x;
+    for (double x : full.target) exb += x * x;
+    Teuchos::reduceAll(*test::comm(), Teuchos::REDUCE_SUM, 2, local, global);
+    std::printf("[eqp] sketch %d rows: sum ||S c_l||^2 / sum ||c_l||^2 = %.4f, ||S b||^2 / ||b||^2 = %.4f\n", rows,
+                global[0] / global[1], skb / exb);
+    EXPECT_GT(global[0] / global[1], 0.5);
+    EXPECT_LT(global[0] / global[1], 2.0);
+    EXPECT_GT(skb / exb, 0.5);
+    EXPECT_LT(skb / exb, 2.0);
+    // Those ratios barely see dropped signs (the Jacobian rows' signs are mixed already: 1.13 /
+    // 1.25 without them), but a column's sum does: a bucketing keeps sum_i (S c)_i = sum_rho c_rho
+    // exactly, a signed sketch gives sum_rho s_rho c_rho, which differs unless the signed rows
+    // cancel. So most columns' sums must differ from the exact rows' by more than round-off
+    // (1e-9 of ||c||_1 against ~1e-16 x the row count for a bucketing).
+    int kept = 0;
+    for (size_t l = 0; l < t.norms.size(); ++l) {
+      double sSketch = 0.0, sExact = 0.0, abs1 = 0.0;
+      for (int i = 0; i < t.numRows; ++i) sSketch += t.columns[l * t.numRows + i];
+      for (int i = 0; i < full.numRows; ++i)
+        sExact += full.columns[l * full.numRows + i], abs1 += std::abs(full.columns[l * full.numRows + i]);
+      if (std::abs(sSketch - sExact) <= 1e-9 * abs1) ++kept;
+    }
+    EXPECT_LT(kept, static_cast<int>(t.norms.size()) / 10 + 1) << kept << " of " << t.norms.size()
+                                                               << " local columns kept their sums: no signs?";
   }
 }
 

@@ -28,8 +28,23 @@ struct Id {
   }
 };
 
+// What HDF5 said about the failure it just recorded (its printing is off, the stack is kept):
+// the description of the innermost error, where it was detected, e.g. "incorrect metadata
+// checksum after all read attempts" for a damaged header of a file in the 1.8 format.
+herr_t innermostError(unsigned n, const H5E_error2_t* e, void* out) {
+  auto& reason = *static_cast<std::string*>(out);
+  if (n == 0 && e->desc != nullptr) reason = e->desc;
+  return 0;
+}
+
+std::string hdf5Reason() {
+  std::string reason;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, innermostError, &reason);
+  return reason.empty() ? std::string() : " (HDF5: " + reason + ")";
+}
+
 void check(herr_t status, const std::string& what, const std::string& path) {
-  GPHR_REQUIRE(status >= 0, InputError, "HDF5 file '", path, "': ", what, " failed");
+  GPHR_REQUIRE(status >= 0, InputError, "HDF5 file '", path, "': ", what, " failed", hdf5Reason());
 }
 
 hid_t collectiveTransfer() {
@@ -45,6 +60,12 @@ Hdf5File::Hdf5File(const std::string& path, const RCP<const Comm>& comm, Mode mo
   Id fapl{H5Pcreate(H5P_FILE_ACCESS), H5Pclose};
   H5Pset_fapl_mpio(fapl.id, rawComm(comm), MPI_INFO_NULL);
   if (mode == Mode::Create) {
+    // The 1.8 file format: its superblock and object headers (the attributes, links and dataset
+    // layouts) carry checksums, which HDF5 verifies on every read, so a damaged header is a read
+    // error instead of garbage the library follows (the earliest format, HDF5's default, has none:
+    // one flipped bit in a model file's root attributes could crash libhdf5). Readable by any HDF5
+    // since 1.8 (2008); not the 1.10 format, whose new chunk indexes this project does not need.
+    check(H5Pset_libver_bounds(fapl.id, H5F_LIBVER_V18, H5F_LIBVER_V18), "choosing the 1.8 file format", path);
     file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.id);
     GPHR_REQUIRE(file_ >= 0, InputError, "cannot create HDF5 file '", path, "' (is the directory writable?)");
   } else {
@@ -74,8 +95,15 @@ bool Hdf5File::exists(const std::string& name) const {
   // Check each path component so that a missing parent is "false", not an error.
   size_t pos = 0;
   while ((pos = name.find('/', pos + 1)) != std::string::npos)
-    if (H5Lexists(file_, name.substr(0, pos).c_str(), H5P_DEFAULT) <= 0) return false;
-  return H5Lexists(file_, name.c_str(), H5P_DEFAULT) > 0;
+    if (!linkExists(name.substr(0, pos))) return false;
+  return linkExists(name);
+}
+
+bool Hdf5File::linkExists(const std::string& name) const {
+  const htri_t found = H5Lexists(file_, name.c_str(), H5P_DEFAULT);
+  // An error (not "absent") is a damaged file: reading the group's links failed.
+  check(found, "looking up '" + name + "'", path_);
+  return found > 0;
 }
 
 void Hdf5File::createGroup(const std::string& name) {
@@ -88,7 +116,10 @@ void Hdf5File::remove(const std::string& name) {
 }
 
 bool Hdf5File::hasAttribute(const std::string& object, const std::string& key) const {
-  return exists(object) && H5Aexists_by_name(file_, object.c_str(), key.c_str(), H5P_DEFAULT) > 0;
+  if (!exists(object)) return false;
+  const htri_t found = H5Aexists_by_name(file_, object.c_str(), key.c_str(), H5P_DEFAULT);
+  check(found, "looking up attribute '" + key + "' of '" + object + "'", path_);
+  return found > 0;
 }
 
 void Hdf5File::flush() { check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing", path_); }

@@ -76,6 +76,8 @@ class Hdf5File {
   std::vector<double> doubleAttribute(const std::string& object, const std::string& key) const;
 
  private:
+  /// H5Lexists, its error (a damaged group) an InputError instead of "absent".
+  bool linkExists(const std::string& name) const;
   /// Selects this rank's entries of `rows` rows first, first + every, ... of a file space.
   using Selector = std::function<void(hid_t space, hsize_t first, hsize_t every, hsize_t rows)>;
   /// A (count, N) dataset; this rank's entries the columns of X (none where X is null).

@@ -77,9 +77,15 @@ constexpr int kMaxPredictorOrder = 3;  ///< Largest allowed NewtonOptions::predi
 /// The one failure message of both Newton drivers (GPHR's loop and NOX): where and how far.
 inline std::string newtonFailureMessage(const NewtonOptions& o, long step, double time, const StepReport& rep,
                                         const std::string& driver = "Newton") {
+  // A residual that is not finite is an overflow, not slow convergence: say so, since more
+  // iterations or a looser tolerance (what the plain message suggests) cannot help.
+  const char* overflow = std::isfinite(rep.residualNorm)
+                             ? ""
+                             : "; not finite: the state or its gradient left the double range (a parameter far "
+                               "outside the training box, or too large a step)";
   return detail::concat(driver, " did not converge at step ", step, " (t = ", time, "): residual norm ",
                         rep.residualNorm, " after ", rep.newtonIterations, " iterations (tolerance ",
-                        o.tolerance, ", at most ", o.maxIterations, ")");
+                        o.tolerance, ", at most ", o.maxIterations, ")", overflow);
 }
 
 /// The implicit scheme (*) of the file's description (IMR or AVF by its quadrature rule) over a Backend.
