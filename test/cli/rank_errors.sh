@@ -3,8 +3,8 @@
 # failure when they all have one (validate's full models over rank groups: the group that failed
 # names its point, the other group does not wait for it), and a rank whose failure the others do
 # not share prints it, naming itself, and aborts the job (main.cpp, failed()) after 10 s; a
-# failure every rank shares (a gp-adeim query's full system, an overflow) is one line naming
-# the query and, for an overflow, saying so.
+# failure every rank shares (a gp-adeim query's full system, an overflow, a stall) is one line naming
+# the query and, for an overflow or a stall at round-off, saying so.
 # usage: rank_errors.sh GPHR MPIEXEC
 set -u
 gphr=$(cd "$(dirname "$1")" && pwd)/$(basename "$1"); mpiexec=$2
@@ -68,3 +68,9 @@ one_line qa 3 "gphr: solver failure: query 'big' (gp-adeim k=6 m=12): Newton did
 printf 'validate:\n  defaults: {T: 1.0, dt: 0.01}\n  points:\n    huge: {eps: 1.0e300}\n' > vo.yaml
 one_line vo 3 "point 'huge' (eps = 1e+300): the full model failed: .*residual norm inf .*not finite: the state or its gradient left the double range" \
   "validate with eps = 1e300" -- np2 "$gphr" validate m.h5 vo.yaml --output vo
+
+# 6. On one rank (no groups) a full model's failure is worded the same; at eps = 1e8 Newton stalls
+#    at 1.44e-10 against the tolerance 1e-10 (it converges with 1e-9: its round-off), which the
+#    line says instead of leaving it for divergence.
+one_line v1 3 "point 'b' (eps = 100000000): the full model failed: Newton did not converge .*; it stalled at .*allowed: a larger integrator.newtonTolerance" \
+  "validate on one rank, a stalling point" -- timeout 60 "$gphr" validate m.h5 v.yaml --output v1

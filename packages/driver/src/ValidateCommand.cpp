@@ -143,7 +143,12 @@ std::vector<ValidationRecord> evaluatePoint(RunContext& ctx, const ReducedModel&
   const auto& d = rm.data();
   const EvaluationSettings settings = pointSettings(d, q);
   const auto inst = rm.scene().instantiate(ctx.comm, q.mu, true);
-  const FomResult fom = fullModel(ctx, rm.scene(), d, q, settings, inst.system->space(), cached);
+  FomResult fom;
+  try {
+    fom = fullModel(ctx, rm.scene(), d, q, settings, inst.system->space(), cached);
+  } catch (const SolverError& e) {  // worded as over rank groups (fullModelsOverGroups)
+    throw SolverError(detail::concat("the full model failed: ", e.what()));
+  }
   tFom = fom.tOnline;
   const bool outside = d.outsideBox(q.mu);
   std::vector<ValidationRecord> out;

@@ -34,7 +34,9 @@
 ///   static void update(Vector& y, double a, const Vector& x, double b, const Vector& z, double c);
 ///   static double norm(const Vector& x);  static void assign(Vector& y, const Vector& x);
 #include <Teuchos_ParameterList.hpp>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "gphr/core/Error.hpp"
@@ -48,6 +50,9 @@ struct StepReport {
   int linearIterations = 0;  ///< Linear (Krylov) iterations over the step's Newton iterations.
   int newtonMatrices = 0;     ///< Newton matrices assembled (and factored / preconditioned) in the step
   double residualNorm = 0.0;  ///< ||R(y1)|| at acceptance
+  /// The smallest ||R|| of the step's iterates (GPHR's Newton; infinity where not tracked): a
+  /// failure that came close to the tolerance and stalled is round-off, not divergence.
+  double smallestResidualNorm = std::numeric_limits<double>::infinity();
 };
 
 /// Options of the Newton solve of each time step: tolerance, iteration cap, Jacobian reuse, predictor.
@@ -83,9 +88,17 @@ inline std::string newtonFailureMessage(const NewtonOptions& o, long step, doubl
                              ? ""
                              : "; not finite: the state or its gradient left the double range (a parameter far "
                                "outside the training box, or too large a step)";
+  // Within 100x of the tolerance and no further: the residual's round-off at this state (its terms
+  // ~ |y| and dt |J grad H| times the machine epsilon) is above the tolerance.
+  const bool stalled = rep.smallestResidualNorm <= 100.0 * o.tolerance;
   return detail::concat(driver, " did not converge at step ", step, " (t = ", time, "): residual norm ",
                         rep.residualNorm, " after ", rep.newtonIterations, " iterations (tolerance ",
-                        o.tolerance, ", at most ", o.maxIterations, ")", overflow);
+                        o.tolerance, ", at most ", o.maxIterations, ")", overflow,
+                        stalled ? detail::concat("; it stalled at ", rep.smallestResidualNorm,
+                                                 ", within 100x of the tolerance: the residual's round-off at this "
+                                                 "state is likely above it; allowed: a larger "
+                                                 "integrator.newtonTolerance")
+                                : std::string());
 }
 
 /// The implicit scheme (*) of the file's description (IMR or AVF by its quadrature rule) over a Backend.
@@ -113,6 +126,7 @@ class AveragedGradientScheme {
     double previous = 0.0;
     for (;;) {
       rep.residualNorm = residual(y0, y1, dt);
+      rep.smallestResidualNorm = std::min(rep.smallestResidualNorm, rep.residualNorm);
       if (rep.residualNorm <= opts_.tolerance) return rep;
       GPHR_REQUIRE(std::isfinite(rep.residualNorm) && rep.newtonIterations < opts_.maxIterations,
                    SolverError, newtonFailureMessage(opts_, step, time, rep));
