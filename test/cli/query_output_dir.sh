@@ -2,6 +2,7 @@
 # Results are keyed by what produced them, and one output directory takes one command at a time:
 # - a query directory written from model file A, queried again with model file B (same query
 #   names, another training): every query is redone and said to be, none reused; B again: all reused;
+#   B again after a finished query's file is damaged (a value, an object header): those are redone;
 # - two gphr query at once into one directory: the second exits 2 naming the first (pid), the first
 #   finishes; a query killed with SIGKILL leaves no stale lock (the next run takes the directory);
 # - gphr validate into a directory a query holds: exit 2 as well.
@@ -35,6 +36,29 @@ grep -q "(2 run, 0 reused, 2 ok)" out || fail "model b reused model a's results:
 [ "$(grep -c 'holds a result of another model file, query or gphr version: redone' err)" -eq 2 ] || fail "no 'redone' lines"
 "$gphr" query b.h5 q.yaml --output dir > out 2> err || fail "query b again"
 grep -q "(0 run, 2 reused, 2 ok)" out || fail "model b's own results not reused: $(cat out)"
+# a finished query's file damaged in a value (its data checksum) and in an object header (HDF5's):
+# each query is redone, said so, and the results equal the undamaged run's
+cp dir/queries.csv clean.csv
+/usr/bin/python3 - dir/queries/p1.h5 dir/queries/p2.h5 <<'PY' || fail "damaging the results"
+import sys
+import h5py
+value, header = sys.argv[1], sys.argv[2]
+with h5py.File(value, "r") as f:
+    at = f["z"].id.get_offset() + 8 * 5 + 2          # a byte inside z[0, 5]: a finite value, changed
+    head = h5py.h5o.get_info(f["z"].id).addr + 20     # inside z's object header
+for path, offset in ((value, at), (header, head)):
+    with open(path, "r+b") as g:
+        g.seek(offset)
+        b = g.read(1)[0]
+        g.seek(offset)
+        g.write(bytes([b ^ 0x10]))
+PY
+"$gphr" query b.h5 q.yaml --output dir > out 2> err || fail "query b after damage"
+grep -q "(2 run, 0 reused, 2 ok)" out || fail "damaged results were reused: $(cat out)"
+grep -q "p1.h5 is unreadable or damaged (checksum mismatch): redone" err || fail "the changed value was not said: $(cat err)"
+grep -q "p2.h5 is unreadable or damaged (.*incorrect metadata checksum.*): redone" err || fail "the damaged header was not said: $(cat err)"
+cut -d, -f1-10,13-14 clean.csv > a.csv; cut -d, -f1-10,13-14 dir/queries.csv > b.csv  # all but the timings and `reused`
+cmp -s a.csv b.csv || fail "the redone queries differ: $(diff a.csv b.csv)"
 python3 - dir/query_summary.json <<'PY' || fail "query_summary.json"
 import json, sys
 s = json.load(open(sys.argv[1]))

@@ -18,6 +18,7 @@
 
 #include "gphr/core/Provenance.hpp"
 #include "gphr/core/Error.hpp"
+#include "gphr/core/Fnv1a.hpp"
 #include "gphr/driver/QueryCommand.hpp"
 #include "gphr/driver/OutputDirectory.hpp"
 #include "gphr/driver/Json.hpp"
@@ -42,6 +43,24 @@ RCP<const Comm> selfComm() { return rcp(new Teuchos::SerialComm<int>()); }
 std::mutex serialPart;
 
 std::string queryFile(const std::string& dir, const Query& q) { return dir + "/queries/" + q.name + ".h5"; }
+
+// The datasets of a query's file that DIR/results.h5 gathers (those present).
+constexpr const char* kResultDatasets[] = {"/hamiltonian", "/saved_times", "/z", "/probes", "/states"};
+
+// FNV-1a over those datasets as stored (names, shapes, values): the `checksum` attribute of a
+// query's file, so that a reused result is the one written (HDF5 checks only the headers).
+std::string resultChecksum(const Hdf5File& f) {
+  Fnv1a h;
+  for (const char* name : kResultDatasets) {
+    if (!f.exists(name)) continue;
+    size_t rows = 0, cols = 0;
+    const auto v = f.readArray(name, &rows, &cols);
+    h.text(name);
+    h.numbers(std::vector<double>{double(rows), double(cols)});
+    h.numbers(v);
+  }
+  return h.hex();
+}
 
 // A finished query as the CSV and the summary see it.
 struct QueryOutcome {
@@ -68,11 +87,15 @@ bool finished(const std::string& path, const std::string& key, QueryOutcome& out
     const auto v = f.doubleAttribute("/", "numbers");  // setup_s, online_s, drift, newton, extrapolated
     out.setupSeconds = v.at(0), out.onlineSeconds = v.at(1), out.drift = v.at(2), out.newtonIterations = v.at(3);
     out.extrapolated = v.at(4) != 0.0;
+    // Read here what writeResults() will copy: a damaged dataset (its header's checksum, a
+    // changed value) is then a query to redo, not an error or a wrong result after every query has run.
+    GPHR_REQUIRE(f.hasAttribute("/", "checksum") && f.stringAttribute("/", "checksum") == resultChecksum(f),
+                 InputError, "checksum mismatch");
     out.reused = true;
     return true;
-  } catch (const std::exception&) {
-    std::fprintf(stderr, "[gphr] query: %s is unreadable: redone\n", path.c_str());
-    return false;  // unreadable (a damaged file): redo it
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "[gphr] query: %s is unreadable or damaged (%s): redone\n", path.c_str(), e.what());
+    return false;  // redo it
   }
 }
 
@@ -157,6 +180,7 @@ void writeQuery(const std::string& path, const ReducedModel& model, const Query&
     f.setAttribute("/", "reason", out.reason);
     f.setAttribute("/", "numbers", std::vector<double>{out.setupSeconds, out.onlineSeconds, out.drift,
                                                        out.newtonIterations, out.extrapolated ? 1.0 : 0.0});
+    f.setAttribute("/", "checksum", resultChecksum(f));
     f.flush();
     f.setAttribute("/", "key", resultKey(q, model.data()));  // last: marks the file complete
   }
@@ -255,7 +279,7 @@ void writeResults(const std::string& dir, const std::vector<Query>& qs) {
       Hdf5File in(queryFile(dir, q), selfComm(), Hdf5File::Mode::ReadOnly);
       const std::string g = "/queries/" + q.name;
       out.createGroup(g);
-      for (const char* name : {"/hamiltonian", "/saved_times", "/z", "/probes", "/states"}) {
+      for (const char* name : kResultDatasets) {
         if (!in.exists(name)) continue;
         size_t rows = 0, cols = 0;
         const auto v = in.readArray(name, &rows, &cols);

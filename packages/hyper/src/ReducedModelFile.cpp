@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/core/Fnv1a.hpp"
 #include "gphr/core/IndexHash.hpp"
 #include "gphr/io/Hdf5File.hpp"
 
@@ -342,35 +343,6 @@ RCP<const Comm> selfComm() { return rcp(new Teuchos::SerialComm<int>()); }
 
 }  // namespace
 
-namespace {
-// FNV-1a, 64 bits, over the bytes of the model data in a fixed order: a fingerprint against
-// changed bytes (not a cryptographic signature). Doubles by their bit patterns.
-class Fnv1a {
- public:
-  void bytes(const void* p, size_t n) {
-    const auto* c = static_cast<const unsigned char*>(p);
-    for (size_t i = 0; i < n; ++i) h_ = (h_ ^ c[i]) * 1099511628211ULL;
-  }
-  void number(double x) { bytes(&x, sizeof x); }
-  void text(const std::string& s) {
-    number(double(s.size()));
-    bytes(s.data(), s.size());
-  }
-  template <class T>
-  void numbers(const std::vector<T>& v) {
-    number(double(v.size()));
-    for (const auto& x : v) number(double(x));
-  }
-  std::string hex() const {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "fnv1a64:%016llx", static_cast<unsigned long long>(h_));
-    return buf;
-  }
-
- private:
-  unsigned long long h_ = 1469598103934665603ULL;
-};
-}  // namespace
 
 std::string modelDataChecksum(const ReducedModelData& d) {
   Fnv1a h;
