@@ -78,11 +78,18 @@ FomResult fullModel(const RunContext& ctx, const Scene& scene, const ReducedMode
   cached = usable != 0;
   FomResult fom;
   if (cached) {
-    Hdf5File f(path, ctx.comm, Hdf5File::Mode::ReadOnly);
-    fom.trajectory = f.readStates("/states", space);
-    fom.hamiltonian = f.readArray("/hamiltonian");
-    fom.tOnline = f.doubleAttribute("/", "t_online_s").at(0);
-    return fom;
+    try {  // every rank reads the same file, so every rank fails alike
+      Hdf5File f(path, ctx.comm, Hdf5File::Mode::ReadOnly);
+      fom.trajectory = f.readStates("/states", space);
+      fom.hamiltonian = f.readArray("/hamiltonian");
+      fom.tOnline = f.doubleAttribute("/", "t_online_s").at(0);
+      return fom;
+    } catch (const InputError& e) {  // a damaged cache (HDF5's header checksums): run it again
+      cached = false;
+      if (ctx.comm->getRank() == 0)
+        std::fprintf(stderr, "[gphr] validate: %s is unreadable or damaged (%s): full model run again\n",
+                     path.c_str(), e.what());
+    }
   }
   fom = runFullModel(settings, scene, q.mu, ctx.comm);
   RenameOnCommit commit(path, ctx.comm);

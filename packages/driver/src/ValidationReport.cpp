@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/core/Fnv1a.hpp"
 #include "gphr/driver/OutputDirectory.hpp"
 #include "gphr/driver/Json.hpp"
 #include "gphr/online/ReducedModel.hpp"
@@ -164,6 +165,66 @@ std::vector<ModelStatistics> modelStatistics(const std::vector<ValidationRecord>
   return out;
 }
 
+namespace {
+// The last line of a point's file: FNV-1a of everything before it, so that a changed byte makes
+// the point one to redo instead of a record the report would take as measured.
+std::string recordsChecksum(const std::string& body) {
+  Fnv1a h;
+  h.text(body);
+  return "checksum\t" + h.hex();
+}
+
+// One record line (writePointRecords' format); false where it does not parse whole.
+bool parseRecord(const std::string& line, ValidationRecord& r) {
+  std::istringstream ls(line);
+  std::string eL2, online, setup, mu;
+  int extrap = 0;
+  std::getline(ls, r.point, '\t'), std::getline(ls, r.method, '\t');
+  ls >> r.k >> r.m >> r.status >> eL2 >> online >> setup >> extrap >> mu;
+  if (!ls && !ls.eof()) return false;
+  try {
+    r.eL2 = std::stod(eL2), r.onlineSeconds = std::stod(online), r.setupSeconds = std::stod(setup);
+    std::istringstream ms(mu);
+    for (std::string x; std::getline(ms, x, ',');) r.mu.push_back(std::stod(x));
+  } catch (const std::exception&) {  // std::stod: not a number, or out of range
+    return false;
+  }
+  r.extrapolated = extrap != 0;
+  return true;
+}
+
+// Rank 0's part of readPointRecords: the file's records if its key and checksum match.
+bool readPointFile(const std::string& path, const std::string& key, std::vector<ValidationRecord>& recs,
+                   double& fomSeconds) {
+  std::ifstream in(path);
+  std::ostringstream all;
+  all << in.rdbuf();
+  const std::string text = all.str();
+  const size_t last = text.rfind('\n', text.size() >= 2 ? text.size() - 2 : 0);
+  if (text.empty() || text.back() != '\n' || last == std::string::npos) return false;
+  const std::string body = text.substr(0, last + 1), tail = text.substr(last + 1, text.size() - last - 2);
+  if (tail != recordsChecksum(body)) {
+    std::fprintf(stderr, "[gphr] validate: %s is damaged (checksum mismatch): point redone\n", path.c_str());
+    return false;
+  }
+  std::istringstream lines(body);
+  std::string line;
+  if (!std::getline(lines, line) || line != "key\t" + key) return false;
+  if (!std::getline(lines, line) || line.rfind("fom_s\t", 0) != 0) return false;
+  try {
+    fomSeconds = std::stod(line.substr(6));
+  } catch (const std::exception&) {
+    return false;
+  }
+  while (std::getline(lines, line)) {
+    ValidationRecord r;
+    if (!parseRecord(line, r)) return false;
+    recs.push_back(r);
+  }
+  return true;
+}
+}  // namespace
+
 void writePointRecords(const std::string& path, const std::string& key, const std::vector<ValidationRecord>& recs,
                        double fomSeconds, const RCP<const Comm>& comm) {
   if (comm->getRank() == 0) {
@@ -173,36 +234,14 @@ void writePointRecords(const std::string& path, const std::string& key, const st
       os << r.point << "\t" << r.method << "\t" << r.k << "\t" << r.m << "\t" << r.status << "\t" << num(r.eL2) << "\t"
          << num(r.onlineSeconds) << "\t" << num(r.setupSeconds) << "\t" << r.extrapolated << "\t" << muText(r.mu)
          << "\n";
-    writeText(path, os.str());
+    writeText(path, os.str() + recordsChecksum(os.str()) + "\n");
   }
   comm->barrier();
 }
 
 bool readPointRecords(const std::string& path, const std::string& key, const RCP<const Comm>& comm,
                       std::vector<ValidationRecord>& recs, double& fomSeconds) {
-  int usable = 0;
-  if (comm->getRank() == 0) {
-    std::ifstream in(path);
-    std::string line;
-    if (std::getline(in, line) && line == "key\t" + key && std::getline(in, line) && line.rfind("fom_s\t", 0) == 0) {
-      fomSeconds = std::stod(line.substr(6));
-      usable = 1;
-      while (std::getline(in, line)) {
-        std::istringstream ls(line);
-        ValidationRecord r;
-        std::string eL2, online, setup, mu;
-        int extrap = 0;
-        std::getline(ls, r.point, '\t'), std::getline(ls, r.method, '\t');
-        ls >> r.k >> r.m >> r.status >> eL2 >> online >> setup >> extrap >> mu;
-        if (!ls && !ls.eof()) usable = 0;
-        r.eL2 = std::stod(eL2), r.onlineSeconds = std::stod(online), r.setupSeconds = std::stod(setup);
-        r.extrapolated = extrap != 0;
-        std::istringstream ms(mu);
-        for (std::string x; std::getline(ms, x, ',');) r.mu.push_back(std::stod(x));
-        recs.push_back(r);
-      }
-    }
-  }
+  int usable = comm->getRank() == 0 && readPointFile(path, key, recs, fomSeconds);
   Teuchos::broadcast(*comm, 0, Teuchos::outArg(usable));
   if (!usable) recs.clear();
   return usable != 0;
