@@ -34,8 +34,15 @@ std::unique_ptr<Hdf5File> ArtifactsCache::open() const {
 }
 
 bool ArtifactsCache::holds(const Hdf5File& file, const std::string& name, const std::string& key) {
-  return file.hasAttribute(name, "complete") && file.hasAttribute(name, "config") &&
-         file.stringAttribute(name, "config") == key;
+  try {
+    return file.hasAttribute(name, "complete") && file.hasAttribute(name, "config") &&
+           file.stringAttribute(name, "config") == key;
+  } catch (const InputError& e) {
+    // A header HDF5 cannot read (its checksum) cannot be unlinked either (unlinking rewrites it):
+    // say how to start afresh.
+    throw InputError(detail::concat(e.what(), "; the artifacts file is damaged: remove '", file.path(),
+                                    "' (or use another --output directory) to compute afresh"));
+  }
 }
 
 void ArtifactsCache::seal(Hdf5File& file, const std::string& name, const std::string& key) {
