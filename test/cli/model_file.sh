@@ -180,28 +180,38 @@ for x, y in zip(a, b):
     for key in ("E_L2_max", "E_L2_mean", "E_L2_p95"):
         assert x[key] == y[key], (x["model"], key, x[key], y[key])
 PY
-# Damaged resumption files: a point's records with a changed digit (their checksum line) and a full
-# model's cache with a damaged object header (HDF5's checksum), read as the point is redone. Both are
-# redone, said so, and the statistics still equal the clean run's.
-/usr/bin/python3 - vkilled/points/grid-0000.txt vkilled/fom/grid-0000.h5 <<'PY' || fail "damaging the resumption files"
+# Damaged resumption files: two points' records with a changed digit (their checksum line), and the
+# full models' caches read as those points are redone: one with a damaged object header (HDF5's
+# checksum), one with a changed state entry (its fingerprint). All are redone, said so, and the
+# statistics still equal the clean run's.
+/usr/bin/python3 - vkilled <<'PY' || fail "damaging the resumption files"
 import sys
 import h5py
-points, fom = sys.argv[1], sys.argv[2]
-text = open(points).read().split("\n")
-text[2] = text[2].replace("\t6\t", "\t7\t", 1)  # record 1: k 6 -> 7, still a well-formed line
-open(points, "w").write("\n".join(text))
-with h5py.File(fom, "r") as f:
-    at = h5py.h5o.get_info(f["states"].id).addr + 20
-with open(fom, "r+b") as g:
-    g.seek(at)
-    b = g.read(1)[0]
-    g.seek(at)
-    g.write(bytes([b ^ 0x10]))
+d = sys.argv[1]
+for point in ("grid-0000", "grid-0001"):
+    text = open(f"{d}/points/{point}.txt").read().split("\n")
+    text[2] = text[2].replace("\t6\t", "\t7\t", 1)  # record 1: k 6 -> 7, still a well-formed line
+    open(f"{d}/points/{point}.txt", "w").write("\n".join(text))
+def flip(path, at):
+    with open(path, "r+b") as g:
+        g.seek(at)
+        b = g.read(1)[0]
+        g.seek(at)
+        g.write(bytes([b ^ 0x10]))
+with h5py.File(f"{d}/fom/grid-0000.h5", "r") as f:
+    header = h5py.h5o.get_info(f["states"].id).addr + 20
+with h5py.File(f"{d}/fom/grid-0001.h5", "r") as f:
+    a = f["states"][...]
+    value = f["states"].id.get_offset() + 8 * int(abs(a).argmax()) + 5  # a mantissa byte of the largest entry
+flip(f"{d}/fom/grid-0000.h5", header)
+flip(f"{d}/fom/grid-0001.h5", value)
 PY
 "$gphr" validate m/nls_basis.h5 vlong.yaml --output vkilled > /dev/null 2> vdamaged.err || { cat vdamaged.err; fail "validate over damaged resumption files"; }
 grep -q "grid-0000.txt is damaged (checksum mismatch): point redone" vdamaged.err || fail "the changed record was not said: $(cat vdamaged.err)"
 grep -q "fom/grid-0000.h5 is unreadable or damaged (.*incorrect metadata checksum.*): full model run again" vdamaged.err \
   || fail "the damaged full-model cache was not said: $(cat vdamaged.err)"
+grep -q "fom/grid-0001.h5 is unreadable or damaged (its data do not match their fingerprint and checksum): full model run again" \
+  vdamaged.err || fail "the changed full-model state was not said: $(cat vdamaged.err)"
 python3 - <<'PY' || fail "the validation over damaged resumption files differs from the clean one"
 import json
 a, b = (json.load(open(d + "/validation_summary.json"))["models"] for d in ("vclean", "vkilled"))

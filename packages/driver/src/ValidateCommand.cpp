@@ -14,7 +14,9 @@
 #include <fstream>
 #include <sstream>
 
+#include "gphr/core/ColumnFingerprint.hpp"
 #include "gphr/core/Error.hpp"
+#include "gphr/core/Fnv1a.hpp"
 #include "gphr/core/RankGroups.hpp"
 #include "gphr/driver/ValidateCommand.hpp"
 #include "gphr/driver/OutputDirectory.hpp"
@@ -61,7 +63,14 @@ std::string pointName(const Query& q, const ReducedModelData& d) {
   return s + ")";
 }
 
-// The full model at the point, from DIR/fom/<point>.h5 when its key matches, else run and cached.
+std::string hamiltonianChecksum(const std::vector<double>& H) {
+  Fnv1a h;
+  h.numbers(H);
+  return h.hex();
+}
+
+// The full model at the point, from DIR/fom/<point>.h5 when its key matches and its data their
+// fingerprint (the trajectory, ColumnFingerprint.hpp) and checksum (H), else run and cached.
 FomResult fullModel(const RunContext& ctx, const Scene& scene, const ReducedModelData& d, const Query& q,
                     const EvaluationSettings& settings, const PhaseSpace& space, bool& cached) {
   const std::string path = ctx.outputDir + "/fom/" + q.name + ".h5", key = fomKey(q, d);
@@ -83,8 +92,12 @@ FomResult fullModel(const RunContext& ctx, const Scene& scene, const ReducedMode
       fom.trajectory = f.readStates("/states", space);
       fom.hamiltonian = f.readArray("/hamiltonian");
       fom.tOnline = f.doubleAttribute("/", "t_online_s").at(0);
+      GPHR_REQUIRE(f.hasAttribute("/", "fingerprint") &&
+                       fingerprintMatches(f.doubleAttribute("/", "fingerprint"), *fom.trajectory) &&
+                       f.stringAttribute("/", "checksum") == hamiltonianChecksum(fom.hamiltonian),
+                   InputError, "its data do not match their fingerprint and checksum");
       return fom;
-    } catch (const InputError& e) {  // a damaged cache (HDF5's header checksums): run it again
+    } catch (const InputError& e) {  // a damaged cache (HDF5's header checksums, ours): run it again
       cached = false;
       if (ctx.comm->getRank() == 0)
         std::fprintf(stderr, "[gphr] validate: %s is unreadable or damaged (%s): full model run again\n",
@@ -98,6 +111,8 @@ FomResult fullModel(const RunContext& ctx, const Scene& scene, const ReducedMode
     f.writeStates("/states", *fom.trajectory, space);
     f.writeArray("/hamiltonian", fom.hamiltonian, fom.hamiltonian.size(), 1);
     f.setAttribute("/", "t_online_s", std::vector<double>{fom.tOnline});
+    f.setAttribute("/", "fingerprint", columnFingerprint(*fom.trajectory));  // distributed: no FNV
+    f.setAttribute("/", "checksum", hamiltonianChecksum(fom.hamiltonian));
     f.flush();
     f.setAttribute("/", "key", key);
   }

@@ -10,7 +10,7 @@
 
 #include "gphr/core/Error.hpp"
 #include "gphr/core/Fnv1a.hpp"
-#include "gphr/core/IndexHash.hpp"
+#include "gphr/core/ColumnFingerprint.hpp"
 #include "gphr/io/Hdf5File.hpp"
 
 namespace gphr {
@@ -126,29 +126,6 @@ void writeProvenance(Hdf5File& f, const ReducedModelData& d) {
   f.setAttribute("/", "parameter_enters", enters);
 }
 
-// A fingerprint of a stored basis that does not depend on the rank count: A^T w, w_i in [-1, 1]
-// hashIndex of row i's global index. The basis is not in the file's checksum (it is
-// distributed, and a query that never lifts never reads it); this catches a changed basis where
-// it is read: a changed entry a_ij moves component j by w_i (a_ij' - a_ij). Collective.
-std::vector<double> basisFingerprint(const MultiVector& A, double* wNorm = nullptr) {
-  Vector w(A.getMap());
-  {
-    auto v = w.getLocalViewHost(Tpetra::Access::OverwriteAll);
-    for (size_t i = 0; i < v.extent(0); ++i) {
-      const unsigned long long x = hashIndex(0, static_cast<unsigned long long>(A.getMap()->getGlobalElement(i)));
-      v(i, 0) = static_cast<double>(x >> 11) * 0x1.0p-52 - 1.0;  // [-1, 1)
-    }
-  }
-  if (wNorm) *wNorm = w.norm2();
-  auto local = rcp(new Map(A.getNumVectors(), 0, A.getMap()->getComm(), Tpetra::LocallyReplicated));
-  MultiVector c(local, 1);
-  c.multiply(Teuchos::TRANS, Teuchos::NO_TRANS, 1.0, A, w, 0.0);
-  auto cv = c.getLocalViewHost(Tpetra::Access::ReadOnly);
-  std::vector<double> out(A.getNumVectors());
-  for (size_t j = 0; j < out.size(); ++j) out[j] = cv(j, 0);
-  return out;
-}
-
 void writeBasisData(Hdf5File& f, const StoredBasisData& b, const RCP<const MultiVector>& A, const PhaseSpace* space) {
   const std::string g = basisGroup(b.k);
   const size_t r = 2 * static_cast<size_t>(b.k);
@@ -173,7 +150,7 @@ void writeBasisData(Hdf5File& f, const StoredBasisData& b, const RCP<const Multi
   writeMatrix(f, g + "/probe_rows", b.probeRows, b.probeGids.size(), r);
   if (A.is_null()) return;
   f.writeStates(g + "/basis", *A, *space);
-  f.setAttribute(g + "/basis", "fingerprint", basisFingerprint(*A));
+  f.setAttribute(g + "/basis", "fingerprint", columnFingerprint(*A));  // the basis is outside the checksum
 }
 
 void writeModel(Hdf5File& f, const StoredHyperModel& m) {
@@ -519,16 +496,10 @@ RCP<MultiVector> readReducedModelBasis(const std::string& path, int k, const Pha
   GPHR_REQUIRE(!anyBad, InputError, "reduced-model file '", path, "': ", name, " holds a value that is not finite; "
                "allowed: finite values (the file is damaged: build it again)");
   // Files written before the fingerprint have none: only the checks above apply to them.
+  // The basis is outside the file's checksum (distributed, and read only to lift): its
+  // fingerprint catches a changed value (ColumnFingerprint.hpp; ||a_j|| = 1).
   if (f.hasAttribute(name, "fingerprint")) {
-    double wNorm = 0.0;
-    const std::vector<double> stored = f.doubleAttribute(name, "fingerprint"), now = basisFingerprint(*A, &wNorm);
-    // a_j^T w sums 2n terms of total size <= ||a_j|| ||w|| = ||w||; summed in another order (other
-    // ranks) the two differ by round-off, ~sqrt(2n) eps ||w|| (at most 4.2e-17 ||w|| measured against
-    // numpy's A w for files written on 1 and 3 ranks, 2n = 256). 1e-9 ||w|| leaves a margin of 1e4 at
-    // 2n = 1e7, and still catches a change of an entry by more than 1e-9 ||w|| / |w_i|.
-    const double tol = 1e-9 * wNorm;
-    bool same = stored.size() == now.size();
-    for (size_t j = 0; same && j < now.size(); ++j) same = std::abs(stored[j] - now[j]) <= tol;
+    const bool same = fingerprintMatches(f.doubleAttribute(name, "fingerprint"), *A);
     GPHR_REQUIRE(same, InputError, "reduced-model file '", path, "': ", name,
                  " does not match its fingerprint (a changed value; the file is damaged: build it again)");
   }
