@@ -320,7 +320,6 @@ RCP<const Comm> selfComm() { return rcp(new Teuchos::SerialComm<int>()); }
 
 }  // namespace
 
-
 std::string modelDataChecksum(const ReducedModelData& d) {
   Fnv1a h;
   for (const auto& t : {d.sceneName, d.sceneConfig, d.integratorConfig, d.config}) h.text(t);
@@ -495,9 +494,9 @@ RCP<MultiVector> readReducedModelBasis(const std::string& path, int k, const Pha
   Teuchos::reduceAll(*space.comm(), Teuchos::REDUCE_MAX, bad, Teuchos::outArg(anyBad));
   GPHR_REQUIRE(!anyBad, InputError, "reduced-model file '", path, "': ", name, " holds a value that is not finite; "
                "allowed: finite values (the file is damaged: build it again)");
-  // Files written before the fingerprint have none: only the checks above apply to them.
   // The basis is outside the file's checksum (distributed, and read only to lift): its
-  // fingerprint catches a changed value (ColumnFingerprint.hpp; ||a_j|| = 1).
+  // fingerprint catches a changed value (ColumnFingerprint.hpp; ||a_j|| = 1). Files written
+  // before the fingerprint have none: only the checks above apply to them.
   if (f.hasAttribute(name, "fingerprint")) {
     const bool same = fingerprintMatches(f.doubleAttribute(name, "fingerprint"), *A);
     GPHR_REQUIRE(same, InputError, "reduced-model file '", path, "': ", name,
