@@ -2,6 +2,10 @@
 # An output directory whose artifacts.h5 is truncated, belongs to another scene, holds states
 # of another size, or has a damaged object header (a training entry's): exit 2 and an error line
 # naming the file and the mismatch (for the damage: HDF5's checksum, and how to start afresh).
+# A changed value in the file's distributed data, which no HDF5 checksum covers, is caught by its
+# column fingerprint: in a training snapshot (read by the basis): exit 2, naming the parameter,
+# the column and the way out; in the basis or the DEIM basis: computed afresh, said on stderr,
+# and the results equal the clean run's.
 # usage: bad_artifacts.sh GPHR
 set -u
 gphr=$1
@@ -13,6 +17,7 @@ cfg() {  # cfg SCENE SIZEKEY SIZE
 cfg nls1d n 32 "[2]" > "$work/nls.yaml"
 cfg nls1d n 40 "[2]" > "$work/nls40.yaml"
 cfg swe2d nx 6 "[2, 1]" > "$work/swe.yaml"
+sed 's/pipeline: {rom: true}/pipeline: {rom: true, methods: [gp-deim], m: [6]}/' "$work/nls.yaml" > "$work/deim.yaml"
 fail() { echo "FAIL ($1): $2"; cat "$work/err"; exit 1; }
 expect() {  # expect NAME DIR CONFIG TEXT
   "$gphr" run "$3" --output "$2" > /dev/null 2> "$work/err"; rc=$?
@@ -40,3 +45,39 @@ with open(sys.argv[1], "r+b") as g:
 PY
 expect damaged_header "$work/header" "$work/nls.yaml" "incorrect metadata checksum"
 grep -qF "the artifacts file is damaged: remove '$work/header/artifacts.h5'" "$work/err" || fail damaged_header "no way out named"
+
+change() {  # change FILE DATASET ROW COLUMN [delete DATASET]: adds 0.5 to one entry in place (attributes kept)
+  /usr/bin/python3 - "$@" <<'PY' || { echo "changing $2 failed"; exit 1; }
+import sys
+import h5py
+with h5py.File(sys.argv[1], "r+") as f:
+    d = f[sys.argv[2]]
+    d[int(sys.argv[3]), int(sys.argv[4])] += 0.5
+    if len(sys.argv) > 6:
+        del f[sys.argv[6]]
+PY
+}
+# a snapshot: the basis (deleted) is computed again from the snapshots and refuses the changed one
+mkdir -p "$work/snap" && cp "$work/good/artifacts.h5" "$work/snap/"
+change "$work/snap/artifacts.h5" training/p1 3 5 delete basis
+expect changed_snapshot "$work/snap" "$work/nls.yaml" \
+  "the snapshots of training parameter 2 (/training/p1): column 3 does not match its fingerprint"
+grep -qF "remove '$work/snap/artifacts.h5' (or use another --output directory) to train afresh" "$work/err" ||
+  fail changed_snapshot "no way out named"
+# the basis and the DEIM basis: computed afresh, the same results as the clean run
+same() {  # same NAME DIR CONFIG TEXT CLEAN: exit 0, TEXT on stderr, rom_history.csv as CLEAN's
+  "$gphr" run "$3" --output "$2" > /dev/null 2> "$work/err"; rc=$?
+  [ $rc -eq 0 ] || fail "$1" "exit code $rc, expected 0"
+  grep -qF -- "$4" "$work/err" || fail "$1" "stderr lacks: $4"
+  cmp -s "$2/rom_history.csv" "$5/rom_history.csv" || fail "$1" "rom_history.csv differs from the clean run's"
+  echo "ok ($1): $(grep -F -- "$4" "$work/err")"
+}
+mkdir -p "$work/basis" && cp "$work/good/artifacts.h5" "$work/basis/"
+change "$work/basis/artifacts.h5" basis 1 7
+same changed_basis "$work/basis" "$work/nls.yaml" \
+  "/basis in '$work/basis/artifacts.h5' column 1 does not match its fingerprint: computed afresh" "$work/good"
+"$gphr" run "$work/deim.yaml" --output "$work/deimgood" > /dev/null 2>&1 || { echo "gp-deim setup run failed"; exit 1; }
+mkdir -p "$work/deim" && cp "$work/deimgood/artifacts.h5" "$work/deim/"
+change "$work/deim/artifacts.h5" deim/k2 2 3
+same changed_deim_basis "$work/deim" "$work/deim.yaml" \
+  "/deim/k2 in '$work/deim/artifacts.h5' column 2 does not match its fingerprint: computed afresh" "$work/deimgood"

@@ -44,7 +44,7 @@ cp -r "$work/killed" "$work/damaged"
 head -c 4096 /dev/urandom > "$work/damaged/artifacts.h5.ckpt_deim_k20"
 "$gphr" build "$work/c.yaml" --model "$work/d.h5" --output "$work/damaged" 2> "$work/damaged.err" > /dev/null \
   || fail "a damaged checkpoint file stopped the run"
-grep -q "deim_k20' is unreadable .*: computed afresh" "$work/damaged.err" || fail "the damaged checkpoint was not said"
+grep -q "deim_k20' is unreadable or damaged .*: computed afresh" "$work/damaged.err" || fail "the damaged checkpoint was not said"
 grep -q "chunk 1 of 48 POD'd" "$work/damaged.err" || fail "the DEIM basis did not start afresh"
 # 3. Restarted to the end.
 "$gphr" build "${args[@]}" --output "$work/killed" 2> "$work/third.err" > /dev/null || fail "the last restart failed"

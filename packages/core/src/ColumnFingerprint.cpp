@@ -26,13 +26,17 @@ std::vector<double> columnFingerprint(const MultiVector& X, double* wNorm) {
 }
 
 bool fingerprintMatches(const std::vector<double>& stored, const MultiVector& X) {
+  return stored.size() == X.getNumVectors() && firstMismatchingColumn(stored, X) < 0;
+}
+
+long firstMismatchingColumn(const std::vector<double>& stored, const MultiVector& X) {
   double wNorm = 0.0;
   const std::vector<double> now = columnFingerprint(X, &wNorm);
   std::vector<double> norms(X.getNumVectors());
   X.norm2(Teuchos::ArrayView<double>(norms));
-  bool same = stored.size() == now.size();
-  for (size_t j = 0; same && j < now.size(); ++j) same = std::abs(stored[j] - now[j]) <= 1e-9 * wNorm * norms[j];
-  return same;
+  for (size_t j = 0; j < now.size(); ++j)
+    if (j >= stored.size() || !(std::abs(stored[j] - now[j]) <= 1e-9 * wNorm * norms[j])) return static_cast<long>(j);
+  return -1;
 }
 
 }  // namespace gphr

@@ -59,13 +59,16 @@ Hdf5File::Hdf5File(const std::string& path, const RCP<const Comm>& comm, Mode mo
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors become exceptions with the file name
   Id fapl{H5Pcreate(H5P_FILE_ACCESS), H5Pclose};
   H5Pset_fapl_mpio(fapl.id, rawComm(comm), MPI_INFO_NULL);
-  if (mode == Mode::Create) {
-    // The 1.8 file format: its superblock and object headers (the attributes, links and dataset
-    // layouts) carry checksums, which HDF5 verifies on every read, so a damaged header is a read
-    // error instead of garbage the library follows (the earliest format, HDF5's default, has none:
-    // one flipped bit in a model file's root attributes could crash libhdf5). Readable by any HDF5
-    // since 1.8 (2008); not the 1.10 format, whose new chunk indexes this project does not need.
+  // The 1.8 file format: its superblock and object headers (the attributes, links and dataset
+  // layouts) carry checksums, which HDF5 verifies on every read, so a damaged header is a read
+  // error instead of garbage the library follows (the earliest format, HDF5's default, has none:
+  // one flipped bit in a model file's root attributes could crash libhdf5), and it stores an
+  // attribute over 64 KiB (a fingerprint of 8,192+ snapshots) that the earliest refuses. Readable
+  // by any HDF5 since 1.8 (2008); not the 1.10 format, whose new chunk indexes this project does
+  // not need. Also for a file opened to write: what is added to an older file is in this format.
+  if (mode != Mode::ReadOnly)
     check(H5Pset_libver_bounds(fapl.id, H5F_LIBVER_V18, H5F_LIBVER_V18), "choosing the 1.8 file format", path);
+  if (mode == Mode::Create) {
     file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.id);
     GPHR_REQUIRE(file_ >= 0, InputError, "cannot create HDF5 file '", path, "' (is the directory writable?)");
   } else {

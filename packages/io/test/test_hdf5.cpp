@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <Teuchos_CommHelpers.hpp>
+#include <hdf5.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 
@@ -228,6 +230,33 @@ TEST(Hdf5, ColumnBlocksWrittenAndReadAlone) {
     ADD_FAILURE() << "a range past the rows was read";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("within its 4 such rows"), std::string::npos) << e.what();
+  }
+}
+
+// An attribute past HDF5's 64 KiB limit for attributes in an object header (a fingerprint of
+// 20,001 snapshots, 160 kB): the 1.8 file format gphr writes stores it densely, read back whole
+// (the earliest format refuses it: "object header message is too large"), in a file gphr created
+// and in a group gphr adds to a file in the earliest format (an older gphr's artifacts file).
+TEST(Hdf5, AnAttributeLargerThan64KiBRoundTrips) {
+  const std::string created = tmpName("large_attribute"), older = tmpName("large_attribute_older");
+  if (test::comm()->getRank() == 0) {  // HDF5's defaults: the earliest format
+    const hid_t id = H5Fcreate(older.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    ASSERT_GE(id, 0);
+    H5Fclose(id);
+  }
+  test::comm()->barrier();
+  std::vector<double> big(20001);
+  for (size_t i = 0; i < big.size(); ++i) big[i] = std::sin(double(i));
+  for (const auto& [path, mode] : {std::pair{created, Hdf5File::Mode::Create}, {older, Hdf5File::Mode::ReadWrite}}) {
+    {
+      Hdf5File f(path, test::comm(), mode);
+      f.createGroup("/g");
+      f.setAttribute("/g", "fingerprint", big);
+      f.setAttribute("/g", "small", std::vector<double>{1.0});
+    }
+    const Hdf5File f(path, test::comm(), Hdf5File::Mode::ReadOnly);
+    EXPECT_EQ(f.doubleAttribute("/g", "fingerprint"), big) << path;
+    EXPECT_EQ(f.doubleAttribute("/g", "small"), std::vector<double>{1.0}) << path;
   }
 }
 

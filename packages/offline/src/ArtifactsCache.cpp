@@ -1,7 +1,9 @@
 #include "gphr/offline/ArtifactsCache.hpp"
 
+#include <cmath>
 #include <filesystem>
 
+#include "gphr/core/ColumnFingerprint.hpp"
 #include "gphr/core/Error.hpp"
 
 namespace gphr {
@@ -56,6 +58,22 @@ void ArtifactsCache::seal(Hdf5File& file, const std::vector<std::string>& names,
     file.setAttribute(name, "config", key);
     file.setAttribute(name, "complete", std::string("yes"));
   }
+}
+
+void ArtifactsCache::stampFingerprint(Hdf5File& file, const std::string& name, const std::vector<double>& fingerprint) {
+  file.setAttribute(name, "fingerprint", fingerprint);
+}
+
+std::string ArtifactsCache::fingerprintProblem(const Hdf5File& file, const std::string& name, const MultiVector& X,
+                                               size_t every, size_t first) {
+  if (!file.hasAttribute(name, "fingerprint")) return "has no fingerprint (written by an older gphr)";
+  const std::vector<double> stored = file.doubleAttribute(name, "fingerprint");
+  std::vector<double> read(X.getNumVectors(), NAN);  // the stored entries of the columns read; NaN past the end
+  for (size_t i = 0; i < read.size(); ++i)
+    if ((first + i) * every < stored.size()) read[i] = stored[(first + i) * every];
+  const long bad = firstMismatchingColumn(read, X);
+  if (bad < 0) return "";
+  return detail::concat("column ", (first + static_cast<size_t>(bad)) * every, " does not match its fingerprint");
 }
 
 void ArtifactsCache::clear(Hdf5File& file, const std::string& name) {

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <ctime>
 
+#include "gphr/core/ColumnFingerprint.hpp"
 #include "gphr/core/Error.hpp"
 #include "gphr/offline/PodCheckpoint.hpp"
 
@@ -25,6 +26,7 @@ void writeBasis(Hdf5File& f, const ReducedBasis& b, const PhaseSpace& space, con
                 const TrainingResult& training, const std::string& key) {
   ArtifactsCache::clear(f, "/basis");
   f.writeStates("/basis", *b.A, space);
+  ArtifactsCache::stampFingerprint(f, "/basis", columnFingerprint(*b.A));
   f.setAttribute("/basis", "method", b.method);
   f.setAttribute("/basis", "k", std::vector<double>{double(b.k)});
   f.setAttribute("/basis", "singularValues", b.singularValues);
@@ -49,7 +51,14 @@ BasisStageResult runBasisStage(const TrainingResult& training, const PhaseSpace&
     const auto f = cache->open();
     if (ArtifactsCache::holds(*f, "/basis", key)) {
       out.basis = readBasis(*f, space);
-      out.cached = true;
+      // a basis that no longer matches its fingerprint (a changed value) is computed again
+      const std::string problem = ArtifactsCache::fingerprintProblem(*f, "/basis", *out.basis.A);
+      out.cached = problem.empty();
+      if (!out.cached && space.comm()->getRank() == 0)
+        std::fprintf(stderr, "[gphr] basis: /basis in '%s' %s: computed afresh\n", cache->path().c_str(),
+                     problem.c_str());
+    }
+    if (out.cached) {
       PodCheckpoint(cache, "/basis", key).clear();  // a leftover of another run's basis, if any
       GPHR_REQUIRE(options.k == 0 || options.k == out.basis.k, InputError, "basis in '", cache->path(), "' has k = ",
                    out.basis.k, " but the config asks for k = ", options.k);

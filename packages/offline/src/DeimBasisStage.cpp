@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "gphr/core/ColumnFingerprint.hpp"
 #include "gphr/core/Error.hpp"
 #include "gphr/core/RankGroups.hpp"
 #include "gphr/offline/PodCheckpoint.hpp"
@@ -18,6 +19,15 @@ bool readDeimBasis(const Hdf5File& f, const std::string& name, const std::string
                    const HamiltonianSystem& reference, CachedDeimBasis& out) {
   if (!ArtifactsCache::holds(f, name, key)) return false;
   out.basis.U = f.readColumns(name, reference.nonlinearTerm().rowMap());
+  // one that no longer matches its fingerprint (a changed value) is computed again
+  const std::string problem = ArtifactsCache::fingerprintProblem(f, name, *out.basis.U);
+  if (!problem.empty()) {
+    if (out.basis.U->getMap()->getComm()->getRank() == 0)
+      std::fprintf(stderr, "[gphr] deim basis: %s in '%s' %s: computed afresh\n", name.c_str(), f.path().c_str(),
+                   problem.c_str());
+    out.basis.U = Teuchos::null;
+    return false;
+  }
   out.basis.singularValues = f.doubleAttribute(name, "singularValues");
   out.basis.snapshots = static_cast<long>(f.doubleAttribute(name, "snapshots")[0]);
   out.computeSeconds = f.hasAttribute(name, "seconds") ? f.doubleAttribute(name, "seconds")[0] : NAN;
@@ -28,6 +38,7 @@ bool readDeimBasis(const Hdf5File& f, const std::string& name, const std::string
 void writeDeimBasis(Hdf5File& f, const std::string& name, const std::string& key, const CachedDeimBasis& d) {
   ArtifactsCache::clear(f, name);
   f.writeColumns(name, *d.basis.U);
+  ArtifactsCache::stampFingerprint(f, name, columnFingerprint(*d.basis.U));
   f.setAttribute(name, "singularValues", d.basis.singularValues);
   f.setAttribute(name, "snapshots", std::vector<double>{double(d.basis.snapshots)});
   f.setAttribute(name, "seconds", std::vector<double>{d.computeSeconds});

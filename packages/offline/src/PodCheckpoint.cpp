@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "gphr/core/ColumnFingerprint.hpp"
 #include "gphr/core/Error.hpp"
 
 namespace gphr {
@@ -50,6 +51,7 @@ bool PodCheckpoint::write(const StreamingPod::State& pod, const PodProgress& at)
   ArtifactsCache::clear(*f, name);
   if (asStates(*pod.U->getMap(), space_)) f->writeStates(name, *pod.U, *space_);
   else f->writeColumns(name, *pod.U);
+  ArtifactsCache::stampFingerprint(*f, name, columnFingerprint(*pod.U));
   f->setAttribute(name, "singularValues", pod.sigma);
   f->setAttribute(name, "pod", std::vector<double>{pod.energy, double(pod.columns), double(pod.tsqrSteps),
                                                    double(pod.replicatedSteps), double(pod.stackedSteps),
@@ -81,6 +83,8 @@ PodProgress PodCheckpoint::read(const RCP<const Map>& map, size_t extraSize, int
     GPHR_REQUIRE(figures.size() == 6 && at.extra.size() == extraSize, InputError, name, " holds ", figures.size(),
                  " POD and ", at.extra.size(), " stage figures (allowed: 6 and ", extraSize, ")");
     pod.U = asStates(*map, space_) ? f.readStates(name, *space_) : f.readColumns(name, map);
+    const std::string problem = ArtifactsCache::fingerprintProblem(f, name, *pod.U);
+    GPHR_REQUIRE(problem.empty(), InputError, name, " ", problem);  // a changed value: computed afresh (below)
     pod.sigma = f.doubleAttribute(name, "singularValues");
     pod.energy = figures[0], pod.columns = static_cast<long>(figures[1]);
     pod.tsqrSteps = int(figures[2]), pod.replicatedSteps = int(figures[3]), pod.stackedSteps = int(figures[4]);
@@ -89,8 +93,8 @@ PodProgress PodCheckpoint::read(const RCP<const Map>& map, size_t extraSize, int
     return at;
   } catch (const std::exception& e) {  // a checkpoint saves time, never stops a run: computed afresh
     if (cache_->comm()->getRank() == 0)
-      std::fprintf(stderr, "[gphr] %s: the checkpoint file '%s' is unreadable (%s): computed afresh\n", name_.c_str(),
-                   path().c_str(), e.what());
+      std::fprintf(stderr, "[gphr] %s: the checkpoint file '%s' is unreadable or damaged (%s): computed afresh\n",
+                   name_.c_str(), path().c_str(), e.what());
     unreadable_ = true;
     return PodProgress();
   }

@@ -7,6 +7,7 @@
 #include <functional>
 #include <sstream>
 
+#include "gphr/core/ColumnFingerprint.hpp"
 #include "gphr/core/Error.hpp"
 #include "gphr/core/RankGroups.hpp"
 #include "gphr/online/TimeLoop.hpp"
@@ -70,10 +71,18 @@ namespace {
 
 std::string datasetName(size_t j) { return "/training/p" + std::to_string(j); }
 
-// A SnapshotSet::Loader's read of parameter j's states (count kAll: all from first on).
+// A SnapshotSet::Loader's read of parameter j's states (count kAll: all from first on), checked
+// against the fingerprint the training stored (a changed value in the file would otherwise go into
+// the bases unseen). Not redone in place: the reader may be one rank group, and the file is open
+// read-only; the message says how to start afresh.
 RCP<const MultiVector> readBlock(const Hdf5File& f, size_t j, const PhaseSpace& ps, size_t every, size_t first,
                                  size_t count) {
-  return f.readStates(datasetName(j), ps, every, first, count == SnapshotSet::kAll ? Hdf5File::kAllRows : count);
+  auto X = f.readStates(datasetName(j), ps, every, first, count == SnapshotSet::kAll ? Hdf5File::kAllRows : count);
+  const std::string problem = ArtifactsCache::fingerprintProblem(f, datasetName(j), *X, every, first);
+  GPHR_REQUIRE(problem.empty(), InputError, "artifacts file '", f.path(), "': the snapshots of training parameter ",
+               j + 1, " (", datasetName(j), "): ", problem, ": the file changed after it was written; remove '",
+               f.path(), "' (or use another --output directory) to train afresh");
+  return X;
 }
 
 // One line per parameter on rank 0: which, reused or done, elapsed and an estimate of what is left.
@@ -176,10 +185,24 @@ std::vector<char> completeInCache(const ArtifactsCache& cache, size_t count, con
   std::vector<char> done(count, 0);
   const auto f = cache.open();
   for (size_t j = 0; j < count; ++j) {
-    done[j] = ArtifactsCache::holds(*f, datasetName(j), key);
+    // one without its fingerprint (an older gphr's) is trained again: its reads could not be checked
+    done[j] = ArtifactsCache::holds(*f, datasetName(j), key) && f->hasAttribute(datasetName(j), "fingerprint");
     if (!done[j]) f->remove(datasetName(j));
   }
   return done;
+}
+
+// The fingerprints of a round's parameters on every rank of `world`, parameter round[r]'s in
+// entries r columns .. (r + 1) columns - 1: each group's first rank adds its own parameter's
+// (`print`, parameter j), the others zeros (a sum with zeros is exact).
+std::vector<double> roundFingerprints(const Comm& world, const Comm& group, const std::vector<size_t>& round, size_t j,
+                                      const std::vector<double>& print, size_t columns) {
+  std::vector<double> mine(round.size() * columns, 0.0), all(mine.size());
+  const auto at = std::find(round.begin(), round.end(), j);
+  if (group.getRank() == 0 && at != round.end())
+    std::copy(print.begin(), print.end(), mine.begin() + (at - round.begin()) * columns);
+  Teuchos::reduceAll(world, Teuchos::REDUCE_SUM, static_cast<int>(mine.size()), mine.data(), all.data());
+  return all;
 }
 
 // One round of the training with the cache (collective over the cache's ranks): group g of G
@@ -222,13 +245,16 @@ void trainRound(const Scene& scene, const RCP<const Comm>& groupComm, int group,
       f->writeStateRows(datasetName(c), row, b, c == j ? block : nullptr, c == j ? space : nullptr);
     row += b;
   };
-  size_t stored = 0;    // blocks this rank's group stored
-  std::string failure;  // its full model's SolverError, if any
+  size_t stored = 0;         // blocks this rank's group stored
+  std::vector<double> print;  // their fingerprint (ColumnFingerprint.hpp), block by block
+  std::string failure;        // its full model's SolverError, if any
   if (j < count && !done[j]) {
     const SceneInstance inst = scene.instantiate(groupComm, o.parameters[j], true);
     try {
       integrateInBlocks(inst, o, [&](const MultiVector& block) {
         store(&block, &inst.system->space(), block.getNumVectors());
+        const std::vector<double> fp = columnFingerprint(block);
+        print.insert(print.end(), fp.begin(), fp.end());
         ++stored;
       });
     } catch (const SolverError& e) {
@@ -238,11 +264,14 @@ void trainRound(const Scene& scene, const RCP<const Comm>& groupComm, int group,
   const std::vector<size_t> sizes = blockSizes(columns);
   for (size_t b = stored; b < sizes.size(); ++b) store(nullptr, nullptr, sizes[b]);  // nothing (more) of ours
   agreeOnFailure(*cache.comm(), failure);
+  const std::vector<double> prints = roundFingerprints(*cache.comm(), *groupComm, round, j, print, columns);
   const auto f = cache.open();
   std::vector<std::string> names;
-  for (size_t c : round) {
-    f->setAttribute(datasetName(c), "parameters", o.parameters[c]);
-    names.push_back(datasetName(c));
+  for (size_t r = 0; r < round.size(); ++r) {
+    const std::string name = datasetName(round[r]);
+    f->setAttribute(name, "parameters", o.parameters[round[r]]);
+    ArtifactsCache::stampFingerprint(*f, name, {prints.begin() + r * columns, prints.begin() + (r + 1) * columns});
+    names.push_back(name);
   }
   ArtifactsCache::seal(*f, names, key);  // one flush for the round
 }

@@ -6,6 +6,7 @@
 
 #include <Tpetra_Core.hpp>
 #include <Teuchos_CommHelpers.hpp>
+#include <hdf5.h>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -185,6 +186,20 @@ TEST(PodCheckpoint, TakesTheFurthestCompleteSlotExactly) {
   ASSERT_EQ(at.progress, 1);
   EXPECT_EQ(back.sigma, one.sigma);
   EXPECT_EQ(maxDifference(*back.U, *one.U), 0.0);
+  comm->barrier();
+  if (comm->getRank() == 0) {  // slot 0 (progress 1): one value of U changed in place, its marks kept
+    const hid_t f = H5Fopen(cp.path().c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    const hid_t d = H5Dopen2(f, "/slot0", H5P_DEFAULT), space = H5Dget_space(d);
+    const hsize_t at2[2] = {1, 20}, one1[1] = {1};
+    const hid_t mem = H5Screate_simple(1, one1, nullptr);
+    H5Sselect_elements(space, H5S_SELECT_SET, 1, at2);
+    const double changed = 42.0;
+    EXPECT_GE(H5Dwrite(d, H5T_NATIVE_DOUBLE, mem, space, H5P_DEFAULT, &changed), 0);
+    H5Sclose(mem), H5Sclose(space), H5Dclose(d), H5Fclose(f);
+  }
+  comm->barrier();
+  // no longer matching its fingerprint: not resumed from (said on stderr), the stage starts afresh
+  EXPECT_EQ(PodCheckpoint(&cache, "/stage/x", "key 1").read(map, 1, 5, back).progress, 0);
   EXPECT_TRUE(std::filesystem::exists(cp.path()));
   cp.clear();
   EXPECT_FALSE(std::filesystem::exists(cp.path()));
@@ -206,11 +221,17 @@ double maxDifference(const MultiVector& a, const MultiVector& b) {
   return *std::max_element(n.begin(), n.end());
 }
 
-TEST(Training, ResumedFromTheCacheBitForBit) {
-  auto comm = Tpetra::getDefaultComm();
+// The NLS with n = 32 and an artifacts cache for it in a directory of its own.
+struct SmallScene {
+  RCP<const Comm> comm = Tpetra::getDefaultComm();
   TempDir dir;
-  const Nls1d scene(32);
-  const ArtifactsCache cache(dir.file("a.h5"), comm, scene.name(), 64);
+  Nls1d scene{32};
+  ArtifactsCache cache{dir.file("a.h5"), comm, scene.name(), 64};
+};
+
+TEST(Training, ResumedFromTheCacheBitForBit) {
+  const SmallScene small;
+  const auto& [comm, dir, scene, cache] = small;
   TrainingOptions o = smallTraining();
   o.groupSize = comm->getSize();  // all ranks together, as without a cache: bit for bit below
   const TrainingResult first = runTraining(scene, comm, o, &cache, "key");
@@ -229,6 +250,67 @@ TEST(Training, ResumedFromTheCacheBitForBit) {
   EXPECT_EQ(other.reused, 0);
   const TrainingResult none = runTraining(scene, comm, o);  // no cache: the same snapshots
   EXPECT_EQ(maxDifference(*none.snapshots[2], *first.snapshots[2]), 0.0);
+}
+
+// Rewrites parameter `name`'s states as `X`, sealed for `key`, with the fingerprint `print` (none
+// when empty): what a changed file, or an older gphr's, holds.
+void rewriteParameter(const ArtifactsCache& cache, const std::string& name, const MultiVector& X,
+                      const std::vector<double>& print, const std::string& key) {
+  auto f = cache.open();
+  const std::vector<double> mu = f->doubleAttribute(name, "parameters");
+  ArtifactsCache::clear(*f, name);
+  f->writeStates(name, X, PhaseSpace(static_cast<GO>(X.getGlobalLength() / 2), X.getMap()->getComm()));
+  f->setAttribute(name, "parameters", mu);
+  if (!print.empty()) ArtifactsCache::stampFingerprint(*f, name, print);
+  ArtifactsCache::seal(*f, name, key);
+}
+
+// The message of the InputError `read` throws ("" if none).
+template <class Read>
+std::string readError(Read read) {
+  try {
+    read();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// The training's snapshots carry the fingerprint of their columns (ColumnFingerprint.hpp), each
+// parameter's stamped by the group that integrated it (groups of one rank on 2 and 3 ranks): read
+// back on all ranks they match it. An entry changed in the file is refused by every read that
+// holds its column, naming parameter and column; a strided read that skips that column is not.
+// A parameter sealed without a fingerprint (an older gphr's) is trained again.
+TEST(Training, AChangedSnapshotIsRefusedWhereItIsRead) {
+  const SmallScene small;
+  const auto& [comm, dir, scene, cache] = small;
+  TrainingOptions o = smallTraining();
+  o.groupSize = 1;
+  const TrainingResult first = runTraining(scene, comm, o, &cache, "key");
+  for (size_t j = 0; j < 3; ++j) EXPECT_EQ(readError([&] { first.snapshots[j]; }), "") << j;
+  const MultiVector clean(*first.snapshots[1], Teuchos::Copy);
+  MultiVector changed(clean, Teuchos::Copy);
+  const GO row = 40;  // on the last rank on 2 and 3 ranks
+  if (changed.getMap()->isNodeGlobalElement(row)) changed.sumIntoGlobalValue(row, 5, 0.5);
+  std::vector<double> print;
+  {
+    auto f = cache.open();
+    print = f->doubleAttribute("/training/p1", "fingerprint");
+  }
+  ASSERT_EQ(print.size(), 11u);
+  rewriteParameter(cache, "/training/p1", changed, print, "key");
+  const TrainingResult again = runTraining(scene, comm, o, &cache, "key");
+  EXPECT_EQ(again.reused, 3);
+  const std::string all = readError([&] { again.snapshots[1]; });
+  EXPECT_NE(all.find("training parameter 2 (/training/p1): column 5 does not match its fingerprint"),
+            std::string::npos) << all;
+  EXPECT_NE(all.find("to train afresh"), std::string::npos) << all;
+  EXPECT_NE(readError([&] { again.snapshots.columns(1, 1, 4, 3); }).find("column 5 does"), std::string::npos);
+  EXPECT_NE(readError([&] { again.snapshots.columns(1, 5, 1, 1); }).find("column 5 does"), std::string::npos);
+  EXPECT_EQ(readError([&] { again.snapshots.everyNth(1, 2); }), "");  // states 0, 2, ..., 10
+  EXPECT_EQ(readError([&] { again.snapshots[0]; }), "");
+  rewriteParameter(cache, "/training/p1", clean, {}, "key");
+  EXPECT_EQ(runTraining(scene, comm, o, &cache, "key").reused, 2);
 }
 
 // Rank groups give the snapshots all ranks together give, to round-off: with groups of one rank

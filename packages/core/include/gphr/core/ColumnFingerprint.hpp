@@ -23,4 +23,8 @@ std::vector<double> columnFingerprint(const MultiVector& X, double* wNorm = null
 /// Collective.
 bool fingerprintMatches(const std::vector<double>& stored, const MultiVector& X);
 
+/// The first column of X that does not match `stored` as fingerprintMatches judges it, or -1 if
+/// all do; a column beyond stored's end does not match. Collective.
+long firstMismatchingColumn(const std::vector<double>& stored, const MultiVector& X);
+
 }  // namespace gphr

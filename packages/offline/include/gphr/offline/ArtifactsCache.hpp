@@ -34,6 +34,15 @@ class ArtifactsCache {
   /// not one per parameter; its time is that of writing the round's bytes to disk either way: SWE
   /// 256^2 on 16 ranks of the 2-core VM, 4 x 0.14 s per parameter before, 0.58 s at once now).
   static void seal(Hdf5File& file, const std::vector<std::string>& names, const std::string& key);
+  /// Stores `fingerprint`, columnFingerprint() of `name`'s columns (ColumnFingerprint.hpp), as its
+  /// attribute: the cache's distributed data (snapshots, bases, checkpoints) carry it where a
+  /// checksum would need them gathered. Written before seal(). Collective.
+  static void stampFingerprint(Hdf5File& file, const std::string& name, const std::vector<double>& fingerprint);
+  /// "" if X, read from `name` as its columns (first + i) every, i = 0, 1, ..., matches the stored
+  /// fingerprint; else what is wrong ("column 17 (of the stored) does not match its fingerprint",
+  /// "has no fingerprint"). Collective over X's ranks.
+  static std::string fingerprintProblem(const Hdf5File& file, const std::string& name, const MultiVector& X,
+                                        size_t every = 1, size_t first = 0);
   /// Removes `name` and creates its parent groups if missing: the dataset can be written anew.
   static void clear(Hdf5File& file, const std::string& name);
   /// Seconds of a stage's work between two checkpoints of its streaming POD (PodCheckpoint; 0:
