@@ -113,5 +113,10 @@ run 2 "validate into a taken report path (2 ranks)" "$mpiexec" -np 2 "$gphr" val
 PREPARE=
 run 0 "validate the good file" "$gphr" validate good.h5 v.yaml --output out
 [ -s out/validation.md ] || fail "validate the good file: no validation.md"
+# random damage besides the chosen: 12 single-bit flips anywhere in the file (seed fixed), each
+# exit 0 with finite results or exit 2 with one line (scripts/flip_bits.sh: the longer sweeps)
+runs=$((runs + 1))
+bash "$here/../../scripts/flip_bits.sh" "$gphr" good.h5 q.yaml 12 20261127 > flips.txt 2>&1 ||
+  fail "random bit flips: $(tr '\n' ' ' < flips.txt)"
 echo "$runs runs: $((runs - failures)) passed, $failures failed"
 [ $failures -eq 0 ]
