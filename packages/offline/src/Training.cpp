@@ -192,16 +192,16 @@ std::vector<char> completeInCache(const ArtifactsCache& cache, size_t count, con
   return done;
 }
 
-// The fingerprints of a round's parameters on every rank of `world`, parameter round[r]'s in
-// entries r columns .. (r + 1) columns - 1: each group's first rank adds its own parameter's
-// (`print`, parameter j), the others zeros (a sum with zeros is exact).
-std::vector<double> roundFingerprints(const Comm& world, const Comm& group, const std::vector<size_t>& round, size_t j,
-                                      const std::vector<double>& print, size_t columns) {
-  std::vector<double> mine(round.size() * columns, 0.0), all(mine.size());
-  const auto at = std::find(round.begin(), round.end(), j);
-  if (group.getRank() == 0 && at != round.end())
-    std::copy(print.begin(), print.end(), mine.begin() + (at - round.begin()) * columns);
-  Teuchos::reduceAll(world, Teuchos::REDUCE_SUM, static_cast<int>(mine.size()), mine.data(), all.data());
+// Parameter c's fingerprint on every rank of `world`: its group's first rank adds its own
+// (`print`, of parameter j), every other rank zeros (a sum with zeros is exact). One parameter at a
+// time: a rank holds one trajectory's fingerprint, not a round's.
+std::vector<double> parameterFingerprint(const Comm& world, const Comm& group, size_t c, size_t j,
+                                         const std::vector<double>& print, size_t columns) {
+  std::vector<double> mine(columns, 0.0), all(columns);
+  if (c == j && group.getRank() == 0) mine = print;
+  GPHR_REQUIRE(mine.size() == columns, SolverError, "training: a fingerprint of ", mine.size(), " of the ", columns,
+               " states");
+  Teuchos::reduceAll(world, Teuchos::REDUCE_SUM, static_cast<int>(columns), mine.data(), all.data());
   return all;
 }
 
@@ -264,14 +264,13 @@ void trainRound(const Scene& scene, const RCP<const Comm>& groupComm, int group,
   const std::vector<size_t> sizes = blockSizes(columns);
   for (size_t b = stored; b < sizes.size(); ++b) store(nullptr, nullptr, sizes[b]);  // nothing (more) of ours
   agreeOnFailure(*cache.comm(), failure);
-  const std::vector<double> prints = roundFingerprints(*cache.comm(), *groupComm, round, j, print, columns);
   const auto f = cache.open();
   std::vector<std::string> names;
-  for (size_t r = 0; r < round.size(); ++r) {
-    const std::string name = datasetName(round[r]);
-    f->setAttribute(name, "parameters", o.parameters[round[r]]);
-    ArtifactsCache::stampFingerprint(*f, name, {prints.begin() + r * columns, prints.begin() + (r + 1) * columns});
-    names.push_back(name);
+  for (size_t c : round) {
+    f->setAttribute(datasetName(c), "parameters", o.parameters[c]);
+    ArtifactsCache::stampFingerprint(*f, datasetName(c),
+                                     parameterFingerprint(*cache.comm(), *groupComm, c, j, print, columns));
+    names.push_back(datasetName(c));
   }
   ArtifactsCache::seal(*f, names, key);  // one flush for the round
 }
