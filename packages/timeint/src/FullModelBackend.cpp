@@ -53,6 +53,11 @@ Teuchos::ParameterList FullModelBackend::validParameters() {
   setIntParameter(pl, "krylovVectors", 30, 1, 1000,
                   "GMRES restart length (Krylov vectors of length 2n kept per solve; at most maxIterations); "
                   "the preconditioned solves take 2-10 iterations");
+  setChoiceParameter(pl, "orthogonalization", "IMGS", Teuchos::tuple<std::string>("IMGS", "ICGS", "DGKS"),
+                     "Gram-Schmidt of GMRES's Krylov basis (Belos' orthogonalization manager): IMGS, modified "
+                     "Gram-Schmidt in one pass, backward stable for GMRES (Paige, Rozloznik and Strakos, 2006) "
+                     "and faster here than Belos' default ICGS (classical, two passes) on 1 and 2 ranks (doc/design.md, "
+                     "'Preconditioner'); ICGS and DGKS take fewer all-reduces per iteration at many ranks per system");
   setChoiceParameter(pl, "preconditioner", "RILUK",
                      Teuchos::tuple<std::string>("RILUK", "ILUT", "RELAXATION", "AMESOS2", "none"),
                      "Ifpack2 preconditioner, per rank (block Jacobi); AMESOS2 = exact KLU2 solve of each "
@@ -116,7 +121,10 @@ FullModelBackend::FullModelBackend(RCP<const HamiltonianSystem> system, Teuchos:
   auto belosParams = Teuchos::parameterList();
   belosParams->set("Convergence Tolerance", solver_->tolerance);
   belosParams->set("Maximum Iterations", ls.get<int>("maxIterations"));
-  if (ls.get<std::string>("method") == "GMRES") belosParams->set("Num Blocks", krylovVectors(ls));
+  if (ls.get<std::string>("method") == "GMRES") {
+    belosParams->set("Num Blocks", krylovVectors(ls));
+    belosParams->set("Orthogonalization", ls.get<std::string>("orthogonalization"));
+  }
   belosParams->set("Implicit Residual Scaling", "Norm of RHS");
   belosParams->set("Explicit Residual Scaling", "Norm of RHS");
   Belos::SolverFactory<Scalar, MultiVector, Operator> factory;
