@@ -57,7 +57,8 @@ Teuchos::ParameterList FullModelBackend::validParameters() {
                      "Gram-Schmidt of GMRES's Krylov basis (Belos' orthogonalization manager): IMGS, modified "
                      "Gram-Schmidt in one pass, backward stable for GMRES (Paige, Rozloznik and Strakos, 2006) "
                      "and faster here than Belos' default ICGS (classical, two passes) on 1 and 2 ranks (doc/design.md, "
-                     "'Preconditioner'); ICGS and DGKS take fewer all-reduces per iteration at many ranks per system");
+                     "'GMRES accuracy'); ICGS and DGKS take fewer all-reduces per iteration at many ranks per "
+                     "system. GPHR's Newton and the NOX driver alike");
   setChoiceParameter(pl, "preconditioner", "RILUK",
                      Teuchos::tuple<std::string>("RILUK", "ILUT", "RELAXATION", "AMESOS2", "none"),
                      "Ifpack2 preconditioner, per rank (block Jacobi); AMESOS2 = exact KLU2 solve of each "

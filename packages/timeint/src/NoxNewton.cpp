@@ -110,7 +110,10 @@ Teuchos::RCP<Teuchos::ParameterList> stratimikosParameters(const Teuchos::Parame
   auto& sp = belos.sublist("Solver Types").sublist(solver);
   sp.set("Convergence Tolerance", ls.get<double>("tolerance"));
   sp.set("Maximum Iterations", ls.get<int>("maxIterations"));
-  if (ls.get<std::string>("method") == "GMRES") sp.set("Num Blocks", FullModelBackend::krylovVectors(ls));
+  if (ls.get<std::string>("method") == "GMRES") {
+    sp.set("Num Blocks", FullModelBackend::krylovVectors(ls));
+    sp.set("Orthogonalization", ls.get<std::string>("orthogonalization"));
+  }
   // The preconditioner is built by the Ifpack2 factory below and handed to NOX, which keeps it
   // between refactorisations; the Belos factory itself has none.
   pl->set("Preconditioner Type", "None");
