@@ -64,20 +64,24 @@ expect changed_snapshot "$work/snap" "$work/nls.yaml" \
   "the snapshots of training parameter 2 (/training/p1): column 3 does not match its fingerprint"
 grep -qF "remove '$work/snap/artifacts.h5' (or use another --output directory) to train afresh" "$work/err" ||
   fail changed_snapshot "no way out named"
-# the basis and the DEIM basis: computed afresh, the same results as the clean run
-same() {  # same NAME DIR CONFIG TEXT CLEAN: exit 0, TEXT on stderr, rom_history.csv as CLEAN's
+# the basis and the DEIM basis: computed afresh, equal to the clean run's, and so its results
+same() {  # same NAME DIR CONFIG TEXT CLEAN DATASET: exit 0, TEXT on stderr, DATASET and rom_history.csv as CLEAN's
   "$gphr" run "$3" --output "$2" > /dev/null 2> "$work/err"; rc=$?
   [ $rc -eq 0 ] || fail "$1" "exit code $rc, expected 0"
   grep -qF -- "$4" "$work/err" || fail "$1" "stderr lacks: $4"
+  /usr/bin/python3 -c 'import sys, h5py, numpy
+a, b = (h5py.File(f + "/artifacts.h5", "r")[sys.argv[3]][()] for f in sys.argv[1:3])
+sys.exit(0 if numpy.array_equal(a, b) else 1)' "$2" "$5" "$6" || fail "$1" "$6 differs from the clean run's"
   cmp -s "$2/rom_history.csv" "$5/rom_history.csv" || fail "$1" "rom_history.csv differs from the clean run's"
   echo "ok ($1): $(grep -F -- "$4" "$work/err")"
 }
 mkdir -p "$work/basis" && cp "$work/good/artifacts.h5" "$work/basis/"
 change "$work/basis/artifacts.h5" basis 1 7
 same changed_basis "$work/basis" "$work/nls.yaml" \
-  "/basis in '$work/basis/artifacts.h5' column 1 does not match its fingerprint: computed afresh" "$work/good"
+  "/basis in '$work/basis/artifacts.h5' column 1 does not match its fingerprint: computed afresh" "$work/good" basis
 "$gphr" run "$work/deim.yaml" --output "$work/deimgood" > /dev/null 2>&1 || { echo "gp-deim setup run failed"; exit 1; }
 mkdir -p "$work/deim" && cp "$work/deimgood/artifacts.h5" "$work/deim/"
 change "$work/deim/artifacts.h5" deim/k2 2 3
 same changed_deim_basis "$work/deim" "$work/deim.yaml" \
-  "/deim/k2 in '$work/deim/artifacts.h5' column 2 does not match its fingerprint: computed afresh" "$work/deimgood"
+  "/deim/k2 in '$work/deim/artifacts.h5' column 2 does not match its fingerprint: computed afresh" "$work/deimgood" \
+  deim/k2
