@@ -13,10 +13,10 @@
 # e.g. build/packages/driver/gphr build test/support/small_nls_model.yaml --model m.h5 --output art &&
 #      printf 'queries:\n  defaults: {T: 0.2}\n  points:\n    a: {eps: 1.0}\n' > q.yaml &&
 #      bash scripts/flip_bits.sh build/packages/driver/gphr m.h5 q.yaml 600
-# A flip in a byte the query never reads (unused space, the basis of a model it does not lift)
-# passes with exit 0: the report counts those apart only by their exit code.
+# A flip in a byte the query never reads (unused space, the provenance attributes, the basis of a
+# model it does not lift) passes with exit 0: the report counts those apart only by their exit code.
 set -u
-[ $# -ge 3 ] || { sed -n 2,18p "$0"; exit 2; }
+[ $# -ge 3 ] || { sed -n 2,17p "$0"; exit 2; }
 gphr=$1 good=$2 queries=$3 count=${4:-200} seed=${5:-1} from=${6:-} to=${7:-} step=${8:-1}
 [ -x "$gphr" ] || { echo "flip_bits: '$gphr' is not an executable" >&2; exit 2; }
 [ -f "$good" ] || { echo "flip_bits: no file '$good'" >&2; exit 2; }
