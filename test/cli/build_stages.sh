@@ -9,7 +9,10 @@
 #  4. the console prints one line per stage;
 #  5. DIR/mpi_calls.csv splits each rank's and stage's mpi_wall_s by MPI function: its rows add up
 #     to stages.csv's column, every name is an MPI function, and the bases' tree reduction shows
-#     as point-to-point calls, and the training flushes the file once per round of parameters.
+#     as point-to-point calls;
+#  6. artifacts.h5 is flushed to the disk (MPI_File_sync) only with output.syncArtifacts: none in
+#     the offline stages by default; with it, the training flushes once per round of parameters,
+#     the basis and the DEIM basis once each.
 # usage: build_stages.sh GPHR MPIEXEC
 set -u
 gphr=$1; mpi=$2
@@ -74,11 +77,25 @@ for key, mpi in stages.items():
 # The basis' streaming POD on 2 ranks takes the tree route: the R factor goes from rank 1 to rank 0.
 assert any(c == "MPI_Send" for c, _ in split.get(("1", "basis"), [])), split.get(("1", "basis"))
 assert any(c == "MPI_Recv" for c, _ in split.get(("0", "basis"), [])), split.get(("0", "basis"))
-# The training's 3 parameters on 2 groups of one rank are 2 rounds, each sealed with one flush
-# (MPI_File_sync) of artifacts.h5 for all its parameters: 2 per rank, not one per parameter.
-for r in ("0", "1"):
-    syncs = [int(x[3]) for x in rows[1:] if x[0] == r and x[1] == "training" and x[2] == "MPI_File_sync"]
-    assert syncs == [2], f"rank {r}: the training's MPI_File_sync calls {syncs}, want [2] (one per round)"
 print("mpi_calls.csv ok")
 PY
+# syncs DIR TRAINING BASIS DEIM: the MPI_File_sync calls of each rank in DIR/mpi_calls.csv's
+# training, basis and DEIM basis stages ([] where none) are [TRAINING], [BASIS], [DEIM].
+syncs() {
+  python3 - "$@" <<'PY'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1] + "/mpi_calls.csv")))
+for r in ("0", "1"):
+    for stage, want in zip(("training", "basis", "deim basis k=6"), sys.argv[2:]):
+        got = [int(x["calls"]) for x in rows if (x["rank"], x["stage"], x["call"]) == (r, stage, "MPI_File_sync")]
+        assert got == ([int(want)] if want != "0" else []), f"rank {r}, {stage}: MPI_File_sync calls {got}, want {want}"
+PY
+}
+syncs art 0 0 0 || fail "the default build flushed artifacts.h5 to the disk (output.syncArtifacts is off)"
+# The training's 3 parameters on 2 groups of one rank are 2 rounds, each sealed with one flush for
+# all its parameters: 2 per rank, not one per parameter.
+sed 's/output: {/output: {syncArtifacts: true, /' build.yaml > sync.yaml
+grep -q "syncArtifacts: true" sync.yaml || fail "could not set output.syncArtifacts"
+"$mpi" -np 2 "$gphr" build sync.yaml --model sync.h5 --output art2 > sync.out 2> sync.err || { cat sync.err; fail "build with syncArtifacts"; }
+syncs art2 2 1 1 || fail "output.syncArtifacts: true did not flush once per round and stage"
 echo PASS

@@ -133,6 +133,10 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
                      "seconds of a stage's work between checkpoints of the basis and DEIM basis PODs in "
                      "artifacts.h5.ckpt_* (0: after every training parameter / round of chunks); a killed build "
                      "loses at most about this much of a stage");
+  out.set("syncArtifacts", false,
+          "flush artifacts.h5 to the disk (MPI_File_sync) before each complete mark, so that a crash of the machine "
+          "cannot leave a mark on data the disk lacks; off, a killed gphr loses no finished work either, and a "
+          "machine crash's damage is found where the data are read (fingerprints, HDF5's checksums)");
   out.set("plots", true, "draw PNG plots with gnuplot (skipped with a note if gnuplot is missing)");
   out.set("xdmf", false,
           "write fields.xdmf (XDMF 2, for ParaView's XDMF Reader) over artifacts.h5: the full model's saved states "

@@ -58,6 +58,7 @@ ModelBuildKeys cacheKeys(const Teuchos::ParameterList& cfg) {
 ArtifactsCache artifactsCache(const RunContext& ctx, long fullDim) {
   ArtifactsCache cache(ctx.artifactsPath(), ctx.comm, ctx.scene->name(), fullDim);
   cache.setCheckpointSeconds(ctx.config.sublist("output").get<double>("checkpointSeconds"));
+  cache.setSyncToDisk(ctx.config.sublist("output").get<bool>("syncArtifacts"));
   return cache;
 }
 

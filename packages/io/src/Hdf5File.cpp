@@ -7,6 +7,10 @@
 #include <cerrno>
 #include <filesystem>
 #include <utility>
+#ifdef __linux__
+#include <fcntl.h>
+#include <unistd.h>
+#endif
 
 #include "gphr/core/Error.hpp"
 
@@ -126,6 +130,15 @@ bool Hdf5File::hasAttribute(const std::string& object, const std::string& key) c
 }
 
 void Hdf5File::flush() { check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing", path_); }
+
+void Hdf5File::startWriteback() const {
+#ifdef __linux__
+  const int fd = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return;
+  ::sync_file_range(fd, 0, 0, SYNC_FILE_RANGE_WRITE);  // 0, 0: the whole file
+  ::close(fd);
+#endif
+}
 
 hid_t Hdf5File::openDataset(const std::string& name) const {
   GPHR_REQUIRE(exists(name), InputError, "HDF5 file '", path_, "' has no dataset '", name, "'");

@@ -47,13 +47,15 @@ bool ArtifactsCache::holds(const Hdf5File& file, const std::string& name, const 
   }
 }
 
-void ArtifactsCache::seal(Hdf5File& file, const std::string& name, const std::string& key) {
+void ArtifactsCache::seal(Hdf5File& file, const std::string& name, const std::string& key) const {
   seal(file, std::vector<std::string>{name}, key);
 }
 
-// The data reach the disk before any mark: a crash may lose marks, never leave one on missing data.
-void ArtifactsCache::seal(Hdf5File& file, const std::vector<std::string>& names, const std::string& key) {
-  file.flush();
+// The marks are set after the data were written (see the declaration): with syncToDisk() the data
+// also reach the disk first, and a machine crash may lose marks, never leave one on missing data.
+void ArtifactsCache::seal(Hdf5File& file, const std::vector<std::string>& names, const std::string& key) const {
+  if (syncToDisk_) file.flush();
+  else file.startWriteback();  // written while the next stage computes, not at a later fsync
   for (const std::string& name : names) {
     file.setAttribute(name, "config", key);
     file.setAttribute(name, "complete", std::string("yes"));

@@ -22,7 +22,7 @@ ReducedBasis readBasis(const Hdf5File& f, const PhaseSpace& space) {
   return b;
 }
 
-void writeBasis(Hdf5File& f, const ReducedBasis& b, const PhaseSpace& space, const std::string& sceneName,
+void writeBasis(const ArtifactsCache& cache, Hdf5File& f, const ReducedBasis& b, const PhaseSpace& space, const std::string& sceneName,
                 const TrainingResult& training, const std::string& key) {
   ArtifactsCache::clear(f, "/basis");
   f.writeStates("/basis", *b.A, space);
@@ -36,7 +36,7 @@ void writeBasis(Hdf5File& f, const ReducedBasis& b, const PhaseSpace& space, con
   for (const auto& mu : training.parameters) flat.insert(flat.end(), mu.begin(), mu.end());
   f.setAttribute("/basis", "trainingSet", flat);
   f.setAttribute("/basis", "layout", std::string("rows are the 2k columns of A (2n entries each, global-id order)"));
-  ArtifactsCache::seal(f, "/basis", key);
+  cache.seal(f, "/basis", key);
 }
 
 }  // namespace
@@ -86,7 +86,7 @@ BasisStageResult runBasisStage(const TrainingResult& training, const PhaseSpace&
     };
     out.basis = computeSymplecticBasis(training.snapshots, space, options, &resume, save);
     if (cache) {
-      writeBasis(*cache->open(), out.basis, space, sceneName, training, key);
+      writeBasis(*cache, *cache->open(), out.basis, space, sceneName, training, key);
       checkpoint.clear();  // their work is in the basis now
     }
   }

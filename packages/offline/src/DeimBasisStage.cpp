@@ -35,7 +35,7 @@ bool readDeimBasis(const Hdf5File& f, const std::string& name, const std::string
   return true;
 }
 
-void writeDeimBasis(Hdf5File& f, const std::string& name, const std::string& key, const CachedDeimBasis& d) {
+void writeDeimBasis(const ArtifactsCache& cache, Hdf5File& f, const std::string& name, const std::string& key, const CachedDeimBasis& d) {
   ArtifactsCache::clear(f, name);
   f.writeColumns(name, *d.basis.U);
   ArtifactsCache::stampFingerprint(f, name, columnFingerprint(*d.basis.U));
@@ -43,7 +43,7 @@ void writeDeimBasis(Hdf5File& f, const std::string& name, const std::string& key
   f.setAttribute(name, "snapshots", std::vector<double>{double(d.basis.snapshots)});
   f.setAttribute(name, "seconds", std::vector<double>{d.computeSeconds});
   f.setAttribute(name, "layout", std::string("rows are the DEIM basis vectors U (d entries each, row-of-G order)"));
-  ArtifactsCache::seal(f, name, key);
+  cache.seal(f, name, key);
 }
 
 // Per chunk, what the root needs besides its modes: rank, energy, snapshots, steps by route.
@@ -192,7 +192,7 @@ CachedDeimBasis runDeimBasisStage(const Scene& scene, const RCP<const Comm>& com
     }
     out.computeSeconds = clock.totalElapsedTime(true) + before;
     if (cache) {
-      writeDeimBasis(*cache->open(), name, fullKey, out);
+      writeDeimBasis(*cache, *cache->open(), name, fullKey, out);
       PodCheckpoint(cache, name, fullKey).clear();  // their work is in the basis now
     }
   }

@@ -58,7 +58,7 @@ bool PodCheckpoint::write(const StreamingPod::State& pod, const PodProgress& at)
                                                    double(pod.treeSteps)});
   f->setAttribute(name, "progress", std::vector<double>{double(at.progress)});
   f->setAttribute(name, "extra", at.extra);
-  ArtifactsCache::seal(*f, name, key_);
+  cache_->seal(*f, name, key_);
   next_ = 1 - next_;
   sinceWrite_.reset();
   sinceWrite_.start();

@@ -100,7 +100,7 @@ void TermWeightFits::store(const std::string& method, int m, const CachedFit& c)
   f->setAttribute(n, "stop", c.fit.stop);
   f->setAttribute(n, "layout", std::string("row 0: the terms (rows of G), row 1: their weights; diagnostics: "
                                            "fit residual, exact-rows residual, selections, fit seconds, training seconds"));
-  ArtifactsCache::seal(*f, n, key(method, m));
+  cache_->seal(*f, n, key(method, m));
 }
 
 const SystemSet& TermWeightFits::systems() {

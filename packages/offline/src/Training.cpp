@@ -211,9 +211,9 @@ std::vector<double> parameterFingerprint(const Comm& world, const Comm& group, s
 // world opens the file, each dataset's rows are written by its group's ranks straight from their
 // rows (Hdf5File::writeStateRows; the other ranks select nothing, and a group with nothing to
 // integrate takes part with nothing) and the file is closed. At the end the round's parameters are
-// sealed together (one flush, then their marks). So the training holds one block of states per rank, not a
-// trajectory; the file is closed between blocks, and a kill loses the unfinished round only (its
-// datasets carry no complete mark). A group whose full model fails (a SolverError: Newton did not
+// sealed together (their marks; one flush to the disk first where the cache syncs). So the
+// training holds one block of states per rank, not a trajectory; the file is closed between
+// blocks, and a kill loses the unfinished round only (its datasets carry no complete mark). A group whose full model fails (a SolverError: Newton did not
 // converge) stops integrating but still takes part in the round's remaining block writes, and all
 // ranks then agree on the failure and throw it, naming the parameter: no group is left waiting in
 // a collective write for one that stopped.
@@ -272,7 +272,7 @@ void trainRound(const Scene& scene, const RCP<const Comm>& groupComm, int group,
                                      parameterFingerprint(*cache.comm(), *groupComm, c, j, print, columns));
     names.push_back(datasetName(c));
   }
-  ArtifactsCache::seal(*f, names, key);  // one flush for the round
+  cache.seal(*f, names, key);  // one flush for the round, where the cache syncs to disk
 }
 
 // All parameters in rounds of G: rank groups (TrainingOptions::groupSize) when size < the ranks,

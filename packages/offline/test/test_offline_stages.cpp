@@ -102,7 +102,7 @@ TEST(ArtifactsCache, ADatasetCountsOnlyWithItsKeyAndMark) {
     f->writeArray("/stage/x", {1.0, 2.0}, 1, 2);
     f->setAttribute("/stage/x", "config", std::string("key 1"));  // a kill before the mark
     EXPECT_FALSE(ArtifactsCache::holds(*f, "/stage/x", "key 1"));
-    ArtifactsCache::seal(*f, "/stage/x", "key 1");
+    cache.seal(*f, "/stage/x", "key 1");
     EXPECT_TRUE(ArtifactsCache::holds(*f, "/stage/x", "key 1"));
     EXPECT_FALSE(ArtifactsCache::holds(*f, "/stage/x", "key 2"));
     EXPECT_FALSE(ArtifactsCache::holds(*f, "/stage/y", "key 1"));
@@ -262,7 +262,7 @@ void rewriteParameter(const ArtifactsCache& cache, const std::string& name, cons
   f->writeStates(name, X, PhaseSpace(static_cast<GO>(X.getGlobalLength() / 2), X.getMap()->getComm()));
   f->setAttribute(name, "parameters", mu);
   if (!print.empty()) ArtifactsCache::stampFingerprint(*f, name, print);
-  ArtifactsCache::seal(*f, name, key);
+  cache.seal(*f, name, key);
 }
 
 // The message of the InputError `read` throws ("" if none).

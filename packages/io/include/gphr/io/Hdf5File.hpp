@@ -33,7 +33,12 @@ class Hdf5File {
   void remove(const std::string& name);
   /// Whether `object` has the attribute `key`.
   bool hasAttribute(const std::string& object, const std::string& key) const;
-  void flush();  ///< Flushes HDF5's buffers to the file.
+  void flush();  ///< Flushes HDF5's buffers to the file and the file to the disk (MPI_File_sync).
+  /// Asks the operating system to start writing the file's written bytes to the disk, without
+  /// waiting for them (Linux: sync_file_range; elsewhere nothing): a later fsync, of this file or
+  /// on ext4 of any file (its journal commit also writes this one's pending data), then finds them
+  /// written. Not collective; each rank asks for its own node's pages. Best effort: no error.
+  void startWriteback() const;
 
   /// States: columns of `states` (vectors on space.map()) as rows of dataset `name`.
   void writeStates(const std::string& name, const MultiVector& states, const PhaseSpace& space);
