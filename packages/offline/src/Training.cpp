@@ -80,7 +80,9 @@ RCP<const MultiVector> readBlock(const Hdf5File& f, size_t j, const PhaseSpace& 
   auto X = f.readStates(datasetName(j), ps, every, first, count == SnapshotSet::kAll ? Hdf5File::kAllRows : count);
   const std::string problem = ArtifactsCache::fingerprintProblem(f, datasetName(j), *X, every, first);
   GPHR_REQUIRE(problem.empty(), InputError, "artifacts file '", f.path(), "': the snapshots of training parameter ",
-               j + 1, " (", datasetName(j), "): ", problem, ": the file changed after it was written; remove '",
+               j + 1, " (", datasetName(j), "): ", problem,
+               ": the file changed after it was written (by another program, or a machine crash before the data "
+               "reached the disk); remove '",
                f.path(), "' (or use another --output directory) to train afresh");
   return X;
 }
