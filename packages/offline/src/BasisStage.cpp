@@ -22,8 +22,8 @@ ReducedBasis readBasis(const Hdf5File& f, const PhaseSpace& space) {
   return b;
 }
 
-void writeBasis(const ArtifactsCache& cache, Hdf5File& f, const ReducedBasis& b, const PhaseSpace& space, const std::string& sceneName,
-                const TrainingResult& training, const std::string& key) {
+void writeBasis(const ArtifactsCache& cache, Hdf5File& f, const ReducedBasis& b, const PhaseSpace& space,
+                const std::string& sceneName, const TrainingResult& training, const std::string& key) {
   ArtifactsCache::clear(f, "/basis");
   f.writeStates("/basis", *b.A, space);
   ArtifactsCache::stampFingerprint(f, "/basis", columnFingerprint(*b.A));

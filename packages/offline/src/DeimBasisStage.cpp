@@ -35,7 +35,8 @@ bool readDeimBasis(const Hdf5File& f, const std::string& name, const std::string
   return true;
 }
 
-void writeDeimBasis(const ArtifactsCache& cache, Hdf5File& f, const std::string& name, const std::string& key, const CachedDeimBasis& d) {
+void writeDeimBasis(const ArtifactsCache& cache, Hdf5File& f, const std::string& name, const std::string& key,
+                    const CachedDeimBasis& d) {
   ArtifactsCache::clear(f, name);
   f.writeColumns(name, *d.basis.U);
   ArtifactsCache::stampFingerprint(f, name, columnFingerprint(*d.basis.U));

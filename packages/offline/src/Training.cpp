@@ -161,11 +161,15 @@ std::vector<size_t> blockSizes(size_t columns) {
 }  // namespace
 
 // The group count G that finishes the P parameters soonest with ideal scaling inside a group:
-// the least ceil(P / G) rounds per floor(p / G) ranks (ties: more groups, less communication), among the G whose groups hold a system (p / G >= ceil(rows / 2^18) ranks) and do
-// not split it below 4096 rows per rank (p / G <= ceil(rows / 4096)); where no G does both, the
-// groups of ceil(rows / 4096) ranks. SWE 256^2 (131,072 rows), 4 parameters: 2 groups of 1 on 2
-// ranks (training 1.95x; one group of 2: 1.44x), 4 of 4 on 16; the NLS (4096 rows): groups of 1;
-// 10^8 rows, 5 parameters on 1024 ranks: one group (two of 512 take 3 rounds: 3 / 512 > 5 / 1024).
+// the least ceil(P / G) rounds per floor(p / G) ranks, among the G whose groups hold a system
+// (p / G >= ceil(rows / 2^18) ranks) and do not split it below 4096 rows per rank (p / G <=
+// ceil(rows / 4096)); where no G does both, the groups of ceil(rows / 4096) ranks. Ties go to
+// more groups: SWE 256^2's 4 parameters on 16 ranks, groups of 4 against 8 (1 or 2 rounds, whose
+// sums even out the parameters' costs), training critical path 2.65, 2.72 s against 2.90, 3.11 s
+// on the 2-core VM (doc/scaling.md, "Critical path"). SWE 256^2 (131,072 rows), 4 parameters: 2
+// groups of 1 on 2 ranks (training 1.95x; one group of 2: 1.44x), 4 of 4 on 16; the NLS (4096
+// rows): groups of 1; 10^8 rows, 5 parameters on 1024 ranks: one group (two of 512 take 3 rounds:
+// 3 / 512 > 5 / 1024).
 int trainingGroupSize(long fullDim, int ranks, long parameters) {
   const long p = ranks, P = std::max<long>(parameters, 1);
   const long worth = (fullDim + kTrainingRowsPerRank - 1) / kTrainingRowsPerRank;     // most ranks per system
@@ -215,10 +219,11 @@ std::vector<double> parameterFingerprint(const Comm& world, const Comm& group, s
 // integrate takes part with nothing) and the file is closed. At the end the round's parameters are
 // sealed together (their marks; one flush to the disk first where the cache syncs). So the
 // training holds one block of states per rank, not a trajectory; the file is closed between
-// blocks, and a kill loses the unfinished round only (its datasets carry no complete mark). A group whose full model fails (a SolverError: Newton did not
-// converge) stops integrating but still takes part in the round's remaining block writes, and all
-// ranks then agree on the failure and throw it, naming the parameter: no group is left waiting in
-// a collective write for one that stopped.
+// blocks, and a kill loses the unfinished round only (its datasets carry no complete mark). A
+// group whose full model fails (a SolverError: Newton did not converge) stops integrating but
+// still takes part in the round's remaining block writes, and all ranks then agree on the failure
+// and throw it, naming the parameter: no group is left waiting in a collective write for one that
+// stopped.
 // (Each group writing a parallel HDF5 file of its own, copied into the cache at the end, moved
 // every snapshot through the file system twice more: 0.68 s of the 7.4 s training of SWE 256^2 on
 // 16 ranks. Moving each parameter to all ranks first by a Tpetra Import, then writing, took
