@@ -49,6 +49,13 @@ class RemoveCreatedFiles : public ::testing::Environment {
 [[maybe_unused]] ::testing::Environment* const removeCreatedFiles =
     ::testing::AddGlobalTestEnvironment(new RemoveCreatedFiles);
 
+// `count` states on ps's map, state j filled by fillByGid with scale `first` + j and seed j.
+MultiVector filledStates(const PhaseSpace& ps, size_t count, double first) {
+  MultiVector states(ps.map(), count);
+  for (size_t j = 0; j < count; ++j) test::fillByGid(*states.getVectorNonConst(j), first + j, j);
+  return states;
+}
+
 // The largest entry of |states read from `name` - states| (0: read back bit for bit).
 double maxStateDifference(const Hdf5File& f, const std::string& name, const PhaseSpace& ps, const MultiVector& states) {
   auto back = f.readStates(name, ps);
@@ -90,8 +97,7 @@ TEST(Hdf5, ColumnsOnAContiguousMapRoundTripInGlobalOrder) {
 
 TEST(Hdf5, StatesRoundTripBitForBit) {
   PhaseSpace ps(23, test::comm());
-  MultiVector states(ps.map(), 4);
-  for (size_t j = 0; j < 4; ++j) test::fillByGid(*states.getVectorNonConst(j), 1.0 + j, j);
+  const MultiVector states = filledStates(ps, 4, 1.0);
   const std::string path = tmpName("states");
   {
     Hdf5File f(path, test::comm(), Hdf5File::Mode::Create);
@@ -121,8 +127,7 @@ TEST(Hdf5, StatesRoundTripBitForBit) {
 // bit for bit afterwards, and what is written after the call is there too.
 TEST(Hdf5, StartWritebackLeavesTheFileAsWritten) {
   PhaseSpace ps(23, test::comm());
-  MultiVector states(ps.map(), 3);
-  for (size_t j = 0; j < 3; ++j) test::fillByGid(*states.getVectorNonConst(j), 2.0 + j, j);
+  const MultiVector states = filledStates(ps, 3, 2.0);
   const std::string path = tmpName("writeback");
   {
     Hdf5File f(path, test::comm(), Hdf5File::Mode::Create);
@@ -140,8 +145,7 @@ TEST(Hdf5, StartWritebackLeavesTheFileAsWritten) {
 // same columns.
 TEST(Hdf5, EveryNthStateReadAlone) {
   PhaseSpace ps(23, test::comm());
-  MultiVector states(ps.map(), 7);
-  for (size_t j = 0; j < 7; ++j) test::fillByGid(*states.getVectorNonConst(j), 1.0 + j, j);
+  const MultiVector states = filledStates(ps, 7, 1.0);
   const std::string path = tmpName("strided");
   {
     Hdf5File f(path, test::comm(), Hdf5File::Mode::Create);
@@ -214,8 +218,7 @@ TEST(Hdf5, StatesWrittenByOneRankGroup) {
 TEST(Hdf5, ColumnBlocksWrittenAndReadAlone) {
   const auto world = test::comm();
   const PhaseSpace ps(23, world);
-  MultiVector states(ps.map(), 7);
-  for (size_t j = 0; j < 7; ++j) test::fillByGid(*states.getVectorNonConst(j), 1.0 + j, j);
+  const MultiVector states = filledStates(ps, 7, 1.0);
   const RankGroups g(world, 1);  // groups of one rank: group 0 writes, the others take part with nothing
   const PhaseSpace groupPs(23, g.sub());
   MultiVector mine(groupPs.map(), 7);
