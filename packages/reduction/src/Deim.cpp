@@ -42,6 +42,60 @@ void luSolve(std::vector<double>& B, int m, std::vector<double>& rhs, char trans
 // inner products are not split), so the indices are too.
 constexpr int kGreedyPanel = 32;
 
+// This rank's offer for DEIM index l in the panel starting at column l0: |pivot| of its largest
+// untaken entry of residual column l (-1: none), its gid (exact below 2^53), then that row's
+// entries l0..m-1 (the pivot row's, should it win). Ties go to the smallest gid. W: this rank's
+// rows of the columns, column-major with leading dimension ld.
+void offerPivot(const double* W, LO ld, const std::vector<char>& taken, const std::vector<GO>& gid, int l, int l0,
+                int m, std::vector<double>& offer) {
+  const double* c = W + static_cast<size_t>(ld) * l;
+  LO best = -1;
+  double bestAbs = -1.0;
+  for (LO i = 0; i < static_cast<LO>(gid.size()); ++i) {
+    const double a = std::abs(c[i]);
+    if (!taken[i] && (a > bestAbs || (a == bestAbs && gid[i] < gid[best]))) best = i, bestAbs = a;
+  }
+  std::fill(offer.begin(), offer.end(), 0.0);
+  offer[0] = -1.0;
+  if (best < 0) return;
+  offer[0] = bestAbs;
+  offer[1] = static_cast<double>(gid[best]);
+  for (int j = l0; j < m; ++j) offer[2 + j - l0] = W[best + static_cast<size_t>(ld) * j];
+}
+
+// The winning rank among the gathered offers (np of `width` entries each): the largest |pivot|,
+// ties to the smallest gid; -1 when no rank offered a row.
+int winningOffer(const std::vector<double>& all, int np, int width) {
+  int win = -1;
+  for (int p = 0; p < np; ++p) {
+    const double* o = &all[static_cast<size_t>(p) * width];
+    if (o[0] < 0.0) continue;
+    const double* w = win < 0 ? nullptr : &all[static_cast<size_t>(win) * width];
+    if (!w || o[0] > w[0] || (o[0] == w[0] && o[1] < w[1])) win = p;
+  }
+  return win;
+}
+
+// The panel [l0, l1)'s whole update of the columns to its right (GETRF's trailing update):
+// U12 = L11^{-1} A12 (L11 unit lower triangular, from the panel's pivot rows, row-major of `width`
+// entries), then A22 -= L21 U12 on every row (the taken rows' multipliers are zero). W: this rank's
+// nl rows of the columns, column-major with leading dimension ld.
+void trailingUpdate(const std::vector<double>& panelRows, int width, int l0, int l1, int m, double* W, LO nl, LO ld) {
+  Teuchos::BLAS<int, double> blas;
+  const int nb = l1 - l0, nt = m - l1;
+  std::vector<double> L11(static_cast<size_t>(nb) * nb, 0.0), U12(static_cast<size_t>(nb) * nt);
+  for (int a = 0; a < nb; ++a) {
+    const double* row = &panelRows[static_cast<size_t>(a) * width];
+    for (int b = 0; b < a; ++b) L11[a + static_cast<size_t>(nb) * b] = row[b];
+    for (int j = 0; j < nt; ++j) U12[a + static_cast<size_t>(nb) * j] = row[nb + j];
+  }
+  blas.TRSM(Teuchos::LEFT_SIDE, Teuchos::LOWER_TRI, Teuchos::NO_TRANS, Teuchos::UNIT_DIAG, nb, nt, 1.0, L11.data(), nb,
+            U12.data(), nb);
+  if (nl > 0)
+    blas.GEMM(Teuchos::NO_TRANS, Teuchos::NO_TRANS, nl, nt, nb, -1.0, W + static_cast<size_t>(ld) * l0, ld, U12.data(),
+              nb, 1.0, W + static_cast<size_t>(ld) * l1, ld);
+}
+
 std::vector<GO> greedyDeim(const MultiVector& U, int m) {
   const Map& map = *U.getMap();
   const LO nl = static_cast<LO>(map.getNodeNumElements());
@@ -69,28 +123,9 @@ std::vector<GO> greedyDeim(const MultiVector& U, int m) {
   for (int l0 = 0; l0 < m; l0 += kGreedyPanel) {
     const int l1 = std::min(m, l0 + kGreedyPanel), width = m - l0;
     for (int l = l0; l < l1; ++l) {
-      const double* c = col(l);
-      LO best = -1;
-      double bestAbs = -1.0;
-      for (LO i = 0; i < nl; ++i) {
-        const double a = std::abs(c[i]);
-        if (!taken[i] && (a > bestAbs || (a == bestAbs && gid[i] < gid[best]))) best = i, bestAbs = a;
-      }
-      std::fill(offer.begin(), offer.end(), 0.0);
-      offer[0] = -1.0;  // |pivot| (none offered), gid, then the row's entries l0..m-1
-      if (best >= 0) {
-        offer[0] = bestAbs;
-        offer[1] = static_cast<double>(gid[best]);  // exact below 2^53
-        for (int j = l0; j < m; ++j) offer[2 + j - l0] = col(j)[best];
-      }
+      offerPivot(W, ld, taken, gid, l, l0, m, offer);
       Teuchos::gatherAll(*map.getComm(), m + 2, offer.data(), static_cast<int>(all.size()), all.data());
-      int win = -1;
-      for (int p = 0; p < np; ++p) {
-        const double* o = &all[static_cast<size_t>(p) * (m + 2)];
-        if (o[0] < 0.0) continue;
-        const double* w = win < 0 ? nullptr : &all[static_cast<size_t>(win) * (m + 2)];
-        if (!w || o[0] > w[0] || (o[0] == w[0] && o[1] < w[1])) win = p;
-      }
+      const int win = winningOffer(all, np, m + 2);
       const double* pivot = &all[static_cast<size_t>(std::max(win, 0)) * (m + 2)];
       // A residual at the round-off level of its column (d eps relative) is a dependent column.
       const double floor = 10.0 * static_cast<double>(map.getGlobalNumElements()) *
@@ -112,20 +147,7 @@ std::vector<GO> greedyDeim(const MultiVector& U, int m) {
       for (LO i = 0; i < nl; ++i) f[i] = taken[i] ? 0.0 : f[i] / p[l - l0];
       for (int j = l + 1; j < l1; ++j) blas.AXPY(nl, -p[j - l0], f, 1, col(j), 1);
     }
-    if (l1 == m) break;
-    // U12 = L11^{-1} A12 (L11 unit lower triangular), then A22 -= L21 U12 on every row (the
-    // taken rows' multipliers are zero).
-    const int nb = l1 - l0, nt = m - l1;
-    std::vector<double> L11(static_cast<size_t>(nb) * nb, 0.0), U12(static_cast<size_t>(nb) * nt);
-    for (int a = 0; a < nb; ++a) {
-      const double* row = &panelRows[static_cast<size_t>(a) * width];
-      for (int b = 0; b < a; ++b) L11[a + static_cast<size_t>(nb) * b] = row[b];
-      for (int j = 0; j < nt; ++j) U12[a + static_cast<size_t>(nb) * j] = row[nb + j];
-    }
-    blas.TRSM(Teuchos::LEFT_SIDE, Teuchos::LOWER_TRI, Teuchos::NO_TRANS, Teuchos::UNIT_DIAG, nb, nt, 1.0, L11.data(),
-              nb, U12.data(), nb);
-    if (nl > 0)
-      blas.GEMM(Teuchos::NO_TRANS, Teuchos::NO_TRANS, nl, nt, nb, -1.0, col(l0), ld, U12.data(), nb, 1.0, col(l1), ld);
+    if (l1 < m) trailingUpdate(panelRows, width, l0, l1, m, W, nl, ld);
   }
   return idx;
 }
