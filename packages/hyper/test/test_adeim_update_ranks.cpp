@@ -45,13 +45,19 @@ Window randomWindow(int wbar, int repeats, unsigned seed) {
   return w;
 }
 
-// This rank's rows of S: an interleaved, non-contiguous share (row i on rank (3 i + 1) mod np).
+// The rank of row i of S: an interleaved, non-contiguous share. 5 is coprime to 2 and 3, the rank
+// counts this test is registered on, so every rank holds rows (with 3 i + 1, as before, rank 1
+// held all of them on 3 ranks).
+int ownerOf(int i, int np) { return (5 * i + 1) % np; }
+
+// This rank's rows of S; fails the test when it holds none (nothing distributed would be tested).
 SampledRowShare share(const Teuchos::RCP<const Teuchos::Comm<int>>& comm) {
   SampledRowShare s;
   s.comm = comm;
   s.numRows = kMs;
   for (int i = 0; i < kMs; ++i)
-    if ((3 * i + 1) % comm->getSize() == comm->getRank()) s.positions.push_back(i);
+    if (ownerOf(i, comm->getSize()) == comm->getRank()) s.positions.push_back(i);
+  EXPECT_FALSE(s.positions.empty()) << "rank " << comm->getRank() << " holds no row of S";
   return s;
 }
 
@@ -124,7 +130,7 @@ TEST(AdeimUpdateRanks, NonFiniteRowOnOneRankThrowsOnAll) {
   Window w = randomWindow(12, 0, 5);
   int owner = -1;
   for (int i = 0; i < kMs && owner < 0; ++i)
-    if ((3 * i + 1) % comm->getSize() == 1) owner = i;  // a row of rank 1
+    if (ownerOf(i, comm->getSize()) == 1) owner = i;  // a row of rank 1
   w.StF(owner, 0) = std::numeric_limits<double>::quiet_NaN();
   const CoefficientFactor f = factorCoefficients(w.PtU, w.PtF, 1e-8);
   EXPECT_THROW(computeAdeimUpdate(f, ownRows(w.StU, s), ownRows(w.StF, s), AdeimUpdateOptions(), s), InputError);
