@@ -1,5 +1,7 @@
 #include "gphr/offline/ArtifactsCache.hpp"
 
+#include <Teuchos_CommHelpers.hpp>
+
 #include <cmath>
 #include <filesystem>
 
@@ -8,11 +10,28 @@
 
 namespace gphr {
 
+namespace {
+// Removes the checkpoint files beside `path` (PodCheckpoint::path(): PATH.ckpt_NAME). They hold
+// PODs of an artifacts file's snapshots; once that file is gone (the way to start afresh), a
+// checkpoint under the same configuration key could hold a POD of other snapshots (a changed
+// scene code, say) that its own fingerprint would not reveal.
+void removeCheckpoints(const std::filesystem::path& path) {
+  const std::string prefix = path.filename().string() + ".ckpt";
+  const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec))
+    if (entry.path().filename().string().rfind(prefix, 0) == 0) std::filesystem::remove(entry.path(), ec);
+}
+}  // namespace
+
 ArtifactsCache::ArtifactsCache(std::string path, RCP<const Comm> comm, const std::string& sceneName, long fullDim)
     : path_(std::move(path)), comm_(std::move(comm)) {
-  const bool fresh = !std::filesystem::exists(path_);
-  comm_->barrier();  // every rank has looked before rank 0 may create it
+  // Rank 0 looks and decides for all: ranks that disagreed (a network file system's attribute
+  // cache) would open the file in two modes.
+  int fresh = comm_->getRank() == 0 && !std::filesystem::exists(path_);
+  Teuchos::broadcast(*comm_, 0, Teuchos::outArg(fresh));
   if (fresh) {
+    if (comm_->getRank() == 0) removeCheckpoints(path_);
     Hdf5File f(path_, comm_, Hdf5File::Mode::Create);
     f.setAttribute("/", "scene", sceneName);
     f.setAttribute("/", "fullDim", std::vector<double>{double(fullDim)});

@@ -213,6 +213,35 @@ TEST(PodCheckpoint, TakesTheFurthestCompleteSlotExactly) {
   EXPECT_THROW(cache.setCheckpointSeconds(-1.0), InputError);
 }
 
+// Removing the artifacts file is the way to start afresh: its checkpoints, PODs of its snapshots
+// under a configuration key the new run may share, go with it when the new file is created (here a
+// checkpoint under the same key would otherwise be resumed from, at progress 1).
+TEST(PodCheckpoint, AFreshArtifactsFileStartsWithoutThem) {
+  auto comm = Tpetra::getDefaultComm();
+  TempDir dir;
+  const RCP<const Map> map = rcp(new Map(37, 0, comm));
+  StreamingPod::State st;
+  st.U = rcp(new MultiVector(map, 2));
+  st.sigma = {2.0, 1.0};
+  std::string kept;
+  {
+    ArtifactsCache cache(dir.file("a.h5"), comm, "nls1d", 64);
+    cache.setCheckpointSeconds(0.0);
+    PodCheckpoint cp(&cache, "/stage/x", "key 1");
+    ASSERT_TRUE(cp.write(st, PodProgress{1, {}}));
+    kept = cp.path();
+    ArtifactsCache again(dir.file("a.h5"), comm, "nls1d", 64);  // the file is there: its checkpoint stays
+    ASSERT_TRUE(std::filesystem::exists(kept));
+  }
+  comm->barrier();
+  if (comm->getRank() == 0) std::filesystem::remove(dir.file("a.h5"));
+  comm->barrier();
+  ArtifactsCache fresh(dir.file("a.h5"), comm, "nls1d", 64);
+  EXPECT_FALSE(std::filesystem::exists(kept));
+  StreamingPod::State back;
+  EXPECT_EQ(PodCheckpoint(&fresh, "/stage/x", "key 1").read(map, 0, 5, back).progress, 0);
+}
+
 double maxDifference(const MultiVector& a, const MultiVector& b) {
   MultiVector d(a, Teuchos::Copy);
   d.update(-1.0, b, 1.0);

@@ -18,8 +18,10 @@ namespace gphr {
 /// The artifacts file of one scene and state size (see the file's description).
 class ArtifactsCache {
  public:
-  /// Opens the file at `path` or creates it with the scene's name and the state size 2n. An existing
-  /// file of another scene or size is an InputError naming the file. Collective over `comm`.
+  /// Opens the file at `path` or creates it with the scene's name and the state size 2n; creating
+  /// it removes the checkpoint files left beside it (PodCheckpoint: PODs of the snapshots of a file
+  /// that is gone). An existing file of another scene or size is an InputError naming the file.
+  /// Rank 0 decides whether the file exists. Collective over `comm`.
   ArtifactsCache(std::string path, RCP<const Comm> comm, const std::string& sceneName, long fullDim);
   const std::string& path() const { return path_; }       ///< The file's path.
   const RCP<const Comm>& comm() const { return comm_; }   ///< The ranks that open it.

@@ -8,8 +8,10 @@
 /// (ArtifactsCache). They go to a file of their own beside the artifacts file (ARTIFACTS.ckpt_NAME,
 /// removed when the stage's result is written): HDF5 1.10 does not reclaim a removed dataset's
 /// space, so slots rewritten in artifacts.h5 would leave it larger by two checkpoints per stage.
-/// Two slots are written in turn, so that a kill while one is written leaves the other; a restart
-/// takes the complete one that got furthest. Written at most every ArtifactsCache::checkpointSeconds()
+/// Two slots are written in turn, so that a kill while one is written leaves the other (one that
+/// damages the file's HDF5 metadata leaves it unreadable: no checkpoint, the stage starts afresh);
+/// a restart takes the complete one that got furthest. A new artifacts file removes them
+/// (ArtifactsCache). Written at most every ArtifactsCache::checkpointSeconds()
 /// of the stage's work (default 60): each costs a write of the POD's U (151 MB at SWE 256^2).
 #include <Teuchos_Time.hpp>
 #include <string>
