@@ -258,6 +258,8 @@ DeimChunkModes statisticsOf(const StreamingPod& pod, long snapshots) {
   return out;
 }
 
+// The basis of `pod` (the root, or the only chunk); `stats`: the snapshots' count and energy and
+// the steps of the chunk PODs below it (none for the only chunk), to which pod's own are added.
 DeimBasis basisOf(const StreamingPod& pod, const DeimChunkModes& stats) {
   requireNonzero(stats.snapshots, pod.rank());
   DeimBasis out;
@@ -322,7 +324,9 @@ DeimBasis computeDeimBasis(const SystemSet& systems,
   if (chunks.count() == 1) {  // one chunk: its own POD is the basis, no root
     long snapshots = 0;
     const StreamingPod pod = chunkPod(systems, states, A, opt, maxRank, chunks.range(0), snapshots);
-    return basisOf(pod, statisticsOf(pod, snapshots));
+    DeimChunkModes none;  // no chunk PODs below this one: basisOf adds its own steps
+    none.energy = pod.totalEnergy(), none.snapshots = snapshots;
+    return basisOf(pod, none);
   }
   DeimRootPod root(rowMap, opt, maxRank);
   ReducedStateCache blocks;  // consecutive chunks share blocks: each read once

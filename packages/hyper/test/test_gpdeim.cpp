@@ -517,6 +517,25 @@ TEST(GpDeim, HierarchicalPodBoundedByItsTruncations) {
   }
 }
 
+// The step counts the basis reports (stages.csv, the HAPOD bound above) count each POD step once:
+// one chunk of N snapshots in blocks of 5 takes ceil(N / 5) steps; chunks of 6 take ceil(6 / 5)
+// each (the last ceil(rest / 5)) and the root one per chunk (a chunk's rank <= maxRank columns).
+TEST(GpDeim, PodStepsCountEachStepOnce) {
+  const TrainedBasis t = trainedBasis(Nls1d(64, 5.0), 60, 4);
+  DeimBasisOptions opt;
+  opt.maxRank = 12;
+  opt.blockSnapshots = 5;
+  opt.chunkSnapshots = 100000;
+  const auto one = computeDeimBasis({t.tr.system}, {t.snaps}, *t.basis.A, opt);
+  ASSERT_GT(one.snapshots, 12);
+  EXPECT_EQ(podSteps(one), (one.snapshots + 4) / 5);
+  opt.chunkSnapshots = 6;
+  const auto hier = computeDeimBasis({t.tr.system}, {t.snaps}, *t.basis.A, opt);
+  long expected = 0;
+  for (long first = 0; first < hier.snapshots; first += 6) expected += (std::min(6L, hier.snapshots - first) + 4) / 5 + 1;
+  EXPECT_EQ(podSteps(hier), expected);
+}
+
 TEST(GpDeim, DuplicatedSnapshotsGiveTheSameDeimPair) {
   const auto [tr, snaps, basis] = trainedBasis(Nls1d(32), 40, 3);
   DeimBasisOptions dopt;

@@ -69,7 +69,7 @@ struct DeimBasis {
 /// Why chunks: a streaming POD step costs a replicated SVD of (maxRank + block) columns that no
 /// rank count divides (at the paper's NLS size ~0.2 s of every 0.3 s step); chunks are
 /// independent, so rank groups POD them side by side (offline/DeimBasisStage), and a root over
-/// (chunks x maxRank) columns adds about one step per two chunks. The chunks are fixed by the data
+/// (chunks x maxRank) columns adds one step per chunk. The chunks are fixed by the data
 /// (snapshot count, maxRank, 2k), not by the ranks: the basis is the same on any rank count and
 /// any group split, to round-off.
 struct DeimChunks {
