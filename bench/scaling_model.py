@@ -175,12 +175,13 @@ def deim_flops(s, p):
 
 
 def deim_messages(s, p):
-    """Per round one export of the round's modes (d G R numbers over p ranks) and the all-reduce of
-    its statistics; per root step as a basis step of R + R columns; per chunk step inside a group
-    of g > 1 ranks the stack's all-reduce."""
+    """Per round the all-reduce of its statistics and one export per chunk of the chunk's modes
+    from its group (d R numbers over p ranks, a rank's rows from about 2 of the group's: d G R / p
+    numbers received per rank and round); per root step as a basis step of R + R columns; per
+    chunk step inside a group of g > 1 ranks the stack's all-reduce."""
     L = deim_layout(s, p)
     nc = 2 * L["R"]
-    msgs = L["rounds"] * (2 + math.ceil(math.log2(max(p, 2))))
+    msgs = L["rounds"] * (2 * L["G"] + math.ceil(math.log2(max(p, 2))))
     byts = L["rounds"] * 8.0 * L["d"] * L["G"] * L["R"] / p
     if p < pod_rule(s)[0]:
         msgs += L["C"] * math.ceil(math.log2(max(p, 2)))

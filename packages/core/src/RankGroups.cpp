@@ -43,12 +43,25 @@ RCP<MultiVector> RankGroups::toGroup(const MultiVector& X, const RCP<const Map>&
   return out;
 }
 
-RCP<MultiVector> RankGroups::toWorld(const MultiVector& Xg, const RCP<const Map>& worldMap) const {
-  const RCP<const Map> source = groupRowsOnWorld(*Xg.getMap());
-  MultiVector onWorld(source, Xg.getNumVectors());
-  copyLocal(Xg, onWorld);
-  auto out = rcp(new MultiVector(worldMap, Xg.getNumVectors()));
-  out->doExport(onWorld, Export(source, worldMap), Tpetra::ADD);
+RCP<const Export> RankGroups::fromGroup(int owner, const Map& groupMap, const RCP<const Map>& worldMap) const {
+  GPHR_REQUIRE(owner >= 0 && owner < count_, InputError, "rank group ", owner, "; allowed: 0 .. ", count_ - 1);
+  const auto invalid = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
+  const Teuchos::ArrayView<const GO> none;
+  const RCP<const Map> source =
+      rcp(new Map(invalid, group_ == owner ? groupMap.getNodeElementList() : none, groupMap.getIndexBase(), world_));
+  return rcp(new Export(source, worldMap));
+}
+
+RCP<MultiVector> RankGroups::toWorld(const MultiVector* Xg, const Export& move, size_t columns) const {
+  const RCP<const Map> source = move.getSourceMap();
+  GPHR_REQUIRE(!Xg || (Xg->getNumVectors() == columns && Xg->getLocalLength() == source->getNodeNumElements()),
+               InputError, "RankGroups::toWorld: a MultiVector of ", Xg ? Xg->getNumVectors() : 0, " columns and ",
+               Xg ? Xg->getLocalLength() : 0, " local rows; allowed: ", columns, " columns and the ",
+               source->getNodeNumElements(), " rows of the sending group's map");
+  MultiVector onWorld(source, columns);
+  if (Xg && source->getNodeNumElements() > 0) copyLocal(*Xg, onWorld);
+  auto out = rcp(new MultiVector(move.getTargetMap(), columns));
+  out->doExport(onWorld, move, Tpetra::INSERT);
   return out;
 }
 

@@ -1,6 +1,6 @@
 // RankGroups: the split of the world into groups and the two moves between a world MultiVector
-// and each group's copy. Every entry is a small integer (exact in double), so both moves are
-// checked for exact equality: toGroup copies, and toWorld adds a group's numbers to zeros only.
+// and a group's copy. Every entry is a small integer (exact in double), and both moves copy: they
+// are checked for exact equality.
 #include <gtest/gtest.h>
 
 #include <Tpetra_Core.hpp>
@@ -44,26 +44,28 @@ TEST(RankGroups, EveryGroupGetsAllOfAWorldMultiVector) {
   }
 }
 
-TEST(RankGroups, ToWorldSumsWhatEachGroupFilled) {
+TEST(RankGroups, ToWorldMovesOneGroupsMultiVector) {
   auto world = Tpetra::getDefaultComm();
   for (int size = 1; size <= world->getSize(); ++size) {
     const RankGroups g(world, size);
     auto groupMap = rcp(new Map(kRows, 0, g.sub()));
-    const size_t cols = static_cast<size_t>(g.count()) + 1;
-    MultiVector Xg(groupMap, cols);  // column c filled by group c only; the last column by every group
-    for (LO l = 0; l < static_cast<LO>(groupMap->getNodeNumElements()); ++l) {
-      const GO i = groupMap->getGlobalElement(l);
-      Xg.replaceLocalValue(l, g.group(), entry(i, g.group()));
-      Xg.replaceLocalValue(l, cols - 1, 1.0);
-    }
     auto worldMap = rcp(new Map(kRows, 0, world));
-    const RCP<MultiVector> X = g.toWorld(Xg, worldMap);
-    auto v = X->getLocalViewHost(Tpetra::Access::ReadOnly);
-    for (LO l = 0; l < static_cast<LO>(worldMap->getNodeNumElements()); ++l) {
-      const GO i = worldMap->getGlobalElement(l);
-      for (size_t c = 0; c + 1 < cols; ++c) EXPECT_EQ(v(l, c), entry(i, c)) << "size " << size << ", column " << c;
-      EXPECT_EQ(v(l, cols - 1), static_cast<double>(g.count())) << "size " << size;  // one per group
+    for (int owner = 0; owner < g.count(); ++owner) {
+      const size_t cols = 2 + static_cast<size_t>(owner);
+      MultiVector Xg(groupMap, cols);  // the owner's numbers; every other group's would be -1
+      for (LO l = 0; l < static_cast<LO>(groupMap->getNodeNumElements()); ++l)
+        for (size_t j = 0; j < cols; ++j)
+          Xg.replaceLocalValue(l, j, g.group() == owner ? entry(groupMap->getGlobalElement(l), j) : -1.0);
+      const RCP<const Export> move = g.fromGroup(owner, *groupMap, worldMap);
+      const RCP<MultiVector> X = g.toWorld(g.group() == owner ? &Xg : nullptr, *move, cols);
+      ASSERT_TRUE(X->getMap()->isSameAs(*worldMap));
+      ASSERT_EQ(X->getNumVectors(), cols);
+      auto v = X->getLocalViewHost(Tpetra::Access::ReadOnly);
+      for (LO l = 0; l < static_cast<LO>(worldMap->getNodeNumElements()); ++l)
+        for (size_t j = 0; j < cols; ++j)
+          EXPECT_EQ(v(l, j), entry(worldMap->getGlobalElement(l), j)) << "size " << size << ", owner " << owner;
     }
+    EXPECT_THROW(g.fromGroup(g.count(), *groupMap, worldMap), InputError);
   }
 }
 

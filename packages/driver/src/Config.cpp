@@ -91,7 +91,7 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
                   "columns per chunk, equal chunks; a number >= the snapshots used: one chunk, the plain streaming POD");
   setIntParameter(hyp, "groupSize", 0, 0, 1000000,
                   "svd exact: ranks per rank group of the DEIM basis stage (the groups POD the chunks side by side); "
-                  "0: one group per chunk, each of at least 2^18 state rows per rank; >= the ranks: all ranks together");
+                  "0: one group per chunk, each with at most 2^18 state rows per rank; >= the ranks: all ranks together");
   setChoiceParameter(hyp, "podRoute", "auto", routes, "svd exact: the incremental SVD's step route, as reduction.podRoute");
   setChoiceParameter(hyp, "deimSnapshots", "full", Teuchos::tuple<std::string>("full", "projected"),
                      "snapshots of the classic DEIM baseline (method deim): full = grad N(y) - grad N(y0) at the full "

@@ -85,9 +85,10 @@ int restoreRoot(PodCheckpoint& cp, DeimRootPod& root, const RCP<const Map>& rowM
 
 // The hierarchical POD (DeimChunks) over the training's rank groups, in rounds: in round t group
 // g PODs chunk t G + g on its own ranks (from its own systems, the snapshots streamed on its
-// communicator and its own copy of A); the round's modes then meet on all ranks (RankGroups::
-// toWorld: a group fills its chunk's columns, the others stay zero) and go into the root POD in
-// chunk order. A round holds G chunks' modes: the memory does not grow with the snapshots.
+// communicator and its own copy of A); then, in chunk order, each chunk's modes move to all ranks
+// (RankGroups::toWorld from the group that computed them: its columns alone) and go into the root
+// POD. A rank holds its group's chunk and one chunk on the world's rows at a time: the memory
+// grows with neither the snapshots nor the number of groups.
 // Only the chunk PODs' replicated SVDs were the stage's time that no rank count divided (the NLS
 // at the paper's size: ~2/3 of each step); G groups divide them by G.
 DeimBasis deimBasisInGroups(const Scene& scene, const TrainingResult& training, const MultiVector& A,
@@ -106,6 +107,8 @@ DeimBasis deimBasisInGroups(const Scene& scene, const TrainingResult& training, 
   const int resumed = restoreRoot(checkpoint, root, rowMap, count, before);
   if (resumed > 0 && groups.world()->getRank() == 0)
     std::fprintf(stderr, "[gphr] deim basis: chunks 1-%d of %d reused from file\n", resumed, count);
+  std::vector<RCP<const Export>> fromGroup(G);  // group g's rows to the world's, made once
+  for (int g = 0; g < G; ++g) fromGroup[g] = groups.fromGroup(g, *groupRows, rowMap);
   ReducedStateCache blocks;  // a group's chunks q, q + G: a block longer than G chunks is cut by both
   Teuchos::Time clock("chunks");
   clock.start();
@@ -118,19 +121,11 @@ DeimBasis deimBasisInGroups(const Scene& scene, const TrainingResult& training, 
       if (groups.leader()) putStatistics(mine, stats.data() + static_cast<size_t>(q - first) * kChunkFields);
     }
     Teuchos::reduceAll(*groups.world(), Teuchos::REDUCE_SUM, static_cast<int>(stats.size()), stats.data(), all.data());
-    std::vector<DeimChunkModes> round(inRound);
-    std::vector<size_t> offset(inRound + 1, 0);
-    for (int c = 0; c < inRound; ++c) {
-      round[c] = getStatistics(all.data() + static_cast<size_t>(c) * kChunkFields);
-      offset[c + 1] = offset[c] + round[c].rank;
+    for (int c = 0; c < inRound; ++c) {  // chunk first + c, group c's (rank 0: one zero column, statistics only)
+      const DeimChunkModes stats = getStatistics(all.data() + static_cast<size_t>(c) * kChunkFields);
+      const MultiVector* own = groups.group() == c ? mine.modes.get() : nullptr;
+      root.add(*groups.toWorld(own, *fromGroup[c], static_cast<size_t>(std::max(stats.rank, 1))), stats);
     }
-    MultiVector ours(groupRows, std::max<size_t>(offset[inRound], 1));  // zero but our chunk's columns
-    if (q < count)
-      for (int j = 0; j < mine.rank; ++j)
-        Tpetra::deep_copy(*ours.getVectorNonConst(offset[q - first] + j), *mine.modes->getVector(j));
-    const RCP<MultiVector> modes = groups.toWorld(ours, rowMap);
-    for (int c = 0; c < inRound; ++c)  // a chunk of rank 0 adds its statistics only
-      root.add(round[c].rank > 0 ? *modes->subView(Teuchos::Range1D(offset[c], offset[c + 1] - 1)) : *modes, round[c]);
     const bool kept = checkpoint.enabled() && first + inRound < count &&  // before the line: "checkpointed" is kept
                       saveRoot(checkpoint, root, first + inRound, before + clock.totalElapsedTime(true));
     const char* tail = kept ? ", checkpointed" : "";

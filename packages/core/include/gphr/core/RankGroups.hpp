@@ -3,15 +3,15 @@
 /// Rank groups of the offline stages: the world communicator split into groups of consecutive
 /// ranks (the last group takes the remainder), each working on its own share of a stage's items
 /// (training parameters, chunks of snapshots) side by side, on a distributed object of its own.
-/// Besides the split, the two moves between a world-distributed object and the group's copy of it:
+/// Besides the split, the two moves between a world-distributed object and a group's copy of it:
 ///   toGroup:  every group gets the whole of a world MultiVector, in its own row distribution;
-///   toWorld:  the sum over the groups of each group's MultiVector, in the world's distribution
-///             (a group fills the columns it computed and leaves the others zero: the sum is then
-///             exact, x + 0 = x, and independent of the number of groups).
+///   toWorld:  one group's MultiVector, in the world's distribution (the others send nothing: what
+///             moves is that group's columns alone, whatever the number of groups).
 /// (A group's training snapshots need no move: its ranks write them to the artifacts file
 /// themselves, Hdf5File::writeStateRows.)
-/// Each is one Tpetra Import/Export between the world map and the group map's rows seen from the
-/// world communicator (a map that holds every row once per group).
+/// Each is one Tpetra Import/Export between the world map and a group map's rows seen from the
+/// world communicator (toGroup: a map that holds every row once per group; toWorld: the rows of
+/// the sending group only).
 #include <string>
 
 #include "gphr/core/Types.hpp"
@@ -33,9 +33,13 @@ class RankGroups {
   /// X (on a map of world()) as a MultiVector on groupMap (a map of sub() over the same global
   /// ids): every group receives all of X. Collective over world().
   RCP<MultiVector> toGroup(const MultiVector& X, const RCP<const Map>& groupMap) const;
-  /// The sum over the groups of Xg (each group's on its groupMap, all with the same columns), on
-  /// worldMap (a map of world() over the same global ids). Collective over world().
-  RCP<MultiVector> toWorld(const MultiVector& Xg, const RCP<const Map>& worldMap) const;
+  /// The move of group `owner`'s MultiVectors on groupMap (a map of sub()) to worldMap (a map of
+  /// world() over the same global ids): an Export from the rows the owner's ranks hold, none on the
+  /// other groups' ranks. Made once, used for each MultiVector the group sends. Collective over world().
+  RCP<const Export> fromGroup(int owner, const Map& groupMap, const RCP<const Map>& worldMap) const;
+  /// Group `owner`'s Xg (`columns` columns on its groupMap; null on the other groups' ranks) on the
+  /// world map, through `move` = fromGroup(owner, ...). Collective over world().
+  RCP<MultiVector> toWorld(const MultiVector* Xg, const Export& move, size_t columns) const;
 
  private:
   RCP<const Map> groupRowsOnWorld(const Map& groupMap) const;
