@@ -4,6 +4,7 @@
 #include <Tpetra_Export.hpp>
 #include <Tpetra_Import.hpp>
 #include <algorithm>
+#include <stdexcept>
 
 #include "gphr/core/Error.hpp"
 
@@ -65,16 +66,20 @@ RCP<MultiVector> RankGroups::toWorld(const MultiVector* Xg, const Export& move, 
   return out;
 }
 
-void agreeOnFailure(const Comm& world, const std::string& failure) {
+void agreeOnFailure(const Comm& world, const std::string& failure, FailureKind kind) {
   const int mine = failure.empty() ? world.getSize() : world.getRank();
   int from = 0;
   Teuchos::reduceAll(world, Teuchos::REDUCE_MIN, mine, Teuchos::outArg(from));
   if (from == world.getSize()) return;
-  long length = static_cast<long>(failure.size());
-  Teuchos::broadcast(world, from, Teuchos::outArg(length));
-  std::string text = world.getRank() == from ? failure : std::string(static_cast<size_t>(length), ' ');
-  if (length > 0) Teuchos::broadcast(world, from, static_cast<int>(length), &text[0]);
-  throw SolverError(text);
+  long head[2] = {static_cast<long>(failure.size()), static_cast<long>(kind)};  // the failing rank's
+  Teuchos::broadcast(world, from, 2, head);
+  std::string text = world.getRank() == from ? failure : std::string(static_cast<size_t>(head[0]), ' ');
+  if (head[0] > 0) Teuchos::broadcast(world, from, static_cast<int>(head[0]), &text[0]);
+  switch (static_cast<FailureKind>(head[1])) {
+    case FailureKind::Input: throw InputError(text);
+    case FailureKind::Internal: throw std::runtime_error(text);
+    default: throw SolverError(text);
+  }
 }
 
 }  // namespace gphr

@@ -5,6 +5,8 @@
 
 #include <Tpetra_Core.hpp>
 
+#include <stdexcept>
+
 #include "gphr/core/Error.hpp"
 #include "gphr/core/RankGroups.hpp"
 
@@ -67,6 +69,47 @@ TEST(RankGroups, ToWorldMovesOneGroupsMultiVector) {
     }
     EXPECT_THROW(g.fromGroup(g.count(), *groupMap, worldMap), InputError);
   }
+}
+
+// Every rank throws the failure of the lowest failing rank, as the kind that rank gave: a group
+// that failed ends the work on all ranks with one message, and an input error stays one (exit 2).
+TEST(RankGroups, AgreeOnFailureThrowsTheLowestFailingRanksErrorEverywhere) {
+  auto world = Tpetra::getDefaultComm();
+  const int p = world->getSize(), me = world->getRank();
+  EXPECT_NO_THROW(agreeOnFailure(*world, ""));
+  const int lowest = p > 1 ? 1 : 0;  // ranks from 1 on fail (rank 0 too on one rank)
+  const std::string mine = me >= lowest ? "rank " + std::to_string(me) + " failed" : "";
+  const std::string expected = "rank " + std::to_string(lowest) + " failed";
+  // each failing rank names its own kind; the lowest one's decides: Input, Solver, Internal in turn
+  for (FailureKind kind : {FailureKind::Input, FailureKind::Solver, FailureKind::Internal}) {
+    const FailureKind given = me == lowest ? kind : FailureKind::Solver;
+    try {
+      agreeOnFailure(*world, mine, given);
+      ADD_FAILURE() << "no exception";
+    } catch (const InputError& e) {
+      EXPECT_EQ(kind, FailureKind::Input);
+      EXPECT_EQ(std::string(e.what()), expected);
+    } catch (const SolverError& e) {
+      EXPECT_EQ(kind, FailureKind::Solver);
+      EXPECT_EQ(std::string(e.what()), expected);
+    } catch (const std::runtime_error& e) {
+      EXPECT_EQ(kind, FailureKind::Internal);
+      EXPECT_EQ(std::string(e.what()), expected);
+    }
+  }
+}
+
+TEST(RankGroups, FailureOfNamesWhatWorkThrew) {
+  EXPECT_EQ(failureOf("item 2", "it failed: ", [] {}).text, "");
+  const GroupFailure solver = failureOf("item 2", "it failed: ", [] { throw SolverError("no convergence"); });
+  EXPECT_EQ(solver.text, "item 2: it failed: no convergence");
+  EXPECT_EQ(solver.kind, FailureKind::Solver);
+  const GroupFailure input = failureOf("item 2", "it failed: ", [] { throw InputError("eps = -1"); });
+  EXPECT_EQ(input.text, "item 2: eps = -1");
+  EXPECT_EQ(input.kind, FailureKind::Input);
+  const GroupFailure internal = failureOf("item 2", "it failed: ", [] { throw std::logic_error("bad state"); });
+  EXPECT_EQ(internal.text, "item 2: bad state");
+  EXPECT_EQ(internal.kind, FailureKind::Internal);
 }
 
 }  // namespace

@@ -135,16 +135,14 @@ void fullModelsOverGroups(const RunContext& ctx, const ReducedModel& rm, const s
   const int group = std::min(ctx.comm->getRank() / size, groups - 1);
   RunContext sub = ctx;
   sub.comm = ctx.comm->split(group, ctx.comm->getRank());
-  std::string failure;  // this group's full-model failure: agreed on below, so no group waits for it
-  for (size_t i = group; i < points.size() && failure.empty(); i += groups) {
+  GroupFailure failure;  // what this group's full models threw: agreed on below, so no group waits for it
+  for (size_t i = group; i < points.size() && failure.text.empty(); i += groups) {
     if (reused[i]) continue;
-    const auto inst = rm.scene().instantiate(sub.comm, points[i].mu, true);
-    bool cached = false;
-    try {
+    failure = failureOf(pointName(points[i], d), "the full model failed: ", [&] {
+      const auto inst = rm.scene().instantiate(sub.comm, points[i].mu, true);
+      bool cached = false;
       fullModel(sub, rm.scene(), d, points[i], pointSettings(d, points[i]), inst.system->space(), cached);
-    } catch (const SolverError& e) {
-      failure = detail::concat(pointName(points[i], d), ": the full model failed: ", e.what());
-    }
+    });
   }
   agreeOnFailure(*ctx.comm, failure);
   if (ctx.comm->getRank() == 0)

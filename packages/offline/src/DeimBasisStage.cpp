@@ -116,10 +116,13 @@ DeimBasis deimBasisInGroups(const Scene& scene, const TrainingResult& training, 
     const int q = first + groups.group(), inRound = std::min(G, count - first);
     DeimChunkModes mine;
     std::vector<double> stats(static_cast<size_t>(inRound) * kChunkFields, 0.0), all(stats.size());
-    if (q < count) {
-      mine = deimChunkModes(systems, states, *Ag, opt, maxRank, chunks.range(q), &blocks);
-      if (groups.leader()) putStatistics(mine, stats.data() + static_cast<size_t>(q - first) * kChunkFields);
-    }
+    GroupFailure failure;  // agreed on before the groups meet: none waits for one that failed
+    if (q < count)
+      failure = failureOf(detail::concat("chunk ", q + 1, " of ", count), "", [&] {
+        mine = deimChunkModes(systems, states, *Ag, opt, maxRank, chunks.range(q), &blocks);
+      });
+    agreeOnFailure(*groups.world(), failure);
+    if (q < count && groups.leader()) putStatistics(mine, stats.data() + static_cast<size_t>(q - first) * kChunkFields);
     Teuchos::reduceAll(*groups.world(), Teuchos::REDUCE_SUM, static_cast<int>(stats.size()), stats.data(), all.data());
     for (int c = 0; c < inRound; ++c) {  // chunk first + c, group c's (rank 0: one zero column, statistics only)
       const DeimChunkModes stats = getStatistics(all.data() + static_cast<size_t>(c) * kChunkFields);

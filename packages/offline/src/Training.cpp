@@ -254,20 +254,17 @@ void trainRound(const Scene& scene, const RCP<const Comm>& groupComm, int group,
   };
   size_t stored = 0;         // blocks this rank's group stored
   std::vector<double> print;  // their fingerprint (ColumnFingerprint.hpp), block by block
-  std::string failure;        // its full model's SolverError, if any
-  if (j < count && !done[j]) {
-    const SceneInstance inst = scene.instantiate(groupComm, o.parameters[j], true);
-    try {
+  GroupFailure failure;      // what its parameter threw, if anything (its full model's SolverError, say)
+  if (j < count && !done[j])
+    failure = failureOf(detail::concat("training parameter ", j + 1, " of ", count), "the full model failed: ", [&] {
+      const SceneInstance inst = scene.instantiate(groupComm, o.parameters[j], true);
       integrateInBlocks(inst, o, [&](const MultiVector& block) {
         store(&block, &inst.system->space(), block.getNumVectors());
+        ++stored;  // before anything else can throw: the blocks left below are the ones not written
         const std::vector<double> fp = columnFingerprint(block);
         print.insert(print.end(), fp.begin(), fp.end());
-        ++stored;
       });
-    } catch (const SolverError& e) {
-      failure = detail::concat("training parameter ", j + 1, " of ", count, ": the full model failed: ", e.what());
-    }
-  }
+    });
   const std::vector<size_t> sizes = blockSizes(columns);
   for (size_t b = stored; b < sizes.size(); ++b) store(nullptr, nullptr, sizes[b]);  // nothing (more) of ours
   agreeOnFailure(*cache.comm(), failure);

@@ -229,14 +229,21 @@ void StreamingPod::treeStep(std::vector<double> y, int nc) {
   int K = 0;
   std::vector<double> R = tree.reduce(leaf.r(), leaf.k(), &K);
   int mn = std::min(K, nc);
-  Teuchos::broadcast(comm, 0, Teuchos::outArg(mn));
-  std::vector<double> S(mn), W;
+  std::vector<double> S, W;
+  std::string failure;  // rank 0's SVD failure: the others learn it from mn = -1, not by waiting
   if (comm.getRank() == 0) {
-    W.resize(static_cast<size_t>(K) * mn);
+    S.resize(mn), W.resize(static_cast<size_t>(K) * mn);
     std::vector<double> Zt(static_cast<size_t>(mn) * nc);
-    denseThinSvd(K, nc, R.data(), std::max(K, 1), S.data(), W.data(), std::max(K, 1), Zt.data(), std::max(mn, 1), true,
-                 "streaming POD (tree route)");
+    try {
+      denseThinSvd(K, nc, R.data(), std::max(K, 1), S.data(), W.data(), std::max(K, 1), Zt.data(), std::max(mn, 1),
+                   true, "streaming POD (tree route)");
+    } catch (const SolverError& e) {
+      failure = e.what(), mn = -1;
+    }
   }
+  Teuchos::broadcast(comm, 0, Teuchos::outArg(mn));
+  GPHR_REQUIRE(mn >= 0, SolverError, failure.empty() ? "streaming POD (tree route): the SVD failed on rank 0" : failure);
+  S.resize(mn);
   if (mn > 0) Teuchos::broadcast(comm, 0, mn, S.data());
   const int keep = truncate(S, nc);
   W.resize(static_cast<size_t>(K) * keep);  // W's leading keep columns (column-major)

@@ -14,6 +14,7 @@
 /// the sending group only).
 #include <string>
 
+#include "gphr/core/Error.hpp"
 #include "gphr/core/Types.hpp"
 
 namespace gphr {
@@ -47,10 +48,38 @@ class RankGroups {
   int size_, count_, group_;
 };
 
-/// Collective over `world`: returns when `failure` is empty on every rank, else throws SolverError
-/// on every rank with the failure text of the lowest rank that has one. Groups that work apart
-/// (training parameters, validation points) call it before they meet again, so that no group
-/// waits at a collective for one that failed.
-void agreeOnFailure(const Comm& world, const std::string& failure);
+/// What kind of error a failure is, so that every rank throws the kind the failing rank caught.
+enum class FailureKind { Solver, Input, Internal };
+/// Collective over `world`: returns when `failure` is empty on every rank, else throws, on every
+/// rank, the failure text of the lowest rank that has one as the `kind` that rank gave (SolverError,
+/// InputError, or std::runtime_error for Internal). Groups that work apart (training parameters,
+/// validation points, DEIM chunks) call it before they meet again, so that no group waits at a
+/// collective for one that failed.
+void agreeOnFailure(const Comm& world, const std::string& failure, FailureKind kind = FailureKind::Solver);
+
+/// A rank's failure in work done apart from the other groups, for agreeOnFailure: "" when none.
+struct GroupFailure {
+  std::string text;
+  FailureKind kind = FailureKind::Solver;
+};
+/// Runs `work` and returns what it threw as a GroupFailure: "`what`: `solverWhat`message" for a
+/// SolverError, "`what`: message" for an InputError (Input) or another std::exception (Internal).
+template <class Work>
+GroupFailure failureOf(const std::string& what, const std::string& solverWhat, Work&& work) {
+  try {
+    work();
+    return {};
+  } catch (const SolverError& e) {
+    return {what + ": " + solverWhat + e.what(), FailureKind::Solver};
+  } catch (const InputError& e) {
+    return {what + ": " + e.what(), FailureKind::Input};
+  } catch (const std::exception& e) {
+    return {what + ": " + e.what(), FailureKind::Internal};
+  }
+}
+/// agreeOnFailure(world, failure.text, failure.kind).
+inline void agreeOnFailure(const Comm& world, const GroupFailure& failure) {
+  agreeOnFailure(world, failure.text, failure.kind);
+}
 
 }  // namespace gphr
