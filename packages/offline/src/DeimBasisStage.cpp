@@ -118,7 +118,7 @@ DeimBasis deimBasisInGroups(const Scene& scene, const TrainingResult& training, 
     std::vector<double> stats(static_cast<size_t>(inRound) * kChunkFields, 0.0), all(stats.size());
     GroupFailure failure;  // agreed on before the groups meet: none waits for one that failed
     if (q < count)
-      failure = failureOf(detail::concat("chunk ", q + 1, " of ", count), "", [&] {
+      failure = failureOf("", "", [&] {  // as computeDeimBasis would throw it (every chunk alike, mostly)
         mine = deimChunkModes(systems, states, *Ag, opt, maxRank, chunks.range(q), &blocks);
       });
     agreeOnFailure(*groups.world(), failure);

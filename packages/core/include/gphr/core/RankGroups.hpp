@@ -59,22 +59,24 @@ void agreeOnFailure(const Comm& world, const std::string& failure, FailureKind k
 
 /// A rank's failure in work done apart from the other groups, for agreeOnFailure: "" when none.
 struct GroupFailure {
-  std::string text;
-  FailureKind kind = FailureKind::Solver;
+  std::string text;                        ///< what failed ("": nothing)
+  FailureKind kind = FailureKind::Solver;  ///< the kind of error it was
 };
 /// Runs `work` and returns what it threw as a GroupFailure: "`what`: `solverWhat`message" for a
-/// SolverError, "`what`: message" for an InputError (Input) or another std::exception (Internal).
+/// SolverError, "`what`: message" for an InputError (Input) or another std::exception (Internal);
+/// without the "`what`: " where `what` is empty.
 template <class Work>
 GroupFailure failureOf(const std::string& what, const std::string& solverWhat, Work&& work) {
+  const std::string head = what.empty() ? std::string() : what + ": ";
   try {
     work();
     return {};
   } catch (const SolverError& e) {
-    return {what + ": " + solverWhat + e.what(), FailureKind::Solver};
+    return {head + solverWhat + e.what(), FailureKind::Solver};
   } catch (const InputError& e) {
-    return {what + ": " + e.what(), FailureKind::Input};
+    return {head + e.what(), FailureKind::Input};
   } catch (const std::exception& e) {
-    return {what + ": " + e.what(), FailureKind::Internal};
+    return {head + e.what(), FailureKind::Internal};
   }
 }
 /// agreeOnFailure(world, failure.text, failure.kind).
