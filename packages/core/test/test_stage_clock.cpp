@@ -67,11 +67,13 @@ TEST(StageClock, InnerStagesAreExcludedFromOuterOnesAndAllAddUp) {
   EXPECT_NEAR(o.cpu, 0.04, 0.01);
   EXPECT_NEAR(i.cpu, 0.16, 0.01);
   // The stages add up to the whole measured around them: only the few clock reads between the
-  // scopes and the outer readings are outside every stage (microseconds; 1 ms is ample).
+  // scopes and the outer readings are outside every stage (microseconds of CPU; 1 ms is ample).
+  // Wall time also runs while the process waits for a core between two scopes (a loaded 2-core
+  // CI machine: a scheduler slice or more), so it gets 0.05 s: still a third of the 0.16 s that
+  // an inner stage charged twice would add.
   EXPECT_NEAR(o.cpu + i.cpu, after.cpu - before.cpu, 1e-3);
-  EXPECT_NEAR(o.wall + i.wall, after.wall - before.wall, 1e-3);
-  EXPECT_GE(o.peakRssMb, i.peakRssMb);  // a high-water mark, read at the end of each
-  EXPECT_GT(i.peakRssMb, 0.0);
+  EXPECT_NEAR(o.wall + i.wall, after.wall - before.wall, 0.05);
+  EXPECT_GT(i.peakRssMb, 0.0);  // the process's high-water mark, read at the end of each
 }
 
 TEST(StageClock, MpiTimeComesFromTheSourceAndComputeExcludesIt) {

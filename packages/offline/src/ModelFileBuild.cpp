@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <iterator>
+#include <memory>
 
 #include "gphr/core/Error.hpp"
 #include "gphr/core/Provenance.hpp"
@@ -70,6 +71,7 @@ std::vector<StoredHyperModel> modelsOfK(const BuildState& b, const MultiVector& 
   std::vector<StoredHyperModel> out;
   RCP<const MultiVector> U;  // the DEIM basis, computed on first need
   auto deimBasis = [&] { return U.is_null() ? (U = deimBasisOf(b, A, k)) : U; };
+  std::unique_ptr<TermWeightFits> fits;  // both term-weight methods' fits share its training system
   for (const auto& method : o.methods) {
     if (method == method::kGpAdeim) {
       addAdeimModels(b, k, out);
@@ -81,11 +83,13 @@ std::vector<StoredHyperModel> modelsOfK(const BuildState& b, const MultiVector& 
     } else {
       // A DEIM basis the fits ask for inside is a stage of its own (nested scopes exclude it).
       const StageClocks::Scope clock(b.clocks, ofK("fits", k));
-      TermWeightFits fits(b.scene, b.comm, b.training, A, o.eqp, o.eqpTolerance, o.ms,
-                          [&](int m) { return selectDeimIndices(*deimBasis(), m, o.file.indices); }, b.cache,
-                          o.keys.nnls, o.keys.refit);
+      if (!fits)
+        fits = std::make_unique<TermWeightFits>(
+            b.scene, b.comm, b.training, A, o.eqp, o.eqpTolerance, o.ms,
+            [&](int m) { return selectDeimIndices(*deimBasis(), m, o.file.indices); }, b.cache, o.keys.nnls,
+            o.keys.refit);
       std::map<int, std::string> skipped;
-      for (const auto& [m, fit] : fits.all(method, o.ms, skipped))
+      for (const auto& [m, fit] : fits->all(method, o.ms, skipped))
         out.push_back(termModel(b.instance, A, method, k, m, fit.terms, fit.weights));
       if (b.comm->getRank() == 0)
         for (const auto& [m, why] : skipped)

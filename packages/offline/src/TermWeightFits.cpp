@@ -23,9 +23,11 @@ CachedFit TermWeightFits::get(const std::string& method, int m) {
   const bool refit = method == method::kGpEqpRefit;
   CachedFit out;
   if (read(method, m, out)) return out;
-  if (refit) {
-    computed_[m] = refitQuadrature(training(), deimTerms_(m));
-  } else if (!computed_.count(m)) {
+  if (refit) {  // its own fit, never in computed_ (the NNLS path's fits by budget)
+    out.fit = refitQuadrature(training(), deimTerms_(m));
+    return finish(method, m, out);
+  }
+  if (!computed_.count(m)) {
     // One greedy path for every budget not in the cache (each budget's fit is the path up to
     // it, and its time the path's time to it).
     std::vector<int> budgets;
@@ -36,12 +38,19 @@ CachedFit TermWeightFits::get(const std::string& method, int m) {
     for (size_t i = 0; i < budgets.size(); ++i) computed_[budgets[i]] = path[i];
   }
   out.fit = computed_.at(m);
+  finish(method, m, out);
+  computed_.erase(m);
+  return out;
+}
+
+// A fit computed now: its residual at the exact rows (when the training rows were sketched), its
+// times, stored in the cache.
+CachedFit& TermWeightFits::finish(const std::string& method, int m, CachedFit& out) {
   out.exactResidual = opt_.sketchRows > 0 ? exactRowsResidual(systems(), snapshots_.snapshots, A_, opt_, out.fit)
                                           : out.fit.residual;
   out.fitSeconds = out.fit.seconds;
   out.trainingSeconds = trainingSeconds_;
   store(method, m, out);
-  computed_.erase(m);
   return out;
 }
 

@@ -200,6 +200,11 @@ void StreamingPod::stackedStep(std::vector<double> y, int nc) {
   Teuchos::gatherAll(comm, 1, &kp, p, k.data());
   for (int q = 0; q < p; ++q) off[q + 1] = off[q] + k[q];
   const int K = off[p];
+  // The stack's reduction counts its entries in an int (MPI): p nc^2 of them, 2.6e9 at p = 4096,
+  // nc = 800 (and 21 GB on every rank); the tree route holds nc^2.
+  GPHR_REQUIRE(static_cast<double>(K) * nc <= std::numeric_limits<int>::max(), InputError,
+               "streaming POD (stacked route): a stack of ", K, " x ", nc, " entries on ", p,
+               " ranks exceeds an MPI count; allowed: podRoute 'auto' or 'tree'");
   std::vector<double> mine(static_cast<size_t>(K) * nc, 0.0), stack(mine.size());
   const std::vector<double> R = leaf.r();
   for (int j = 0; j < nc; ++j)

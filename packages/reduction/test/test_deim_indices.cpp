@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <Teuchos_LAPACK.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -86,6 +87,57 @@ TEST(GreedyDeim, EqualsTheTextbookAlgorithmOnAnyRankCount) {
   // runs twice and meets the last panel's 6 columns.
   const auto V = basis(211, 70, 6);
   EXPECT_EQ(selectDeimIndices(*V, 70, "deim"), textbookDeim(*V, 70));
+}
+
+// Q-DEIM (Drmac & Gugercin 2016): the indices are the first m column pivots of a QR with column
+// pivoting of U^T (m x d). Written out here as the textbook Businger-Golub pivoting with modified
+// Gram-Schmidt on the gathered rows: at step j take the row of U whose part orthogonal to the
+// rows taken so far is largest (the first on a tie), then remove that direction from the rest.
+// The library's LAPACK GEQP3 (Householder, its norms downdated) picks the same rows: the
+// remaining norms differ by round-off only, far below the gaps between the largest of them for
+// these random rows; the same on 1, 2 and 3 ranks (the gathered rows are the same).
+std::vector<GO> textbookQdeim(const MultiVector& U, int m) {
+  const GO d = static_cast<GO>(U.getGlobalLength());
+  const int nc = static_cast<int>(U.getNumVectors());
+  std::vector<GO> all(d);
+  for (GO g = 0; g < d; ++g) all[g] = g;
+  std::vector<double> rows = gatherRows(U, all);  // d x nc, row-major: the columns of U^T
+  auto row = [&](GO i) { return rows.data() + static_cast<size_t>(i) * nc; };
+  std::vector<char> taken(d, 0);
+  std::vector<GO> P;
+  for (int j = 0; j < m; ++j) {
+    GO best = -1;
+    double bestNorm = -1.0;
+    for (GO i = 0; i < d; ++i) {
+      double norm = 0.0;
+      for (int a = 0; a < m; ++a) norm += row(i)[a] * row(i)[a];  // U^T's first m rows: U's first m columns
+      if (!taken[i] && norm > bestNorm) bestNorm = norm, best = i;
+    }
+    P.push_back(best);
+    taken[best] = 1;
+    std::vector<double> q(row(best), row(best) + m);
+    const double qn = std::sqrt(bestNorm);
+    for (double& x : q) x /= qn;
+    for (GO i = 0; i < d; ++i) {
+      double dot = 0.0;
+      for (int a = 0; a < m; ++a) dot += q[a] * row(i)[a];
+      for (int a = 0; a < m; ++a) row(i)[a] -= dot * q[a];
+    }
+  }
+  return P;
+}
+
+TEST(Qdeim, EqualsTheTextbookPivotedQrOnAnyRankCount) {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    const auto U = basis(97, 20, seed);
+    const std::vector<GO> P = selectDeimIndices(*U, 20, "qdeim");
+    EXPECT_EQ(P, textbookQdeim(*U, 20)) << "seed " << seed;
+    std::vector<GO> sorted(P);
+    std::sort(sorted.begin(), sorted.end());
+    EXPECT_EQ(std::unique(sorted.begin(), sorted.end()), sorted.end()) << "an index twice";
+  }
+  const auto V = basis(151, 40, 7);
+  EXPECT_EQ(selectDeimIndices(*V, 40, "qdeim"), textbookQdeim(*V, 40));
 }
 
 // The gather of a row-major array of each rank's own rows (what LocalRows, GP-ADEIM's copy of

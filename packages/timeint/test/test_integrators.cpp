@@ -47,18 +47,18 @@ void checkAvfConservation(const Scene& scene, const std::vector<double>& mu, dou
   // Shifted system: H_s(0) = H(y0) is the constant c_s, away from 0 for both scenes (NLS 0.73,
   // SWE ~ 10^2), so the relative bound is meaningful.
   ASSERT_GT(std::abs(H0), 0.5);
-  double Hprev = H0, worstRatio = 0.0, maxDrift = 0.0;
+  double Hprev = H0, worstRatio = 0.0;
   integ.run(y, dt, 500, [&](long j, double, const Vector& yj, const StepReport& rep) {
     if (j == 0) return;
     const double H = s.system->hamiltonian(yj);
     const double bound = integ.scheme().averageGradient().norm2() * rep.residualNorm +
                          hamiltonianRound(H0, s.system->space().fullDim());
     worstRatio = std::max(worstRatio, std::abs(H - Hprev) / bound);
-    maxDrift = std::max(maxDrift, std::abs(H - H0));
     Hprev = H;
   });
+  // The drift is then at most the sum of the steps' bounds; a fixed bound such as 1e-9 |H0| is
+  // not implied by the Newton tolerance (it holds while Newton over-converges), so none is asserted.
   EXPECT_LE(worstRatio, 1.0) << driver << ": a step changed H by more than ||gbar|| ||R|| + round-off";
-  EXPECT_LE(maxDrift, 1e-9 * std::abs(H0)) << driver;
 }
 
 TEST(AVF, ConservesHamiltonianNls) {

@@ -31,7 +31,7 @@ struct DeimBasisOptions {
   /// exact: the streaming POD (incremental TSQR + SVD); randomized: the range finder of HMT11
   /// (one streamed pass + powerIterations passes + one for B B^T), oversampling extra columns.
   std::string svd = "exact";
-  std::string podRoute = "auto";  ///< exact: the StreamingPod's step route (auto | tsqr | replicated)
+  std::string podRoute = "auto";  ///< exact: the StreamingPod's step route (auto | tsqr | stacked | tree | replicated)
   int oversampling = 10;  ///< randomized: extra columns of the range finder.
   int powerIterations = 1;  ///< randomized: power iterations (passes over the snapshots).
   /// randomized, its last pass (B = Q^T M_J): true, by the Gram matrix B B^T (one small GEMM per
@@ -39,7 +39,7 @@ struct DeimBasisOptions {
   /// false, by a blocked QR of the stacked B^T (~eps sigma_1; a few times the Gram's cost), for a
   /// basis that must keep directions far down the spectrum (GP-ADEIM's initial U_0: m of them).
   bool gramProjection = true;
-  unsigned long long seed = 20231122;  ///< randomized: seed of the Gaussian test matrix.
+  unsigned long long seed = 20231122;  ///< randomized: seed of the test matrix (random signs).
 };
 
 /// The options of a `hyper` configuration section (validated: every key present); largestM: the

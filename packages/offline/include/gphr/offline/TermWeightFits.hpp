@@ -49,6 +49,7 @@ class TermWeightFits {
   std::string key(const std::string& method, int m) const;
   bool read(const std::string& method, int m, CachedFit& out) const;
   void store(const std::string& method, int m, const CachedFit& c) const;
+  CachedFit& finish(const std::string& method, int m, CachedFit& out);
   const SystemSet& systems();
   const QuadratureTraining& training();
 
@@ -66,7 +67,7 @@ class TermWeightFits {
   SystemSet systems_;
   QuadratureTraining training_;
   double trainingSeconds_ = 0.0;
-  std::map<int, QuadratureFit> computed_;  // fits of the current path not yet returned
+  std::map<int, QuadratureFit> computed_;  // gp-eqp fits of the current path not yet returned
 };
 
 }  // namespace gphr

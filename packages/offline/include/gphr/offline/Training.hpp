@@ -54,8 +54,8 @@ struct TrainingResult {
   /// time), else held in memory.
   SnapshotSet snapshots;
   long reused = 0;                                ///< parameters taken from the cache
-  /// Ranks per rank group of the training (TrainingOptions::groupSize, resolved); the stages after
-  /// it split the ranks alike. 0 when the snapshots are held in memory (no groups).
+  /// Ranks per rank group of the training (TrainingOptions::groupSize, resolved; the DEIM basis
+  /// stage chooses its own groups). 0 when the snapshots are held in memory (no groups).
   int groupSize = 0;
   std::string cachePath;                          ///< the artifacts file the snapshots stream from ("": held)
   double seconds = 0.0;                           ///< Wall seconds of the stage.

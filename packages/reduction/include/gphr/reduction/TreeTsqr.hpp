@@ -38,7 +38,8 @@ class HouseholderQr {
   HouseholderQr(int m, int n, std::vector<double> a, int chunkRows = kChunkRows);
   int rows() const { return m_; }             ///< m, the block's rows
   int k() const { return std::min(m_, n_); }  ///< rows of R
-  int chunks() const { return static_cast<int>(start_.size()) - 1; }  ///< row chunks factored (0 if k() = 0)
+  /// row chunks factored (0 if k() = 0: nothing is)
+  int chunks() const { return start_.empty() ? 0 : static_cast<int>(start_.size()) - 1; }
   /// R: k() x n upper trapezoidal, column-major (leading dimension k()).
   std::vector<double> r() const;
   /// Q [C; 0] (m x cols, column-major) for C (k() x cols, column-major): Q's first k() columns times C.
