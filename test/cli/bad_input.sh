@@ -28,6 +28,15 @@ case $case in
   too_many_steps)  printf '%s\n' "$base" | sed 's/dt: 0.01/dt: 1.0e-12/' > "$cfg"; expect="time.T / time.dt = 100000000000 steps (T = 0.1, dt = 1e-12); allowed: at most 10000000" ;;
   top_level_key)   printf '%s\npipeline: [rom]\n' "$base" > "$cfg"; expect="has the top-level key 'pipeline' at line 8; allowed: the single key 'gphr'" ;;
   no_key)          printf '# a comment only\n' > "$cfg"; expect="has no top-level key; allowed: a YAML mapping under the key 'gphr'" ;;
+  # 40 nested flow mappings: refused before Teuchos' parser, which copies each level again (5000: minutes)
+  deep_nesting)    python3 -c "d = 40; print('gphr:\n  scene: ' + '{a: ' * d + '1' + '}' * d)" > "$cfg"
+                   expect="nests 42 levels deep at line 2; allowed: at most 32" ;;
+  # a scalar where a mapping belongs: malformed, without the hint on one-line flow mappings
+  scalar_root)     printf 'gphr: 7\n' > "$cfg"; expect="is malformed YAML" ; unexpected="must fit on one line" ;;
+  real_n)          printf '%s\n' "$base" | sed 's/n: 64/n: 64.0/' > "$cfg"
+                   expect="key 'scene.n' has value 64, a real number (written with a point or an exponent); allowed: an integer in" ;;
+  duplicate_m)     printf '%s\n  pipeline:\n    methods: [gp-deim]\n    m: [8, 4, 8]\n' "$base" > "$cfg"
+                   expect="key 'pipeline.m' has entry 8 twice; allowed: each size once" ;;
   malformed_xml)   cfg=$work/config.xml; printf '<ParameterList name="gphr"><ParameterList name="time">\n' > "$cfg"
                    expect="is malformed XML: XML parse error at line 2: file ended before closing element 'ParameterList'" ;;
   # the full model's Newton cannot meet 1e-15 in one iteration: a solver failure (exit 3), not a status
@@ -43,5 +52,6 @@ fail() { echo "FAIL ($case): $*"; echo "--- stderr:"; cat "$work/stderr"; exit 1
 # a failure after the run started follows its one start line ([gphr] scene ..., output in ...)
 [ "$(wc -l < "$work/stderr")" -eq $((1 + ${after_start:-0})) ] || fail "stderr has $(wc -l < "$work/stderr") lines, expected $((1 + ${after_start:-0}))"
 grep -qF -- "$expect" "$work/stderr" || fail "stderr lacks: $expect"
+[ -z "${unexpected:-}" ] || ! grep -qF -- "$unexpected" "$work/stderr" || fail "stderr says: $unexpected"
 if [ -d "$work/out" ] && [ -n "$(ls -A "$work/out")" ]; then fail "output left behind: $(ls "$work/out")"; fi
 echo "ok ($case): $(cat "$work/stderr")"

@@ -74,6 +74,19 @@ std::string valueText(const Teuchos::ParameterEntry& e) {
   return os.str();
 }
 
+// What kind of value the YAML reader made of an entry: 64.0 and 1e2 are real numbers and "64" a
+// string, though each prints as a number, so a type mismatch says which it got.
+std::string kindText(const Teuchos::ParameterEntry& e) {
+  if (e.isType<int>()) return "an integer";
+  if (e.isType<double>()) return "a real number (written with a point or an exponent)";
+  if (e.isType<std::string>()) return "a string (quoted, or not a number)";
+  if (e.isType<bool>()) return "true or false";
+  if (e.isType<Teuchos::Array<int>>() || e.isType<Teuchos::Array<double>>() ||
+      e.isType<Teuchos::Array<std::string>>())
+    return "a list";
+  return "a value of type " + e.getAny(false).typeName();
+}
+
 }  // namespace
 
 void validateParameters(ParameterList& user, const ParameterList& valid, const std::string& path) {
@@ -95,7 +108,7 @@ void validateParameters(ParameterList& user, const ParameterList& valid, const s
     coerceNumber(user, key, ve);
     const Teuchos::ParameterEntry& ue = user.getEntry(key);
     GPHR_REQUIRE(ue.getAny(false).type() == ve.getAny(false).type(), InputError, "key '", where, key,
-                 "' has value ", valueText(ue), "; allowed: ", allowedText(ve));
+                 "' has value ", valueText(ue), ", ", kindText(ue), "; allowed: ", allowedText(ve));
     if (!ve.validator().is_null()) {
       try {
         ve.validator()->validate(ue, key, path);

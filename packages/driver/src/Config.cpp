@@ -224,10 +224,17 @@ std::vector<std::string> pipelineMethods(const Teuchos::ParameterList& cfg) {
     if (m != method::kFom && std::find(out.begin(), out.end(), m) == out.end()) out.push_back(m);
   }
   if (pipe.get<bool>("rom") && std::find(out.begin(), out.end(), method::kRom) == out.end()) out.insert(out.begin(), method::kRom);
-  for (int k : pipe.get<Teuchos::Array<int>>("k"))
-    GPHR_REQUIRE(k >= 1, InputError, "key 'pipeline.k' has entry ", k, "; allowed: integers >= 1");
+  // sizes >= 1, each once (a size twice would be built and run twice, and a model file cannot hold it twice)
+  auto requireSizes = [](const Teuchos::Array<int>& sizes, const char* key) {
+    for (Teuchos::Array<int>::size_type i = 0; i < sizes.size(); ++i) {
+      GPHR_REQUIRE(sizes[i] >= 1, InputError, "key '", key, "' has entry ", sizes[i], "; allowed: integers >= 1");
+      GPHR_REQUIRE(std::find(sizes.begin(), sizes.begin() + i, sizes[i]) == sizes.begin() + i, InputError, "key '",
+                   key, "' has entry ", sizes[i], " twice; allowed: each size once");
+    }
+  };
+  requireSizes(pipe.get<Teuchos::Array<int>>("k"), "pipeline.k");
   const auto& ms = pipe.get<Teuchos::Array<int>>("m");
-  for (int m : ms) GPHR_REQUIRE(m >= 1, InputError, "key 'pipeline.m' has entry ", m, "; allowed: integers >= 1");
+  requireSizes(ms, "pipeline.m");
   const bool adaptive = std::find(out.begin(), out.end(), method::kGpAdeim) != out.end();
   const bool wantsM =
       std::any_of(out.begin(), out.end(), [](const std::string& m) { return methodInfo(m).hyperReduced; });

@@ -8,6 +8,7 @@
 
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/FieldModels.hpp"
+#include "gphr/driver/Gnuplot.hpp"
 #include "gphr/driver/XdmfWriter.hpp"
 #include "gphr/online/Method.hpp"
 
@@ -179,7 +180,7 @@ bool drawFieldPicture(const FieldPicture& p, const std::string& png) {
   std::ostringstream gp;
   gp.precision(17);
   gp << "set terminal pngcairo size " << (surface ? 330 : 420) * p.layoutCols << ","
-     << (surface ? 300 : 360) * p.layoutRows << " noenhanced font ',9'\nset output '" << png << "'\n"
+     << (surface ? 300 : 360) * p.layoutRows << " noenhanced font ',9'\nset output " << gnuplotQuoted(png) << "\n"
      << "set multiplot layout " << p.layoutRows << "," << p.layoutCols << "\nset autoscale fix\n"
      << "set xlabel 'x'\nset ylabel '" << p.yLabel << "'\n" << (surface ? "set size ratio -1\n" : "");
   int index = 0;
@@ -196,15 +197,14 @@ bool drawFieldPicture(const FieldPicture& p, const std::string& png) {
       gp << "set palette defined (0 '#440154', 1 '#3b528b', 2 '#21918c', 3 '#5ec962', 4 '#fde725')\nset cbrange ["
          << range[0] << ":" << range[1] << "]\n";
     gp << "set title '" << (panel.difference ? difference : value) << ": " << panel.title << "'\n"
-       << "plot '" << dat << "' index " << index++ << " matrix using (" << p.x0 << " + $1 * " << p.dx << "):(" << p.y0
+       << "plot " << gnuplotQuoted(dat) << " index " << index++ << " matrix using (" << p.x0 << " + $1 * " << p.dx << "):(" << p.y0
        << " + $2 * " << p.dy << "):3 with image notitle\n";
   }
   gp << "unset multiplot\n";
   std::ofstream(script) << gp.str();
-  const int rc = std::system(("gnuplot '" + script + "' > /dev/null 2>&1").c_str());
-  std::remove(script.c_str());
+  const bool drawn = runGnuplot(script, {png});
   std::remove(dat.c_str());
-  return rc == 0;
+  return drawn;
 }
 
 }  // namespace gphr

@@ -8,6 +8,7 @@
 
 #include "gphr/driver/OutputDirectory.hpp"
 #include "gphr/driver/Config.hpp"
+#include "gphr/driver/Gnuplot.hpp"
 #include "gphr/driver/ModelEvaluation.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/online/Method.hpp"
@@ -16,16 +17,12 @@ namespace gphr {
 
 namespace {
 
-bool haveGnuplot() { return std::system("command -v gnuplot > /dev/null 2>&1") == 0; }
-
 // csv: the data are CSV files whose first line names the columns (the plots address them by name).
 bool gnuplot(const std::string& png, const std::string& body, bool csv = true) {
   const std::string script = png + ".gp";
-  std::ofstream(script) << "set terminal pngcairo size 1000,560 noenhanced\nset output '" << png << "'\n"
+  std::ofstream(script) << "set terminal pngcairo size 1000,560 noenhanced\nset output " << gnuplotQuoted(png) << "\n"
                         << "set datafile separator ','\n" << (csv ? "set datafile columnheaders\n" : "") << body;
-  const int rc = std::system(("gnuplot '" + script + "' > /dev/null 2>&1").c_str());
-  std::remove(script.c_str());
-  return rc == 0;
+  return runGnuplot(script, {png});
 }
 
 std::string fmt(double x, const char* f = "%.3g") {
@@ -50,7 +47,7 @@ bool anyUnbounded(const RomStages& st) {
 // A gnuplot series of runs.csv's unbounded runs (E_L2 against column x), crosses: they ran to the end,
 // so their errors exist, but they are not among the methods' curves of ok runs.
 std::string unboundedPoints(const std::string& runsCsv, const std::string& x) {
-  return "'" + runsCsv + "' using (strcol('status') eq 'unbounded' ? " + x +
+  return gnuplotQuoted(runsCsv) + " using (strcol('status') eq 'unbounded' ? " + x +
          " : 1/0):(column('E_L2')) with points pt 2 ps 2 lw 2 lc rgb 'red' title 'unbounded (any method)'";
 }
 
@@ -261,7 +258,7 @@ bool plotErrorVsM(const RomStages& st, const std::string& runs, const std::strin
       curves.push_back({r.method, r.k});
   bool first = true;
   for (const auto& [m, k] : curves) {
-    b << (first ? "" : ", ") << "'" << runs << "' using ((strcol('method') eq '" << m << "' && column('k') == " << k
+    b << (first ? "" : ", ") << gnuplotQuoted(runs) << " using ((strcol('method') eq '" << m << "' && column('k') == " << k
       << " && strcol('status') eq 'ok') ? column('m') : 1/0):(column('E_L2')) with linespoints lw 2 title '" << m << " 2k=" << 2 * k << "'";
     first = false;
   }
@@ -280,7 +277,7 @@ bool plotPareto(const RomStages& st, const std::string& runs, const std::string&
     << "set title 'Error vs online time (pick from the lower-left front)'\nplot ";
   bool first = true;
   for (const auto& m : methodsWith(st, [](const ModelRun& r) { return r.ok; })) {  // every method report.md lists
-    b << (first ? "" : ", ") << "'" << runs << "' using ((strcol('method') eq '" << m
+    b << (first ? "" : ", ") << gnuplotQuoted(runs) << " using ((strcol('method') eq '" << m
       << "' && strcol('status') eq 'ok') ? column('t_online_s') : 1/0):(column('E_L2')) with points pt 7 ps 1.5 title '" << m << "'";
     first = false;
   }
@@ -295,8 +292,8 @@ bool plotHamiltonianTerms(const ModelRun& run, const std::map<std::string, std::
   const std::string csv = p.at("hamiltonian_terms.csv");
   b << "set logscale y\nset format y '%.0e'\nset xlabel 't'\nset ylabel 'Hamiltonian error'\nset key outside\n"
     << "set title 'Hamiltonian error and the terms that bound it, " << run.label() << "'\n"
-    << "plot for [term in 'dH_fom dH_hr_integration dH_deim dH_total'] '" << csv
-    << "' using (column('t')):(column(term) > 0 ? column(term) : 1e-17) with lines lw 2 title term\n";
+    << "plot for [term in 'dH_fom dH_hr_integration dH_deim dH_total'] " << gnuplotQuoted(csv)
+    << " using (column('t')):(column(term) > 0 ? column(term) : 1e-17) with lines lw 2 title term\n";
   return gnuplot(p.at("hamiltonian_terms.png"), b.str());
 }
 
@@ -310,7 +307,7 @@ bool plotAdeimUpdates(const RomStages& st, const std::map<std::string, std::stri
   bool first = true;
   for (const auto& r : st.runs) {
     if (r.method != method::kGpAdeim || r.adeimUpdates.empty()) continue;
-    const std::string sel = "'" + csv + "' using (strcol('run') eq '" + r.label() + "' ? ";
+    const std::string sel = gnuplotQuoted(csv) + " using (strcol('run') eq '" + r.label() + "' ? ";
     const auto any = [&](auto value) {
       return std::any_of(r.adeimUpdates.begin(), r.adeimUpdates.end(), [&](const AdeimUpdateRecord& u) { return value(u) > 0.0; });
     };
@@ -353,7 +350,7 @@ bool plotErrorVsTotalTime(const RomStages& st, const std::string& runs, const st
   bool first = true;
   for (int k : ks)
     for (const auto& m : totalled) {
-      t << (first ? "" : ", ") << "'" << runs << "' using ((strcol('method') eq '" << m << "' && column('k') == " << k
+      t << (first ? "" : ", ") << gnuplotQuoted(runs) << " using ((strcol('method') eq '" << m << "' && column('k') == " << k
         << " && strcol('status') eq 'ok') ? column('t_total_s') : 1/0):(column('E_L2')) with linespoints lw 2 pt 7 title '" << m << " 2k=" << 2 * k << "'";
       first = false;
     }

@@ -4,11 +4,13 @@
 #include <Teuchos_XMLParameterListCoreHelpers.hpp>
 #include <Teuchos_YamlParameterListCoreHelpers.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include "gphr/core/Error.hpp"
@@ -129,6 +131,58 @@ std::string duplicateFlowKey(const std::string& line, int lineNo) {
   return "";
 }
 
+// Calls use(line, lineNo, indent) for each line that is not blank or a comment.
+template <class Use>
+void forEachContentLine(const std::string& text, Use&& use) {
+  std::istringstream in(text);
+  int lineNo = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++lineNo;
+    const size_t indent = line.find_first_not_of(' ');
+    if (indent != std::string::npos && line[indent] != '#') use(line, lineNo, indent);
+  }
+}
+
+// The flow collections { [ of a line outside quotes and comments: the deepest nesting on it, and
+// how many it leaves open at its end.
+std::pair<long, long> flowDepth(const std::string& line) {
+  long depth = 0, most = 0;
+  char quote = 0;
+  for (size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quote || c == '"' || c == '\'') quote = quote == c ? 0 : (quote ? quote : c);
+    else if (c == '#' && (i == 0 || line[i - 1] == ' ')) break;
+    else if (c == '{' || c == '[') most = std::max(most, ++depth);
+    else if (c == '}' || c == ']') --depth;
+  }
+  return {most, depth};
+}
+
+// GPHR's deepest config nests 4 levels (gphr: section: key: {flow}); Teuchos copies a nested
+// list again at every level above it, so a file nesting thousands deep (25 KB) parses for minutes.
+constexpr long kMaxNesting = 32;
+
+// The deepest nesting of the YAML text (block mappings by indent, plus flow { [ on a line) and the
+// line where it is reached.
+std::pair<long, int> yamlNesting(const std::string& text) {
+  std::vector<size_t> indents;  // the block mappings open at this line
+  std::pair<long, int> deepest{0, 0};
+  forEachContentLine(text, [&](const std::string& line, int lineNo, size_t indent) {
+    while (!indents.empty() && indents.back() > indent) indents.pop_back();
+    if (indents.empty() || indents.back() < indent) indents.push_back(indent);
+    const long depth = static_cast<long>(indents.size()) + flowDepth(line).first;
+    if (depth > deepest.first) deepest = {depth, lineNo};
+  });
+  return deepest;
+}
+
+// Whether a line opens a flow collection { [ that it does not close.
+bool unclosedFlow(const std::string& text) {
+  bool open = false;
+  forEachContentLine(text, [&](const std::string& line, int, size_t) { open = open || flowDepth(line).second > 0; });
+  return open;
+}
+
 }  // namespace
 
 std::string duplicateYamlKey(const std::string& text) {
@@ -140,29 +194,30 @@ std::string duplicateYamlKey(const std::string& text) {
     std::map<std::string, int> keys;  // key -> line
   };
   std::vector<Level> stack;
-  std::istringstream in(text);
-  int lineNo = 0;
-  for (std::string line; std::getline(in, line);) {
-    ++lineNo;
-    const size_t indent = line.find_first_not_of(' ');
-    if (indent == std::string::npos || line[indent] == '#') continue;
-    const std::string flow = duplicateFlowKey(line, lineNo);
-    if (!flow.empty()) return flow;
-    if (line[indent] == '-') continue;
+  std::string found;
+  forEachContentLine(text, [&](const std::string& line, int lineNo, size_t indent) {
+    if (!found.empty()) return;
+    found = duplicateFlowKey(line, lineNo);
+    if (!found.empty() || line[indent] == '-') return;
     const size_t colon = line.find(':', indent);
-    if (colon == std::string::npos || line.find_first_of("{[\"'", indent) < colon) continue;
+    if (colon == std::string::npos || line.find_first_of("{[\"'", indent) < colon) return;
     const std::string key = line.substr(indent, colon - indent);
     while (!stack.empty() && stack.back().indent > indent) stack.pop_back();
     if (stack.empty() || stack.back().indent < indent) stack.push_back(Level{indent, {}});
     const auto [it, added] = stack.back().keys.emplace(key, lineNo);
-    if (!added) return detail::concat("key '", key, "' at line ", lineNo, " (first at line ", it->second, ")");
-  }
-  return "";
+    if (!added) found = detail::concat("key '", key, "' at line ", lineNo, " (first at line ", it->second, ")");
+  });
+  return found;
 }
 
 Teuchos::RCP<Teuchos::ParameterList> readParameterFile(const std::string& path, const std::string& what, bool xml) {
   const std::string text = readText(path, what);
   if (!xml) requireSingleTopLevelKey(text, path, what);
+  if (!xml) {
+    const auto [depth, line] = yamlNesting(text);
+    GPHR_REQUIRE(depth <= kMaxNesting, InputError, what, " file '", path, "' nests ", depth, " levels deep at line ",
+                 line, "; allowed: at most ", kMaxNesting);
+  }
   try {
     if (!xml) return Teuchos::getParametersFromYamlString(text);
     auto pl = Teuchos::getParametersFromXmlString(text);
@@ -175,9 +230,13 @@ Teuchos::RCP<Teuchos::ParameterList> readParameterFile(const std::string& path, 
     // Teuchos' YAML reader takes a flow mapping {a: 1, b: 2} on one line only: say so, since its
     // own message gives just a position.
     throw InputError(detail::concat(what, " file '", path, "' is malformed ", xml ? "XML" : "YAML", ": ",
-                                    xml ? teuchosReason(e.what()) : firstLineOf(e.what()),
-                                    xml ? "" : " (a {key: value, ...} mapping must fit on one line; "
-                                               "write longer sections in block style, one key per line)"));
+                                    xml || std::string(e.what()).find("Parser failure") == std::string::npos
+                                        ? teuchosReason(e.what())
+                                        : firstLineOf(e.what()),
+                                    xml || !unclosedFlow(text)
+                                        ? ""
+                                        : " (a {key: value, ...} mapping must fit on one line; "
+                                          "write longer sections in block style, one key per line)"));
   }
 }
 

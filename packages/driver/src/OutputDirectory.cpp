@@ -23,8 +23,11 @@ void writeTextFile(const std::string& path, const std::string& text) {
     GPHR_REQUIRE(out.good(), InputError, "cannot write '", temp, "': ", std::strerror(errno));
     out << text;
     out.close();
-    GPHR_REQUIRE(!out.fail(), InputError, "cannot write '", temp, "' (", text.size(), " bytes): ",
-                 std::strerror(errno));
+    if (out.fail()) {  // a full disk, say: no empty or short temporary file is left behind
+      const std::string why = std::strerror(errno);
+      std::remove(temp.c_str());
+      throw InputError(detail::concat("cannot write '", temp, "' (", text.size(), " bytes): ", why));
+    }
   }
   if (std::rename(temp.c_str(), path.c_str()) != 0) {
     const std::string why = std::strerror(errno);

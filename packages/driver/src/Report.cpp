@@ -20,6 +20,7 @@
 #include "gphr/driver/Config.hpp"
 #include "gphr/driver/FieldOutput.hpp"
 #include "gphr/driver/FieldPictures.hpp"
+#include "gphr/driver/Gnuplot.hpp"
 #include "gphr/driver/HyperReport.hpp"
 #include "gphr/io/Hdf5File.hpp"
 #include "gphr/online/Method.hpp"
@@ -163,27 +164,26 @@ void writeHistoryCsv(const std::vector<double>& H, double H0, const std::vector<
 
 // Plot |H(y^j) - H(y^0)| with gnuplot; returns false (with the reason) when it cannot.
 bool plotHamiltonian(const std::string& csv, const std::string& romCsv, const std::string& png, std::string& why) {
-  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
+  if (!haveGnuplot()) {
     why = "gnuplot not found (apt-get install gnuplot-nox)";
     return false;
   }
   const std::string script = png + ".gp";
   {
     std::ofstream gp(script);
-    gp << "set terminal pngcairo size 900,500 noenhanced\nset output '" << png << "'\n"
+    gp << "set terminal pngcairo size 900,500 noenhanced\nset output " << gnuplotQuoted(png) << "\n"
        << "set datafile separator ','\nset datafile columnheaders\nset key top left\nset logscale y\nset format y '%.0e'\n"
        << "set xlabel 't'\nset ylabel '|H(y^j) - H(y^0)|'\nset title 'Hamiltonian error of the full model'\n"
-       << "plot '" << csv << "' using (column('t')):(column('H_err') > 0 ? column('H_err') : 1e-17) with lines lw 2 "
+       << "plot " << gnuplotQuoted(csv) << " using (column('t')):(column('H_err') > 0 ? column('H_err') : 1e-17) with lines lw 2 "
        << "title 'fom'";
     if (!romCsv.empty())
-      gp << ", '" << romCsv << "' using (column('t')):(column('H_err') > 0 ? column('H_err') : 1e-17) with lines lw 2 "
+      gp << ", " << gnuplotQuoted(romCsv) << " using (column('t')):(column('H_err') > 0 ? column('H_err') : 1e-17) with lines lw 2 "
          << "title 'rom'";
     gp << "\n";
   }
-  const int rc = std::system(("gnuplot '" + script + "' > /dev/null 2>&1").c_str());
-  std::remove(script.c_str());
-  if (rc != 0) why = "gnuplot failed";
-  return rc == 0;
+  const bool drawn = runGnuplot(script, {png});
+  if (!drawn) why = "gnuplot failed or the PNG could not be written whole";
+  return drawn;
 }
 
 void writeSingularValues(const std::vector<double>& s, const std::string& csv, const std::string& png, bool plot,
@@ -195,20 +195,19 @@ void writeSingularValues(const std::vector<double>& s, const std::string& csv, c
     for (size_t j = 0; j < s.size(); ++j) os << j + 1 << "," << s[j] << "," << s[j] / s[0] << "\n";
     finishText(os, csv);
   }
-  if (!plot || std::system("command -v gnuplot > /dev/null 2>&1") != 0) return;
+  if (!plot || !haveGnuplot()) return;
   const std::string script = png + ".gp";
-  std::ofstream(script) << "set terminal pngcairo size 900,500 noenhanced\nset output '" << png << "'\n"
+  std::ofstream(script) << "set terminal pngcairo size 900,500 noenhanced\nset output " << gnuplotQuoted(png) << "\n"
                         << "set datafile separator ','\nset datafile columnheaders\nset logscale y\nset format y '%.0e'\n"
                         << "set xlabel 'index j'\n"
                         << "set ylabel 'sigma_j / sigma_1'\nset title 'Singular values of the snapshots'\n"
-                        << "plot '" << csv << "' using (column('index')):(column('sigma_rel')) with lines lw 2 "
+                        << "plot " << gnuplotQuoted(csv) << " using (column('index')):(column('sigma_rel')) with lines lw 2 "
                         << "title 'snapshots (basis A)'"
                         << (deimCsv.empty() ? std::string()
-                                            : ", '" + deimCsv + "' using (column('index')):(column('sigma_rel')) "
+                                            : ", " + gnuplotQuoted(deimCsv) + " using (column('index')):(column('sigma_rel')) "
                                                                 "with lines lw 2 title 'reduced Jacobians (DEIM basis U)'")
                         << "\n";
-  (void)std::system(("gnuplot '" + script + "' > /dev/null 2>&1").c_str());
-  std::remove(script.c_str());
+  runGnuplot(script, {png});  // an optional picture: committed only where it is whole (commitReport)
 }
 
 // The first rom run: its history is rom_history.csv.

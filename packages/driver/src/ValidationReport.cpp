@@ -13,6 +13,7 @@
 
 #include "gphr/core/Error.hpp"
 #include "gphr/core/Fnv1a.hpp"
+#include "gphr/driver/Gnuplot.hpp"
 #include "gphr/driver/OutputDirectory.hpp"
 #include "gphr/driver/Json.hpp"
 #include "gphr/online/ReducedModel.hpp"
@@ -44,11 +45,29 @@ std::string muText(const std::vector<double>& mu) {
 // Write-then-rename of a text file (rank 0 only), InputError naming it if it cannot be written.
 void writeText(const std::string& path, const std::string& text) { writeTextFile(path, text); }
 
+// Writes the plot's data and script beside the report, draws validation_error.png and removes
+// the two; a failure (a full disk, gnuplot) leaves no plot file and is said on stderr.
+void drawErrorPlot(const std::string& dir, const std::string& data, const std::string& script) {
+  const std::string dat = dir + "/validation_error.dat", gp = dir + "/validation_error.gp",
+                    png = dir + "/validation_error.png";
+  bool drawn = false;
+  try {
+    writeTextFile(dat, data);
+    writeTextFile(gp, script);
+    drawn = runGnuplot(gp, {png});
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "[gphr] validate: %s\n", e.what());
+  }
+  std::remove(dat.c_str());
+  std::remove(gp.c_str());
+  if (!drawn) std::fprintf(stderr, "[gphr] validate: '%s' not drawn\n", png.c_str());
+}
+
 // Two parameters: one map per model, each test point a square coloured by log10 E_L2 (a point that
 // did not finish drawn as a cross), the training box outlined.
 void plotErrorMaps(const std::string& dir, const ReducedModelData& d, const std::vector<ModelStatistics>& stats,
                    const std::vector<ValidationRecord>& records) {
-  std::ofstream dat(dir + "/validation_error.dat");
+  std::ostringstream dat;
   for (const auto& s : stats) {
     dat << "# " << s.label << "\n";
     for (const auto& r : records)
@@ -57,7 +76,6 @@ void plotErrorMaps(const std::string& dir, const ReducedModelData& d, const std:
             << "\n";
     dat << "\n\n";
   }
-  dat.close();
   double lo = 0.0, hi = -30.0;
   for (const auto& r : records)
     if (r.status == "ok" && r.eL2 > 0) {
@@ -65,31 +83,31 @@ void plotErrorMaps(const std::string& dir, const ReducedModelData& d, const std:
       hi = std::max(hi, std::ceil(std::log10(r.eL2)));
     }
   if (hi < lo) hi = lo + 1;
-  const std::string script = dir + "/validation_error.gp";
-  std::ofstream gp(script);
+  const std::string data = gnuplotQuoted(dir + "/validation_error.dat");
+  std::ostringstream gp;
   const size_t cols = std::min<size_t>(stats.size(), 3), rows = (stats.size() + cols - 1) / cols;
-  gp << "set terminal pngcairo size " << 420 * cols << "," << 380 * rows << " noenhanced\nset output '" << dir
-     << "/validation_error.png'\nset multiplot layout " << rows << "," << cols
-     << " title 'log10 of the relative error E_L2 over the test points'\nunset key\nset xlabel '"
-     << d.parameterNames[0] << "'\nset ylabel '" << d.parameterNames[1] << "'\nset cblabel 'log10 E_L2'\n"
+  gp << "set terminal pngcairo size " << 420 * cols << "," << 380 * rows << " noenhanced\nset output "
+     << gnuplotQuoted(dir + "/validation_error.png") << "\nset multiplot layout " << rows << "," << cols
+     << " title 'log10 of the relative error E_L2 over the test points'\nunset key\nset xlabel "
+     << gnuplotQuoted(d.parameterNames[0]) << "\nset ylabel " << gnuplotQuoted(d.parameterNames[1])
+     << "\nset cblabel 'log10 E_L2'\n"
      << "set cbrange [" << lo << ":" << hi << "]\n"  // one colour scale for every model
      << "set object 1 rect from " << d.box[0].first << "," << d.box[1].first << " to " << d.box[0].second << ","
      << d.box[1].second << " fs empty border lc rgb 'black' dt 2\n";
   for (size_t i = 0; i < stats.size(); ++i)
-    gp << "set title '" << stats[i].label << "'\nplot '" << dir << "/validation_error.dat' index " << i
+    gp << "set title " << gnuplotQuoted(stats[i].label) << "\nplot " << data << " index " << i
        << " using 1:2:3 with points pt 5 ps 2.5 palette, '' index " << i
        << " using 1:($3 != $3 ? $2 : 1/0) with points pt 2 ps 2 lc rgb 'red'\n";
   gp << "unset multiplot\n";
-  gp.close();
-  (void)std::system(("gnuplot '" + script + "' > /dev/null 2>&1").c_str());
+  drawErrorPlot(dir, dat.str(), gp.str());
 }
 
 // One data block per model (points sorted by the parameter), then gnuplot over the blocks.
 void plotErrors(const std::string& dir, const ReducedModelData& d, const std::vector<ModelStatistics>& stats,
                 const std::vector<ValidationRecord>& records) {
-  if (d.parameterNames.size() > 2 || std::system("command -v gnuplot > /dev/null 2>&1") != 0) return;
+  if (d.parameterNames.size() > 2 || !haveGnuplot()) return;
   if (d.parameterNames.size() == 2) return plotErrorMaps(dir, d, stats, records);
-  std::ofstream dat(dir + "/validation_error.dat");
+  std::ostringstream dat;
   for (const auto& s : stats) {
     std::vector<std::pair<double, double>> pts;
     for (const auto& r : records)
@@ -99,21 +117,20 @@ void plotErrors(const std::string& dir, const ReducedModelData& d, const std::ve
     for (const auto& [x, e] : pts) dat << num(x) << " " << num(e) << "\n";
     dat << "\n\n";
   }
-  dat.close();
-  const std::string script = dir + "/validation_error.gp";
-  std::ofstream gp(script);
-  gp << "set terminal pngcairo size 900,560 noenhanced\nset output '" << dir << "/validation_error.png'\n"
-     << "set logscale y\nset format y '%.0e'\nset key outside right\nset grid\n"
-     << "set title 'Relative error E_L2 over the parameter box'\nset xlabel '" << d.parameterNames[0]
-     << " (training box [" << d.box[0].first << ", " << d.box[0].second << "])'\nset ylabel 'E_L2'\n"
+  std::ostringstream xlabel, gp;
+  xlabel << d.parameterNames[0] << " (training box [" << d.box[0].first << ", " << d.box[0].second << "])";
+  gp << "set terminal pngcairo size 900,560 noenhanced\nset output " << gnuplotQuoted(dir + "/validation_error.png")
+     << "\nset logscale y\nset format y '%.0e'\nset key outside right\nset grid\n"
+     << "set title 'Relative error E_L2 over the parameter box'\nset xlabel "
+     << gnuplotQuoted(xlabel.str())
+     << "\nset ylabel 'E_L2'\n"
      << "set arrow from " << d.box[0].first << ", graph 0 to " << d.box[0].first << ", graph 1 nohead dt 2\n"
      << "set arrow from " << d.box[0].second << ", graph 0 to " << d.box[0].second << ", graph 1 nohead dt 2\nplot ";
   for (size_t i = 0; i < stats.size(); ++i)
-    gp << (i ? ", " : "") << "'" << dir << "/validation_error.dat' index " << i << " using 1:2 with linespoints pt "
-       << (i + 4) << " title '" << stats[i].label << "'";
+    gp << (i ? ", " : "") << gnuplotQuoted(dir + "/validation_error.dat") << " index " << i
+       << " using 1:2 with linespoints pt " << (i + 4) << " title " << gnuplotQuoted(stats[i].label);
   gp << "\n";
-  gp.close();
-  (void)std::system(("gnuplot '" + script + "' > /dev/null 2>&1").c_str());
+  drawErrorPlot(dir, dat.str(), gp.str());
 }
 
 }  // namespace

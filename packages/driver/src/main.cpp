@@ -10,6 +10,7 @@
 #include <chrono>
 #include <ctime>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -28,6 +29,7 @@
 #include "gphr/driver/HyperStage.hpp"
 #include "gphr/driver/Report.hpp"
 #include "gphr/driver/RomStage.hpp"
+#include "gphr/io/Hdf5File.hpp"
 #include "gphr/models/SceneFactory.hpp"
 #include "gphr/online/Method.hpp"
 
@@ -191,22 +193,31 @@ int main(int argc, char** argv) {
   MPI_Comm_dup(MPI_COMM_WORLD, &agreement);
   const int rank = comm->getRank(), size = comm->getSize();
   FILE* errors = stderr;
-  try {
-    const Args args = parseArgs(argc, argv);
-    if (args.command == Args::Help) {
-      if (root) std::cout << gphr::helpText();
-      return 0;
+  const int code = [&] {
+    try {
+      const Args args = parseArgs(argc, argv);
+      if (args.command == Args::Help) {
+        if (root) std::cout << gphr::helpText();
+        return 0;
+      }
+      if (args.verbosity == Args::Quiet) errors = quiet();
+      if (args.command == Args::Build) return gphr::runBuild(args.config, args.model, args.output, comm);
+      if (args.command == Args::Query) return gphr::runQuery(args.model, args.queries, args.output, comm, args.threads);
+      if (args.command == Args::Validate) return gphr::runValidate(args.model, args.queries, args.output, comm);
+      return runMain(args, comm);
+    } catch (const gphr::InputError& e) {
+      return failed(agreement, rank, size, errors, "error", e.what(), 2);
+    } catch (const gphr::SolverError& e) {
+      return failed(agreement, rank, size, errors, "solver failure", e.what(), 3);
+    } catch (const std::exception& e) {
+      return failed(agreement, rank, size, errors, "internal error", e.what(), 1);
     }
-    if (args.verbosity == Args::Quiet) errors = quiet();
-    if (args.command == Args::Build) return gphr::runBuild(args.config, args.model, args.output, comm);
-    if (args.command == Args::Query) return gphr::runQuery(args.model, args.queries, args.output, comm, args.threads);
-    if (args.command == Args::Validate) return gphr::runValidate(args.model, args.queries, args.output, comm);
-    return runMain(args, comm);
-  } catch (const gphr::InputError& e) {
-    return failed(agreement, rank, size, errors, "error", e.what(), 2);
-  } catch (const gphr::SolverError& e) {
-    return failed(agreement, rank, size, errors, "solver failure", e.what(), 3);
-  } catch (const std::exception& e) {
-    return failed(agreement, rank, size, errors, "internal error", e.what(), 1);
+  }();
+  // A file HDF5 could not close (a full disk) would crash HDF5's termination inside MPI_Finalize
+  // (Hdf5File::closeFailed): the error is said, so end here, without finalizing.
+  if (gphr::Hdf5File::closeFailed()) {
+    std::fflush(nullptr);
+    std::_Exit(code);
   }
+  return code;
 }

@@ -2,6 +2,7 @@
 
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_DefaultMpiComm.hpp>
+#include <atomic>
 #include <cstdio>
 #include <cstring>
 #include <cerrno>
@@ -9,6 +10,7 @@
 #include <utility>
 #ifdef __linux__
 #include <fcntl.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 #endif
 
@@ -48,7 +50,30 @@ std::string hdf5Reason() {
 }
 
 void check(herr_t status, const std::string& what, const std::string& path) {
-  GPHR_REQUIRE(status >= 0, InputError, "HDF5 file '", path, "': ", what, " failed", hdf5Reason());
+  if (status >= 0) return;
+  // HDF5 says "file write failed" for a full disk: say so where the system's reason (errno, which
+  // HDF5's cleanup may overwrite) or the file system (no block left) shows it.
+  const int why = errno;
+  std::string system = why == ENOSPC || why == EDQUOT ? std::string(": ") + std::strerror(why) : "";
+#ifdef __linux__
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  struct statvfs fs {};
+  if (system.empty() && ::statvfs(dir.empty() ? "." : dir.c_str(), &fs) == 0 && fs.f_bavail == 0)
+    system = std::string(": ") + std::strerror(ENOSPC);
+#endif
+  throw InputError(detail::concat("HDF5 file '", path, "': ", what, " failed", hdf5Reason(), system));
+}
+
+// check() of a collective write, whose failure MPI-IO may report on some ranks only (the
+// aggregators that wrote): every rank throws when any failed, so none goes on to the next
+// collective call without the others (a hang, or a crash inside HDF5).
+void checkOnAll(herr_t status, const RCP<const Comm>& comm, const std::string& what, const std::string& path) {
+  const int why = errno, mine = status < 0 ? -1 : 0;
+  int worst = mine;
+  if (comm->getSize() > 1) Teuchos::reduceAll(*comm, Teuchos::REDUCE_MIN, mine, Teuchos::outArg(worst));
+  errno = why;
+  check(status < 0 || worst == 0 ? status : herr_t(-1), what + (status >= 0 && worst < 0 ? " (on another rank)" : ""),
+        path);
 }
 
 hid_t collectiveTransfer() {
@@ -92,10 +117,16 @@ Hdf5File::Hdf5File(const std::string& path, const RCP<const Comm>& comm, Mode mo
 
 Hdf5File::~Hdf5File() { close(); }
 
+namespace {
+std::atomic<bool> aCloseFailed{false};  // Hdf5File::closeFailed()
+}  // namespace
+
 void Hdf5File::close() {
-  if (file_ >= 0) H5Fclose(file_);
+  if (file_ >= 0 && H5Fclose(file_) < 0) aCloseFailed = true;
   file_ = -1;
 }
+
+bool Hdf5File::closeFailed() { return aCloseFailed; }
 
 bool Hdf5File::exists(const std::string& name) const {
   if (name == "/") return true;
@@ -129,7 +160,7 @@ bool Hdf5File::hasAttribute(const std::string& object, const std::string& key) c
   return found > 0;
 }
 
-void Hdf5File::flush() { check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing", path_); }
+void Hdf5File::flush() { checkOnAll(H5Fflush(file_, H5F_SCOPE_GLOBAL), comm_, "flushing", path_); }
 
 void Hdf5File::startWriteback() const {
 #ifdef __linux__
@@ -233,8 +264,8 @@ void Hdf5File::writeRows(const std::string& name, hsize_t first, hsize_t rows, c
   Id mspace{H5Screate_simple(1, mdims, nullptr), H5Sclose};
   if (rows * local == 0) H5Sselect_none(mspace.id);
   Id xfer{collectiveTransfer(), H5Pclose};
-  check(H5Dwrite(dset.id, H5T_NATIVE_DOUBLE, mspace.id, fspace.id, xfer.id, data), "writing dataset '" + name + "'",
-        path_);
+  checkOnAll(H5Dwrite(dset.id, H5T_NATIVE_DOUBLE, mspace.id, fspace.id, xfer.id, data), comm_,
+             "writing dataset '" + name + "'", path_);
 }
 
 RCP<MultiVector> Hdf5File::readDistributed(const std::string& name, const RCP<const Map>& map, hsize_t N,
@@ -352,8 +383,8 @@ void Hdf5File::writeArray(const std::string& name, const std::vector<double>& da
   }
   Id xfer{collectiveTransfer(), H5Pclose};
   const double dummy = 0.0;
-  check(H5Dwrite(dset.id, H5T_NATIVE_DOUBLE, mspace.id, fspace.id, xfer.id, data.empty() ? &dummy : data.data()),
-        "writing dataset '" + name + "'", path_);
+  checkOnAll(H5Dwrite(dset.id, H5T_NATIVE_DOUBLE, mspace.id, fspace.id, xfer.id, data.empty() ? &dummy : data.data()),
+             comm_, "writing dataset '" + name + "'", path_);
 }
 
 std::vector<double> Hdf5File::readArray(const std::string& name, size_t* rows, size_t* cols) const {

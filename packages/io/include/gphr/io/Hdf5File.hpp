@@ -25,6 +25,11 @@ class Hdf5File {
   Hdf5File(const Hdf5File&) = delete;
   Hdf5File& operator=(const Hdf5File&) = delete;
   void close();  ///< Closes the file (also done by the destructor).
+  /// Whether a file of this process could not be closed (H5Fclose failed: a full disk when HDF5
+  /// wrote the file's last metadata, say). HDF5 1.10 then leaves the file half-closed in its table,
+  /// and its own termination (at MPI_Finalize) crashes on it: a program that finds this true should
+  /// end without finalizing MPI, as gphr's main does.
+  static bool closeFailed();
 
   const std::string& path() const { return path_; }  ///< The file's path.
   bool exists(const std::string& name) const;  ///< a dataset or group at this path
