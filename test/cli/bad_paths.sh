@@ -38,6 +38,11 @@ refused validate m.h5 t.yaml --output ""
 refused run c.yaml --output ""
 expect="'--model' is given an empty path; allowed: a file path"; refused build c.yaml --model "" --output art
 expect="'--output' needs a path after it"; refused query m.h5 q.yaml --output
+# an option twice (the second replaced the first), an option where a path belongs, both verbosities
+expect="'--output' is given twice; allowed: each option once"; refused run c.yaml --output a1 --output a2
+expect="'--output' is followed by the option '--threads'; allowed: a path"; refused query m.h5 q.yaml --output --threads 2
+expect="'--verbose' and '--quiet' are given together; allowed: one of them"; refused run c.yaml --verbose --quiet
+[ ! -e a1 ] && [ ! -e a2 ] || fail "a refused run created its output directory"
 # XML: <ParameterList name="gphr"> is the config's root, as the key gphr is YAML's.
 cat > c.xml <<'XML'
 <ParameterList name="gphr">

@@ -55,9 +55,18 @@ void options(Args& a, const std::vector<std::string>& v, size_t from, bool model
     GPHR_REQUIRE(i + 1 < v.size(), gphr::InputError, "'", v[i], "' needs a path after it (", kUsage, ")");
     GPHR_REQUIRE(!v[i + 1].empty(), gphr::InputError, "'", v[i], "' is given an empty path; allowed: a ",
                  v[i] == "--model" ? "file" : "directory", " path");
+    GPHR_REQUIRE(v[i + 1].rfind("--", 0) != 0, gphr::InputError, "'", v[i], "' is followed by the option '", v[i + 1],
+                 "'; allowed: a path (./", v[i + 1], " for a path of that name)");
     return v[++i];
   };
+  std::vector<std::string> seen;  // each option once: a second one silently replaced the first
   for (size_t i = from; i < v.size(); ++i) {
+    GPHR_REQUIRE(std::find(seen.begin(), seen.end(), v[i]) == seen.end(), gphr::InputError, "'", v[i],
+                 "' is given twice; allowed: each option once");
+    seen.push_back(v[i]);
+    GPHR_REQUIRE(!(v[i] == "--verbose" || v[i] == "--quiet") ||
+                     std::find(seen.begin(), seen.end(), v[i] == "--verbose" ? "--quiet" : "--verbose") == seen.end(),
+                 gphr::InputError, "'--verbose' and '--quiet' are given together; allowed: one of them");
     if (v[i] == "--output") a.output = path(i);
     else if (model && v[i] == "--model") a.model = path(i);
     else if (threads && v[i] == "--threads")
