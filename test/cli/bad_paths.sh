@@ -43,6 +43,12 @@ expect="'--output' is given twice; allowed: each option once"; refused run c.yam
 expect="'--output' is followed by the option '--threads'; allowed: a path"; refused query m.h5 q.yaml --output --threads 2
 expect="'--verbose' and '--quiet' are given together; allowed: one of them"; refused run c.yaml --verbose --quiet
 [ ! -e a1 ] && [ ! -e a2 ] || fail "a refused run created its output directory"
+# gp-adeim alone without the basis in the file: refused before the training, not after it
+printf 'gphr:\n  scene: {name: nls1d, n: 64}\n  time: {T: 0.1, dt: 0.01}\n  training: {points: [2]}\n  pipeline: {methods: [gp-adeim], k: [4], m: [8]}\n  build: {withBasis: false}\n' > ad.yaml
+expect="gp-adeim, the only method asked for, cannot be stored: its queries need the basis (build.withBasis: true)"
+refused build ad.yaml --model ad.h5 --output art
+sed 's/methods: \[gp-adeim\]/methods: [gp-deim]/; s/withBasis: false/probes: [128]/' ad.yaml > probe.yaml
+expect="probe entry 128 is not a state entry; allowed: 0 to 127"; refused build probe.yaml --model ad.h5 --output art
 # XML: <ParameterList name="gphr"> is the config's root, as the key gphr is YAML's.
 cat > c.xml <<'XML'
 <ParameterList name="gphr">

@@ -121,6 +121,9 @@ int runBuild(const std::string& configPath, const std::string& modelPath, const 
                " models; pipeline.methods must list one of them");
   GPHR_REQUIRE(ctx.config.sublist("scene").get<bool>("shift"), InputError, "config file '", configPath,
                "': gphr build needs scene.shift: true (the stored models are of the shifted system)");
+  const ModelBuildOptions options = buildOptions(ctx, stored);
+  const auto inst = ctx.scene->instantiate(comm, ctx.mu, true);
+  checkModelBuildOptions(*ctx.scene, options, inst.system->space().fullDim());  // before any file is made
   prepareOutputDir(ctx, false);
   const OutputLock lock(artifactsDir, "build", comm);
   const auto parent = std::filesystem::path(modelPath).parent_path();
@@ -129,8 +132,6 @@ int runBuild(const std::string& configPath, const std::string& modelPath, const 
     for (const auto& m : skipped)
       std::fprintf(stderr, "[gphr] build: %s is not stored (%s)\n", m.c_str(),
                    "its online model needs all d rows or is a baseline: run it with gphr run");
-  const ModelBuildOptions options = buildOptions(ctx, stored);
-  const auto inst = ctx.scene->instantiate(comm, ctx.mu, true);
   const ArtifactsCache cache = artifactsCache(ctx, inst.system->space().fullDim());
   setupClock.reset();
   const ModelBuildResult r = buildReducedModelFile(*ctx.scene, comm, options, modelPath, &cache);

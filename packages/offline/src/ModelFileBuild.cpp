@@ -35,12 +35,17 @@ int largest(const std::vector<int>& ms) { return ms.empty() ? 0 : *std::max_elem
 
 // gp-adeim is stored as its options: its queries build the full system and sample its residual
 // online (alg:SP-ADEIM), from the basis in the file and the first delta0 full-model steps.
+// Why gp-adeim cannot be stored with these options ("": it can).
+std::string whyNoAdeim(const ModelBuildOptions& o) {
+  if (!o.withBasis) return "its queries need the basis (build.withBasis: true)";
+  if (o.adeim.isParameter("initialBasis") && o.adeim.get<std::string>("initialBasis") != "fom")
+    return "adeim.initialBasis 'training' needs the training DEIM basis online, which the file does not hold";
+  return "";
+}
+
 void addAdeimModels(const BuildState& b, int k, std::vector<StoredHyperModel>& out) {
   const auto& o = b.options;
-  std::string why;
-  if (!o.withBasis) why = "its queries need the basis (build.withBasis: true)";
-  else if (o.adeim.isParameter("initialBasis") && o.adeim.get<std::string>("initialBasis") != "fom")
-    why = "adeim.initialBasis 'training' needs the training DEIM basis online, which the file does not hold";
+  const std::string why = whyNoAdeim(o);
   if (!why.empty()) {
     if (b.comm->getRank() == 0) std::fprintf(stderr, "[gphr] build: gp-adeim not stored: %s\n", why.c_str());
     return;
@@ -99,18 +104,28 @@ std::vector<StoredHyperModel> modelsOfK(const BuildState& b, const MultiVector& 
   return out;
 }
 
-void checkOptions(const Scene& scene, const ModelBuildOptions& o) {
+}  // namespace
+
+void checkModelBuildOptions(const Scene& scene, const ModelBuildOptions& o, GO fullDim) {
   GPHR_REQUIRE(!o.methods.empty(), InputError, "the offline phase stores ",
                methodNames([](const MethodInfo& m) { return m.storable; }), " models; none was asked for");
   for (const auto& m : o.methods)
     GPHR_REQUIRE(methodInfo(m).storable, InputError, "method '", m, "' cannot be stored in a reduced-model file; allowed: ",
                  methodNames([](const MethodInfo& mi) { return mi.storable; }));
+  // gp-adeim alone, unstorable: refused now, not after the training with "no model for k"
+  GPHR_REQUIRE(o.methods != std::vector<std::string>{method::kGpAdeim} || whyNoAdeim(o).empty(), InputError,
+               "gp-adeim, the only method asked for, cannot be stored: ", whyNoAdeim(o));
   GPHR_REQUIRE(!o.ms.empty(), InputError, "no DEIM size m given; allowed: one or more m >= 1");
   for (int m : o.ms) GPHR_REQUIRE(m >= 1, InputError, "DEIM size m = ", m, "; allowed: m >= 1");
   GPHR_REQUIRE(o.parameter.empty() || o.parameter.size() == scene.parameterBox().names.size(), InputError,
                "the instance parameter has ", o.parameter.size(), " values; allowed: ", scene.parameterBox().names.size(),
                " (one per parameter of the box)");
+  for (GO p : o.file.probes)
+    GPHR_REQUIRE(fullDim <= 0 || (p >= 0 && p < fullDim), InputError, "probe entry ", p,
+                 " is not a state entry; allowed: 0 to ", fullDim - 1);
 }
+
+namespace {
 
 std::vector<double> boxCentre(const ParameterBox& box) {
   std::vector<double> c;
@@ -123,7 +138,7 @@ std::vector<double> boxCentre(const ParameterBox& box) {
 ModelBuildResult buildReducedModelFile(const Scene& scene, const RCP<const Comm>& comm,
                                        const ModelBuildOptions& options, const std::string& path,
                                        const ArtifactsCache* cache) {
-  checkOptions(scene, options);
+  checkModelBuildOptions(scene, options);
   Teuchos::Time clock("build");
   clock.start();
   ModelBuildResult r;

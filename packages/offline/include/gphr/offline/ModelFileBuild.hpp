@@ -60,6 +60,11 @@ struct ModelBuildResult {
   std::vector<StageTime> stages;
 };
 
+/// Checks `options` for `scene` before any work: the methods, sizes and parameter, gp-adeim alone
+/// where it cannot be stored, and (fullDim > 0, the scene's state size 2n) the probes. InputError
+/// naming the value. buildReducedModelFile checks the same (but the probes) itself.
+void checkModelBuildOptions(const Scene& scene, const ModelBuildOptions& options, GO fullDim = 0);
+
 /// Runs the offline phase for `scene` and writes the reduced-model file at `path` (write-then-
 /// rename). With `cache`, every stage reuses what it holds for its key. Collective over `comm`.
 ModelBuildResult buildReducedModelFile(const Scene& scene, const RCP<const Comm>& comm,
