@@ -49,16 +49,17 @@ std::string hdf5Reason() {
   return reason.empty() ? std::string() : " (HDF5: " + reason + ")";
 }
 
-void check(herr_t status, const std::string& what, const std::string& path) {
+// writing: the call wrote (a full disk is then a likely cause).
+void check(herr_t status, const std::string& what, const std::string& path, bool writing = false) {
   if (status >= 0) return;
   // HDF5 says "file write failed" for a full disk: say so where the system's reason (errno, which
-  // HDF5's cleanup may overwrite) or the file system (no block left) shows it.
+  // HDF5's cleanup may overwrite) or, for a write, the file system (no block left) shows it.
   const int why = errno;
   std::string system = why == ENOSPC || why == EDQUOT ? std::string(": ") + std::strerror(why) : "";
 #ifdef __linux__
   const std::string dir = std::filesystem::path(path).parent_path().string();
   struct statvfs fs {};
-  if (system.empty() && ::statvfs(dir.empty() ? "." : dir.c_str(), &fs) == 0 && fs.f_bavail == 0)
+  if (writing && system.empty() && ::statvfs(dir.empty() ? "." : dir.c_str(), &fs) == 0 && fs.f_bavail == 0)
     system = std::string(": ") + std::strerror(ENOSPC);
 #endif
   throw InputError(detail::concat("HDF5 file '", path, "': ", what, " failed", hdf5Reason(), system));
@@ -73,7 +74,7 @@ void checkOnAll(herr_t status, const RCP<const Comm>& comm, const std::string& w
   if (comm->getSize() > 1) Teuchos::reduceAll(*comm, Teuchos::REDUCE_MIN, mine, Teuchos::outArg(worst));
   errno = why;
   check(status < 0 || worst == 0 ? status : herr_t(-1), what + (status >= 0 && worst < 0 ? " (on another rank)" : ""),
-        path);
+        path, true);
 }
 
 hid_t collectiveTransfer() {
