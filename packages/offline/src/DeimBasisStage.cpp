@@ -125,9 +125,9 @@ DeimBasis deimBasisInGroups(const Scene& scene, const TrainingResult& training, 
     if (q < count && groups.leader()) putStatistics(mine, stats.data() + static_cast<size_t>(q - first) * kChunkFields);
     Teuchos::reduceAll(*groups.world(), Teuchos::REDUCE_SUM, static_cast<int>(stats.size()), stats.data(), all.data());
     for (int c = 0; c < inRound; ++c) {  // chunk first + c, group c's (rank 0: one zero column, statistics only)
-      const DeimChunkModes stats = getStatistics(all.data() + static_cast<size_t>(c) * kChunkFields);
+      const DeimChunkModes chunk = getStatistics(all.data() + static_cast<size_t>(c) * kChunkFields);
       const MultiVector* own = groups.group() == c ? mine.modes.get() : nullptr;
-      root.add(*groups.toWorld(own, *fromGroup[c], static_cast<size_t>(std::max(stats.rank, 1))), stats);
+      root.add(*groups.toWorld(own, *fromGroup[c], static_cast<size_t>(std::max(chunk.rank, 1))), chunk);
     }
     const bool kept = checkpoint.enabled() && first + inRound < count &&  // before the line: "checkpointed" is kept
                       saveRoot(checkpoint, root, first + inRound, before + clock.totalElapsedTime(true));
