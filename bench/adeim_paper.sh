@@ -22,10 +22,11 @@
 #   to bench-out/adeim_<case>_np<RANKS>_base<R2>.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+. bench/machine.sh
 case=$1; np=${2:-2}; build=${3:-build}
 gphr=$build/packages/driver/gphr
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=1
-echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores; $(date -u +%F); ranks $np; case $case${GPHR_BASE_RANKS:+; offline artifacts of $GPHR_BASE_RANKS ranks}"
+echo "machine: $(machine_line "$gphr"); ranks $np; case $case${GPHR_BASE_RANKS:+; offline artifacts of $GPHR_BASE_RANKS ranks}"
 baseNp=${GPHR_BASE_RANKS:-$np}
 base=bench-out/adeim_base_np$baseNp
 suffix=$([ "$baseNp" = "$np" ] && echo "" || echo "_base$baseNp")

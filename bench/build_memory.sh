@@ -11,10 +11,11 @@
 # usage: bash bench/build_memory.sh [RANKS] [NX] [BUILD_DIR]
 set -euo pipefail
 cd "$(dirname "$0")/.."
+. bench/machine.sh
 ranks=${1:-1}; nx=${2:-128}; build=${3:-build}
 gphr=$PWD/$build/packages/driver/gphr
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 OPENBLAS_NUM_THREADS=1
-echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores, $(free -g | awk '/Mem/ {print $2}') GB; $(date -u +%F); gphr $(git describe --always --dirty)"
+echo "machine: $(machine_line "$gphr")"
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 # Runs its arguments and writes their peak resident memory (kB) to $1.<rank>.
 cat > "$work/peak.py" <<'PY'

@@ -16,11 +16,12 @@
 # usage: bash bench/eqp.sh CASE [RANKS] [BUILD_DIR]
 set -euo pipefail
 cd "$(dirname "$0")/.."
+. bench/machine.sh
 case=$1; np=${2:-1}; build=${3:-build}
 gphr=$build/packages/driver/gphr
 out=bench-out/eqp_${case}_np${np}${TAG:+_$TAG}; mkdir -p "$out"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=1
-echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores; $(date -u +%F); ranks $np"
+echo "machine: $(machine_line "$gphr"); ranks $np"
 c=$out/config.yaml
 list() { echo "$1" | tr ' ' ','; }
 case $case in

@@ -14,11 +14,12 @@
 #          ranks: the SWE's default
 set -euo pipefail
 cd "$(dirname "$0")/.."
+. bench/machine.sh
 build=${1:-build}; part=${2:-all}
 gphr=$build/packages/driver/gphr
 out=bench-out; mkdir -p "$out"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=1
-echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores, $(free -g | awk '/Mem/{print $2}') GiB; $(date -u +%F)"
+echo "machine: $(machine_line "$gphr")"
 
 run() {  # run NAME CONFIG RANKS [INTEGRATOR_LINE] [TIME_LINE] [SCENE_LINE]: replace those lines of CONFIG
   local name=$1 cfg=$2 np=$3 integ=${4:-} time=${5:-} scene=${6:-}

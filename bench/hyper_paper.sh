@@ -14,11 +14,12 @@
 # usage: bash bench/hyper_paper.sh CASE [RANKS] [BUILD_DIR] [SVD]   (SVD: randomized | exact)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+. bench/machine.sh
 case=$1; np=${2:-2}; build=${3:-build}; svd=${4:-randomized}
 gphr=$build/packages/driver/gphr
 out=bench-out/hyper_${case}_np${np}_$svd; mkdir -p "$out"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=1
-echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores; $(date -u +%F); ranks $np; DEIM svd $svd"
+echo "machine: $(machine_line "$gphr"); ranks $np; DEIM svd $svd"
 c=$out/config.yaml
 case $case in
   nls)

@@ -25,11 +25,12 @@
 # usage: [M_SCALING=m] [K_SCALING=k] [MODES="fixed-dt fixed-cfl"] [ROUNDS=3] bash bench/hyper_scaling.sh [RANKS] [BUILD_DIR] [GRIDS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
+. bench/machine.sh
 np=${1:-2}; build=${2:-build}; grids=${3:-"64 128 256 512"}; m=${M_SCALING:-50}; k=${K_SCALING:-10}
 modes=${MODES:-"fixed-dt fixed-cfl"}; mcfl=${M_CFL:-40}; rounds=${ROUNDS:-3}
 gphr=$build/packages/driver/gphr
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=1
-echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores; $(date -u +%F); ranks $np; rounds $rounds"
+echo "machine: $(machine_line "$gphr"); ranks $np; rounds $rounds"
 for mode in $modes; do
   for round in $(seq 1 "$rounds"); do
     for nx in $grids; do

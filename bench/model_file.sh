@@ -24,10 +24,11 @@
 # usage: bash bench/model_file.sh CASE [BUILD_DIR]   (CASE: swe, nls-queries, swe-scaling, nls-file, nls-box, threads)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+. bench/machine.sh
 case=$1; build=${2:-build}
 gphr=$PWD/$build/packages/driver/gphr
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 OPENBLAS_NUM_THREADS=1
-echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores, $(free -g | awk '/Mem/ {print $2}') GB; $(date -u +%F); gphr $(git describe --always --dirty)"
+echo "machine: $(machine_line "$gphr")"
 json() { python3 -c "import json,sys; d=json.load(open('$1')); print(eval(sys.argv[1]))" "$2"; }
 csvcol() { python3 -c "import csv,sys; r=list(csv.DictReader(open('$1'))); print(' '.join(x['$2'] for x in r))"; }
 min() { python3 -c "import sys; print(min(float(x) for x in sys.argv[1:]))" "$@"; }

@@ -24,11 +24,12 @@
 #        CASES="route:ranks ..." runs only those route cases, e.g. CASES="stacked:1 stacked:2")
 set -euo pipefail
 cd "$(dirname "$0")/.."
+. bench/machine.sh
 part=${1:-all}; build=${2:-build}
 gphr=$build/packages/driver/gphr
 out=bench-out/pod_routes; mkdir -p "$out"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=1
-echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores, $(free -g | awk '/Mem/{print $2}') GiB; $(date -u +%F); load $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "machine: $(machine_line "$gphr"); load $(cut -d' ' -f1-3 /proc/loadavg)"
 
 config() {  # config BODY_LINES...: the paper's NLS set-up (the training of bench/hyper_paper.sh) plus the lines
   sed -e "s|^  integrator:.*|  integrator: {scheme: avf, jacobianLag: true}|" bench/configs/nls_paper.yaml

@@ -12,11 +12,12 @@
 # usage: bash bench/rom_paper.sh CASE [RANKS] [BUILD_DIR] [SNAPSHOT_EVERY]   (KS="50" to choose the k values)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+. bench/machine.sh
 case=$1; np=${2:-1}; build=${3:-build}; every=${4:-10}
 gphr=$build/packages/driver/gphr
 out=bench-out/rom_${case}_np$np; mkdir -p "$out"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=1
-echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores; $(date -u +%F); ranks $np; snapshotEvery $every"
+echo "machine: $(machine_line "$gphr"); ranks $np; snapshotEvery $every"
 case $case in
   nls)     base=bench/configs/nls_paper.yaml; integ='{scheme: avf}'; train="{points: [11], snapshotEvery: $every}"; ks="50 100 200" ;;
   swe-avf) base=bench/configs/swe_paper.yaml; integ='{scheme: avf}'; train="{points: [5, 5], snapshotEvery: $every}"; ks="40 80" ;;

@@ -29,6 +29,7 @@
 # usage: [RANKS="1 2 4 8"] [SIZE=small] bash bench/scaling.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
+. bench/machine.sh
 RANKS=${RANKS:-"1 2 4 8"}; SIZE=${SIZE:-issue}; CASES=${CASES:-"nls swe fom query"}
 G=${G:-$PWD/build/packages/driver/gphr}; MPIRUN=${MPIRUN:-mpirun}; BIND=${BIND:-none}
 case $SIZE in issue|small) ;; *) echo "SIZE=$SIZE; allowed: issue, small" >&2; exit 2 ;; esac
@@ -42,11 +43,7 @@ export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
 case ${CRITICAL:-0} in 1) export GPHR_CRITICAL_PATH=1 ;; 0) unset GPHR_CRITICAL_PATH ;;
   *) echo "CRITICAL=$CRITICAL; allowed: 0, 1" >&2; exit 2 ;; esac
 
-describe=$(git describe --always --dirty 2>/dev/null || echo "not a git checkout")
-# physical cores and hardware threads: ranks on the two threads of one core share its FPU and caches
-topology=$(lscpu 2>/dev/null | awk -F: '/^Thread\(s\) per core/ {t = $2} /^Core\(s\) per socket/ {c = $2}
-  /^Socket\(s\)/ {s = $2} END {gsub(/ /, "", t); gsub(/ /, "", c); gsub(/ /, "", s); if (c) printf "%d core(s) x %d thread(s)", c * s, t}')
-echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $cores cores (${topology:-topology unknown}), $(free -m | awk '/Mem/ {printf "%.1f", $2 / 1024}') GiB; $(date -u '+%F %H:%M UTC'); gphr $describe; SIZE=$SIZE, RANKS=\"$RANKS\", mpirun --bind-to $BIND"
+echo "machine: $(machine_line "$G"); SIZE=$SIZE, RANKS=\"$RANKS\", mpirun --bind-to $BIND"
 for p in $RANKS; do
   [ "$p" -gt "$cores" ] && echo "note: $p ranks on $cores cores run oversubscribed: wall seconds include waiting for a core; compare compute seconds"
 done
