@@ -91,10 +91,10 @@ void runGpDeim(const RunContext& ctx, const FomResult& fom, RomStages& st, const
         .set(Metric::DeimWeightMin, *std::min_element(w.weights.begin(), w.weights.end()))
         .set(Metric::DeimWeightMax, *std::max_element(w.weights.begin(), w.weights.end()))
         .set(Metric::DeimBasisCached, db.cached)
-        .set(Metric::DeimPodStepsTsqr, static_cast<long>(db.basis.tsqrSteps))  // 0 when cached or randomized
-        .set(Metric::DeimPodStepsStacked, static_cast<long>(db.basis.stackedSteps))
-        .set(Metric::DeimPodStepsReplicated, static_cast<long>(db.basis.replicatedSteps))
-        .set(Metric::DeimPodStepsTree, static_cast<long>(db.basis.treeSteps))
+        .set(Metric::DeimPodStepsTsqr, static_cast<long>(db.basis.podSteps.tsqr))  // 0 when cached or randomized
+        .set(Metric::DeimPodStepsStacked, static_cast<long>(db.basis.podSteps.stacked))
+        .set(Metric::DeimPodStepsReplicated, static_cast<long>(db.basis.podSteps.replicated))
+        .set(Metric::DeimPodStepsTree, static_cast<long>(db.basis.podSteps.tree))
         .set(Metric::TDeimBasisS, db.seconds)
         .set(Metric::TDeimPairS, tPair)
         .set(Metric::TOfflineS, st.training.seconds + st.basisSeconds + db.seconds + tPair)

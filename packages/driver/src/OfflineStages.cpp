@@ -77,7 +77,7 @@ RomStages runOfflineStages(const RunContext& ctx) {
     std::fprintf(stderr, "[gphr] reduce: %s basis, 2k = %d, energy captured %.10f%s, %.1f s (%.1f s CPU; POD steps: "
                  "%d tsqr, %d stacked, %d tree, %d replicated)\n", st.basis.method.c_str(), 2 * st.basis.k,
                  st.basis.energyCaptured, st.basisCached ? " (cached)" : "", st.basisSeconds, st.basisCpuSeconds,
-                 st.basis.tsqrSteps, st.basis.stackedSteps, st.basis.treeSteps, st.basis.replicatedSteps);
+                 st.basis.podSteps.tsqr, st.basis.podSteps.stacked, st.basis.podSteps.tree, st.basis.podSteps.replicated);
   return st;
 }
 
@@ -94,10 +94,10 @@ void setBasisKeys(const RunContext& ctx, const RomStages& st, RunMetrics& run) {
       .set(Metric::TBasisS, st.basisSeconds)
       .set(Metric::TBasisCpuS, st.basisCpuSeconds)
       .set(Metric::PodRoute, ctx.config.sublist("reduction").get<std::string>("podRoute"))
-      .set(Metric::PodStepsTsqr, static_cast<long>(st.basis.tsqrSteps))
-      .set(Metric::PodStepsReplicated, static_cast<long>(st.basis.replicatedSteps))
-      .set(Metric::PodStepsStacked, static_cast<long>(st.basis.stackedSteps))
-      .set(Metric::PodStepsTree, static_cast<long>(st.basis.treeSteps));
+      .set(Metric::PodStepsTsqr, static_cast<long>(st.basis.podSteps.tsqr))
+      .set(Metric::PodStepsReplicated, static_cast<long>(st.basis.podSteps.replicated))
+      .set(Metric::PodStepsStacked, static_cast<long>(st.basis.podSteps.stacked))
+      .set(Metric::PodStepsTree, static_cast<long>(st.basis.podSteps.tree));
 }
 
 }  // namespace gphr

@@ -253,8 +253,7 @@ DeimChunkModes statisticsOf(const StreamingPod& pod, long snapshots) {
   out.rank = pod.rank();
   out.energy = pod.totalEnergy();
   out.snapshots = snapshots;
-  out.tsqrSteps = pod.tsqrSteps(), out.stackedSteps = pod.stackedSteps(), out.replicatedSteps = pod.replicatedSteps();
-  out.treeSteps = pod.treeSteps();
+  out.podSteps = pod.steps();
   return out;
 }
 
@@ -267,15 +266,13 @@ DeimBasis basisOf(const StreamingPod& pod, const DeimChunkModes& stats) {
   out.snapshots = stats.snapshots;
   out.energy = stats.energy;
   out.U = rcp(new MultiVector(pod.leftVectors(), Teuchos::Copy));
-  out.tsqrSteps = stats.tsqrSteps + pod.tsqrSteps(), out.stackedSteps = stats.stackedSteps + pod.stackedSteps();
-  out.replicatedSteps = stats.replicatedSteps + pod.replicatedSteps(), out.treeSteps = stats.treeSteps + pod.treeSteps();
+  (out.podSteps = stats.podSteps) += pod.steps();
   return out;
 }
 
 void addStatistics(DeimChunkModes& sum, const DeimChunkModes& c) {
   sum.energy += c.energy, sum.snapshots += c.snapshots;
-  sum.tsqrSteps += c.tsqrSteps, sum.stackedSteps += c.stackedSteps;
-  sum.replicatedSteps += c.replicatedSteps, sum.treeSteps += c.treeSteps;
+  sum.podSteps += c.podSteps;
 }
 
 }  // namespace

@@ -406,7 +406,7 @@ TEST(GpDeim, RandomizedQrProjectionResolvesBelowTheGramFloor) {
   EXPECT_GT(exact.singularValues[gram.singularValues.size()], 1e-10 * s1);
 }
 
-int podSteps(const DeimBasis& b) { return b.tsqrSteps + b.stackedSteps + b.replicatedSteps + b.treeSteps; }
+int podSteps(const DeimBasis& b) { return b.podSteps.total(); }
 
 // M_J's SVD for the hierarchical-POD tests: maxRank = d = 64 and all snapshots in one chunk.
 DeimBasis svdOfSnapshots(const TrainedBasis& t, DeimBasisOptions& opt) {

@@ -48,16 +48,15 @@ void writeDeimBasis(const ArtifactsCache& cache, Hdf5File& f, const std::string&
 }
 
 // Per chunk, what the root needs besides its modes: rank, energy, snapshots, steps by route.
-constexpr int kChunkFields = 7;
+constexpr int kChunkFields = 3 + PodSteps::kFields;
 void putStatistics(const DeimChunkModes& c, double* out) {
-  const double f[kChunkFields] = {double(c.rank), c.energy, double(c.snapshots), double(c.tsqrSteps),
-                                  double(c.stackedSteps), double(c.replicatedSteps), double(c.treeSteps)};
-  std::copy_n(f, kChunkFields, out);
+  out[0] = c.rank, out[1] = c.energy, out[2] = double(c.snapshots);
+  c.podSteps.put(out + 3);
 }
 DeimChunkModes getStatistics(const double* f) {
   DeimChunkModes c;
-  c.rank = int(f[0]), c.energy = f[1], c.snapshots = long(f[2]), c.tsqrSteps = int(f[3]);
-  c.stackedSteps = int(f[4]), c.replicatedSteps = int(f[5]), c.treeSteps = int(f[6]);
+  c.rank = int(f[0]), c.energy = f[1], c.snapshots = long(f[2]);
+  c.podSteps = PodSteps::get(f + 3);
   return c;
 }
 
@@ -103,7 +102,10 @@ DeimBasis deimBasisInGroups(const Scene& scene, const TrainingResult& training, 
   const DeimChunks chunks = deimChunks(training.snapshots, opt, static_cast<int>(A.getNumVectors()), maxRank);
   const int count = chunks.count(), G = groups.count();
   DeimRootPod root(rowMap, opt, maxRank);
-  PodCheckpoint checkpoint(cache, name, detail::concat(key, ", chunks of ", chunks.perChunk, " snapshots"));
+  // the key names the statistics' layout too: a checkpoint with another order of the step counts is not taken
+  PodCheckpoint checkpoint(cache, name,
+                           detail::concat(key, ", chunks of ", chunks.perChunk,
+                                          " snapshots, steps by route tsqr/replicated/stacked/tree"));
   const int resumed = restoreRoot(checkpoint, root, rowMap, count, before);
   if (resumed > 0 && groups.world()->getRank() == 0)
     std::fprintf(stderr, "[gphr] deim basis: chunks 1-%d of %d reused from file\n", resumed, count);

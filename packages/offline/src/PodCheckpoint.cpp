@@ -29,6 +29,8 @@ bool PodCheckpoint::exists() const {
 }
 
 namespace {
+constexpr size_t kFigures = 2 + PodSteps::kFields;  // the "pod" attribute: energy, columns, steps by route
+
 // Whether vectors on `map` go to the file as states of `space` (else as columns of a contiguous map).
 bool asStates(const Map& map, const PhaseSpace* space) {
   if (map.isContiguous()) return false;
@@ -53,9 +55,10 @@ bool PodCheckpoint::write(const StreamingPod::State& pod, const PodProgress& at)
   else f->writeColumns(name, *pod.U);
   ArtifactsCache::stampFingerprint(*f, name, columnFingerprint(*pod.U));
   f->setAttribute(name, "singularValues", pod.sigma);
-  f->setAttribute(name, "pod", std::vector<double>{pod.energy, double(pod.columns), double(pod.tsqrSteps),
-                                                   double(pod.replicatedSteps), double(pod.stackedSteps),
-                                                   double(pod.treeSteps)});
+  std::vector<double> figures{pod.energy, double(pod.columns)};  // then the steps by route
+  figures.resize(kFigures);
+  pod.steps.put(figures.data() + 2);
+  f->setAttribute(name, "pod", figures);
   f->setAttribute(name, "progress", std::vector<double>{double(at.progress)});
   f->setAttribute(name, "extra", at.extra);
   cache_->seal(*f, name, key_);
@@ -80,15 +83,15 @@ PodProgress PodCheckpoint::read(const RCP<const Map>& map, size_t extraSize, int
     const std::string name = slot(best);
     const auto figures = f.doubleAttribute(name, "pod");
     at.extra = f.doubleAttribute(name, "extra");
-    GPHR_REQUIRE(figures.size() == 6 && at.extra.size() == extraSize, InputError, name, " holds ", figures.size(),
-                 " POD and ", at.extra.size(), " stage figures (allowed: 6 and ", extraSize, ")");
+    GPHR_REQUIRE(figures.size() == kFigures && at.extra.size() == extraSize, InputError, name, " holds ",
+                 figures.size(), " POD and ", at.extra.size(), " stage figures (allowed: ", kFigures, " and ",
+                 extraSize, ")");
     pod.U = asStates(*map, space_) ? f.readStates(name, *space_) : f.readColumns(name, map);
     const std::string problem = ArtifactsCache::fingerprintProblem(f, name, *pod.U);
     GPHR_REQUIRE(problem.empty(), InputError, name, " ", problem);  // a changed value: computed afresh (below)
     pod.sigma = f.doubleAttribute(name, "singularValues");
     pod.energy = figures[0], pod.columns = static_cast<long>(figures[1]);
-    pod.tsqrSteps = int(figures[2]), pod.replicatedSteps = int(figures[3]), pod.stackedSteps = int(figures[4]);
-    pod.treeSteps = int(figures[5]);
+    pod.steps = PodSteps::get(figures.data() + 2);
     next_ = 1 - best;  // keep the one restored until a newer one is complete
     return at;
   } catch (const std::exception& e) {  // a checkpoint saves time, never stops a run: computed afresh

@@ -159,7 +159,7 @@ TEST(PodCheckpoint, TakesTheFurthestCompleteSlotExactly) {
     U->randomize();
     st.U = U;
     st.sigma = {3.0 + progress, 2.0, 1.0 / 3.0};
-    st.energy = 10.0 * progress, st.columns = 8 * progress, st.stackedSteps = progress;
+    st.energy = 10.0 * progress, st.columns = 8 * progress, st.steps.stacked = progress;
     return st;
   };
   const StreamingPod::State one = stateAt(1), two = stateAt(2);
@@ -173,7 +173,7 @@ TEST(PodCheckpoint, TakesTheFurthestCompleteSlotExactly) {
   EXPECT_EQ(back.sigma, two.sigma);
   EXPECT_EQ(back.energy, two.energy);
   EXPECT_EQ(back.columns, two.columns);
-  EXPECT_EQ(back.stackedSteps, 2);
+  EXPECT_EQ(back.steps.stacked, 2);
   EXPECT_EQ(maxDifference(*back.U, *two.U), 0.0);
   // progress 2 is not below a limit of 2 (a result of 2 blocks is complete, not resumed)
   EXPECT_EQ(PodCheckpoint(&cache, "/stage/x", "key 1").read(map, 1, 2, back).progress, 1);

@@ -83,7 +83,7 @@ StreamingPod::State StreamingPod::state() const {
   State s;
   s.U = U_;  // shared, not copied: every step makes a new U_ and never writes into the one before
   s.sigma = sigma_, s.energy = energy_, s.columns = columns_;
-  s.tsqrSteps = tsqrSteps_, s.replicatedSteps = replicatedSteps_, s.stackedSteps = stackedSteps_, s.treeSteps = treeSteps_;
+  s.steps = steps_;
   return s;
 }
 
@@ -101,7 +101,7 @@ void StreamingPod::restore(const State& s) {
                  " (allowed: finite, positive, not above the one before)");
   U_ = rcp(new MultiVector(*s.U, Teuchos::Copy));
   sigma_ = s.sigma, energy_ = s.energy, columns_ = s.columns;
-  tsqrSteps_ = s.tsqrSteps, replicatedSteps_ = s.replicatedSteps, stackedSteps_ = s.stackedSteps, treeSteps_ = s.treeSteps;
+  steps_ = s.steps;
 }
 
 namespace {
@@ -279,10 +279,10 @@ void StreamingPod::step(const MultiVector& X, size_t c0, size_t c1) {
         for (size_t i = 0; i < rows; ++i) y[i + rows * (r + j)] = x(i, c0 + j);
     }
     if (route == PodRoute::Stacked) {
-      ++stackedSteps_;
+      ++steps_.stacked;
       return stackedStep(std::move(y), nc);
     }
-    ++treeSteps_;
+    ++steps_.tree;
     return treeStep(std::move(y), nc);
   }
   MultiVector Y(map_, nc);
@@ -296,7 +296,7 @@ void StreamingPod::step(const MultiVector& X, size_t c0, size_t c1) {
     }
   }
   if (route == PodRoute::Replicated) {
-    ++replicatedSteps_;
+    ++steps_.replicated;
     return replicatedStep(Y);
   }
   // podRoute 'tsqr'. cap_ and nc are the same on every rank: all ranks refuse together.
@@ -307,7 +307,7 @@ void StreamingPod::step(const MultiVector& X, size_t c0, size_t c1) {
                " rows; allowed: podRoute 'auto', 'stacked', 'tree' or 'replicated', ",
                d >= nc ? detail::concat("at most ", d / nc, " rank(s) with the rows split evenly, ") : std::string(),
                "or fewer columns per step (a smaller maxRank or block size)");
-  ++tsqrSteps_;
+  ++steps_.tsqr;
   Teuchos::SerialDenseMatrix<int, double> R(nc, nc);
   MultiVector Q(map_, nc);
   Tpetra::TsqrAdaptor<MultiVector> tsqr;

@@ -191,10 +191,7 @@ ReducedBasis computeSymplecticBasis(const SnapshotSet& snapshots, const PhaseSpa
   ReducedBasis out;
   out.method = opt.method;
   out.singularValues = sigma;
-  out.tsqrSteps = pod.tsqrSteps();
-  out.replicatedSteps = pod.replicatedSteps();
-  out.stackedSteps = pod.stackedSteps();
-  out.treeSteps = pod.treeSteps();
+  out.podSteps = pod.steps();
   int k = opt.k;
   if (k <= 0) {  // smallest k whose discarded energy fraction is <= tolerance
     double captured = 0.0;

@@ -171,12 +171,12 @@ TEST_P(Bases, SameOnEitherPodRoute) {
   const ReducedBasis repl = computeSymplecticBasis(snaps, ps, opt);
   opt.podRoute = "stacked";
   const ReducedBasis stacked = computeSymplecticBasis(snaps, ps, opt);
-  EXPECT_GT(tsqr.tsqrSteps, 0);
-  EXPECT_EQ(tsqr.replicatedSteps + tsqr.stackedSteps, 0);
-  EXPECT_EQ(repl.tsqrSteps + repl.stackedSteps, 0);
-  EXPECT_EQ(repl.replicatedSteps, tsqr.tsqrSteps);
-  EXPECT_EQ(stacked.tsqrSteps + stacked.replicatedSteps, 0);
-  EXPECT_EQ(stacked.stackedSteps, tsqr.tsqrSteps);
+  EXPECT_GT(tsqr.podSteps.tsqr, 0);
+  EXPECT_EQ(tsqr.podSteps.replicated + tsqr.podSteps.stacked, 0);
+  EXPECT_EQ(repl.podSteps.tsqr + repl.podSteps.stacked, 0);
+  EXPECT_EQ(repl.podSteps.replicated, tsqr.podSteps.tsqr);
+  EXPECT_EQ(stacked.podSteps.tsqr + stacked.podSteps.replicated, 0);
+  EXPECT_EQ(stacked.podSteps.stacked, tsqr.podSteps.tsqr);
   const auto b = test::gatherColumns(*repl.A);
   for (const ReducedBasis* other : {&tsqr, &stacked}) {
     const auto a = test::gatherColumns(*other->A);

@@ -128,10 +128,10 @@ TEST_F(Routes, EachRouteGivesTheExactSvd) {
                        : route == PodRoute::Tree    ? "tree"
                                                     : "replicated";
     SCOPED_TRACE(name);
-    EXPECT_EQ(pod.tsqrSteps(), route == PodRoute::Tsqr ? 5 : 0);
-    EXPECT_EQ(pod.stackedSteps(), route == PodRoute::Stacked ? 5 : 0);
-    EXPECT_EQ(pod.treeSteps(), route == PodRoute::Tree ? 5 : 0);
-    EXPECT_EQ(pod.replicatedSteps(), route == PodRoute::Replicated ? 5 : 0);
+    EXPECT_EQ(pod.steps().tsqr, route == PodRoute::Tsqr ? 5 : 0);
+    EXPECT_EQ(pod.steps().stacked, route == PodRoute::Stacked ? 5 : 0);
+    EXPECT_EQ(pod.steps().tree, route == PodRoute::Tree ? 5 : 0);
+    EXPECT_EQ(pod.steps().replicated, route == PodRoute::Replicated ? 5 : 0);
     ASSERT_EQ(pod.rank(), 30);
     EXPECT_LE(maxSigmaDiff(pod.singularValues(), s), 1e-12);
     const double dist = test::subspaceDistance(pod.leftVectors(), F);
@@ -154,10 +154,10 @@ TEST_F(Routes, AllRoutesAgreeUnderTruncation) {
   const StreamingPod repl = podOf(X, 16, 8, PodRoute::Replicated);
   const StreamingPod stacked = podOf(X, 16, 8, PodRoute::Stacked);
   const StreamingPod tree = podOf(X, 16, 8, PodRoute::Tree);
-  EXPECT_EQ(tree.treeSteps(), 12);
-  EXPECT_EQ(tsqr.tsqrSteps(), 12);
-  EXPECT_EQ(repl.replicatedSteps(), 12);
-  EXPECT_EQ(stacked.stackedSteps(), 12);
+  EXPECT_EQ(tree.steps().tree, 12);
+  EXPECT_EQ(tsqr.steps().tsqr, 12);
+  EXPECT_EQ(repl.steps().replicated, 12);
+  EXPECT_EQ(stacked.steps().stacked, 12);
   ASSERT_EQ(tsqr.rank(), 16);
   ASSERT_EQ(repl.rank(), 16);
   ASSERT_EQ(stacked.rank(), 16);
@@ -229,7 +229,7 @@ TEST_F(Routes, RestoredStateGoesOnBitForBit) {
     EXPECT_EQ(resumed.singularValues(), whole.singularValues());
     EXPECT_EQ(resumed.totalEnergy(), whole.totalEnergy());
     EXPECT_EQ(resumed.columnsAdded(), 96);
-    EXPECT_EQ(resumed.stackedSteps() + resumed.treeSteps() + resumed.replicatedSteps(), 12);
+    EXPECT_EQ(resumed.steps().stacked + resumed.steps().tree + resumed.steps().replicated, 12);
     const auto a = whole.leftVectors().getLocalViewHost(Tpetra::Access::ReadOnly);
     const auto b = resumed.leftVectors().getLocalViewHost(Tpetra::Access::ReadOnly);
     long differ = 0;
@@ -287,9 +287,9 @@ TEST_F(TooFewRows, AutoTakesTheStackedOrTreeRouteAndAgreesWithReplicated) {
   const StreamingPod autoPod = podOf(X_, 8, 6, PodRoute::Auto);
   const StreamingPod repl = podOf(X_, 8, 6, PodRoute::Replicated);
   const bool tree = test::comm()->getSize() >= kTreeRouteFromRanks;
-  EXPECT_EQ(autoPod.stackedSteps(), tree ? 0 : 2);
-  EXPECT_EQ(autoPod.treeSteps(), tree ? 2 : 0);
-  EXPECT_EQ(autoPod.tsqrSteps() + autoPod.replicatedSteps(), 0);
+  EXPECT_EQ(autoPod.steps().stacked, tree ? 0 : 2);
+  EXPECT_EQ(autoPod.steps().tree, tree ? 2 : 0);
+  EXPECT_EQ(autoPod.steps().tsqr + autoPod.steps().replicated, 0);
   ASSERT_EQ(autoPod.rank(), 8);
   ASSERT_EQ(repl.rank(), 8);
   // 12 columns of rank 8 in two steps, maxRank 8: nothing truncated, the exact SVD on both.
@@ -315,7 +315,7 @@ TEST(StackedAndTreeRoutes, TakeRanksWithFewerRowsThanColumns) {
   for (PodRoute route : {PodRoute::Stacked, PodRoute::Tree}) {
     SCOPED_TRACE(route == PodRoute::Stacked ? "stacked" : "tree");
     const StreamingPod pod = podOf(X, 8, 6, route);
-    EXPECT_EQ(pod.stackedSteps() + pod.treeSteps(), 2);
+    EXPECT_EQ(pod.steps().stacked + pod.steps().tree, 2);
     ASSERT_EQ(pod.rank(), 8);
     EXPECT_LE(maxSigmaDiff(pod.singularValues(), s), 1e-12);
     EXPECT_LE(test::subspaceDistance(pod.leftVectors(), leadingDct(map, 8)), 1e-10);
@@ -354,7 +354,7 @@ TEST(TreeRoute, MatchesTheDenseSvdOnAGradedSpectrum) {
   for (int j = 0; j < 30; ++j) s[j] = std::pow(10.0, -14.0 * j / 29.0);
   const MultiVector X = knownSvdData(map, 60, s);
   const StreamingPod tree = podOf(X, 30, 12, PodRoute::Tree, 0.0);
-  EXPECT_EQ(tree.treeSteps(), 5);
+  EXPECT_EQ(tree.steps().tree, 5);
   ASSERT_EQ(tree.rank(), 30);
   EXPECT_LE(test::orthonormalityError(tree.leftVectors()), kOrthTol);
   const std::vector<double> Xall = test::gatherColumns(X), Utree = test::gatherColumns(tree.leftVectors());

@@ -54,10 +54,7 @@ struct DeimBasis {
   std::vector<double> singularValues;  ///< of M_J (the leading ones kept)
   long snapshots = 0;                  ///< reduced-Jacobian snapshots (states) used
   double energy = 0.0;                 ///< ||M_J||_F^2
-  /// svd exact: the streaming POD's steps by route (hyper.podRoute); all 0 for randomized
-  /// @{
-  int tsqrSteps = 0, stackedSteps = 0, replicatedSteps = 0, treeSteps = 0;
-  /// @}
+  PodSteps podSteps;  ///< svd exact: the streaming POD's steps by route (hyper.podRoute); all 0 for randomized
 };
 
 /// The exact route's chunks. Its POD is hierarchical (HAPOD: Himpe, Leibner & Rave, SIAM J. Sci.
@@ -89,10 +86,7 @@ struct DeimChunkModes {
   int rank = 0;            ///< triplets kept
   double energy = 0.0;     ///< ||the chunk's snapshots||_F^2
   long snapshots = 0;      ///< snapshots POD'd
-  /// POD steps by route
-  /// @{
-  int tsqrSteps = 0, stackedSteps = 0, replicatedSteps = 0, treeSteps = 0;
-  /// @}
+  PodSteps podSteps;       ///< POD steps by route
 };
 /// The POD of the reduced-Jacobian snapshots in `range` (the exact route, maxRank triplets); with
 /// `cache`, shared by the calls for consecutive chunks, a block cut by two chunks is read once.

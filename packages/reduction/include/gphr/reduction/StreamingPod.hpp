@@ -50,6 +50,20 @@ PodRoute stepRoute(PodRoute route, int ranks);
 /// row across all columns, a page apart in a tall block, and took 3.6 % of the SWE 256^2 build.
 std::vector<double> columnSquaredNorms(const MultiVector& X);
 
+/// Steps a streaming POD took, by route: one type for every stage's statistics, metrics and
+/// checkpoints, so that a count is summed, stored and read in one place.
+struct PodSteps {
+  int tsqr = 0, replicated = 0, stacked = 0, tree = 0;
+  static constexpr int kFields = 4;  ///< numbers in put/get: tsqr, replicated, stacked, tree
+  int total() const { return tsqr + replicated + stacked + tree; }
+  PodSteps& operator+=(const PodSteps& o) {
+    tsqr += o.tsqr, replicated += o.replicated, stacked += o.stacked, tree += o.tree;
+    return *this;
+  }
+  void put(double* out) const { out[0] = tsqr, out[1] = replicated, out[2] = stacked, out[3] = tree; }
+  static PodSteps get(const double* in) { return {int(in[0]), int(in[1]), int(in[2]), int(in[3])}; }
+};
+
 /// A streaming POD (incremental thin SVD) of a tall distributed matrix given block by block.
 class StreamingPod {
  public:
@@ -67,10 +81,7 @@ class StreamingPod {
     std::vector<double> sigma;  ///< singular values, descending
     double energy = 0.0;        ///< ||all columns added||_F^2
     long columns = 0;           ///< columns added
-    /// steps taken by each route
-    /// @{
-    int tsqrSteps = 0, replicatedSteps = 0, stackedSteps = 0, treeSteps = 0;
-    /// @}
+    PodSteps steps;             ///< steps taken by each route
   };
   State state() const;  ///< This POD's state (U shared: later steps replace the POD's U, never overwrite it).
   /// Goes on from `s` (a state of a POD of the same map and maxRank): the next add gives what the
@@ -84,10 +95,7 @@ class StreamingPod {
   double totalEnergy() const { return energy_; }  ///< ||all columns added||_F^2
   long columnsAdded() const { return columns_; }  ///< Columns added so far.
   int blockColumns() const { return blockColumns_; }  ///< Columns per step.
-  int tsqrSteps() const { return tsqrSteps_; }              ///< steps taken by each route so far
-  int replicatedSteps() const { return replicatedSteps_; }  ///< Steps taken by the replicated route.
-  int stackedSteps() const { return stackedSteps_; }  ///< Steps taken by the stacked route.
-  int treeSteps() const { return treeSteps_; }        ///< Steps taken by the tree route.
+  const PodSteps& steps() const { return steps_; }  ///< Steps taken by each route so far.
 
  private:
   void step(const MultiVector& X, size_t c0, size_t c1);
@@ -101,7 +109,7 @@ class StreamingPod {
   double rankTolerance_;
   PodRoute route_;
   int cap_;
-  int tsqrSteps_ = 0, replicatedSteps_ = 0, stackedSteps_ = 0, treeSteps_ = 0;
+  PodSteps steps_;
   RCP<MultiVector> U_;
   std::vector<double> work_;  // the leaf's array, kept from step to step (see step())
   std::vector<double> sigma_;

@@ -29,7 +29,7 @@ struct BasisOptions {
   double energyTolerance = 1e-6;   ///< discarded fraction of the snapshot energy (when k = 0)
   int blockColumns = 128;          ///< snapshot columns per incremental step
   int maxRank = 0;                 ///< complex triplets kept between steps; 0: 2k + 32 (k given) or 512; at most n
-  std::string podRoute = "auto";   ///< auto | tsqr | replicated: the StreamingPod's step route
+  std::string podRoute = "auto";   ///< auto | tsqr | stacked | tree | replicated: the StreamingPod's step route
 };
 
 /// A symplectic, orthonormal reduced basis A with its singular values and POD statistics.
@@ -39,10 +39,7 @@ struct ReducedBasis {
   double energyCaptured = 0.0;         ///< sum_{j<=k} sigma_j^2 / ||C||_F^2
   int k = 0;  ///< k, the basis half-size (A has 2k columns).
   std::string method;  ///< Construction used (psd | cotangent).
-  /// streaming POD steps taken by each route
-  /// @{
-  int tsqrSteps = 0, replicatedSteps = 0, stackedSteps = 0, treeSteps = 0;
-  /// @}
+  PodSteps podSteps;   ///< streaming POD steps taken by each route
 };
 
 /// Where a basis computation stood after whole snapshot blocks (a checkpoint the caller keeps):
