@@ -106,96 +106,133 @@ Projection qrProjection(int cols, int r, int maxRank, Each&& each) {
 // Each pass regenerates the snapshots (cheap: one kernel evaluation each); nothing of size
 // d x (2k states) is held. A power pass and the Gram matrix each square sigma: values below ~1e-7
 // sigma_1 are then not resolved, far below the DEIM sizes worth using for a training basis.
-DeimBasis randomizedDeimBasis(const SystemSet& systems,
-                              const SnapshotSet& states, const MultiVector& A,
-                              const DeimBasisOptions& opt, int maxRank) {
-  const RCP<const Map> rowMap = systems[0]->nonlinearTerm().rowMap();
-  const auto& comm = *rowMap->getComm();
-  const int r = static_cast<int>(A.getNumVectors());
-  const LO nl = static_cast<LO>(rowMap->getNodeNumElements());
-  const GO d = static_cast<GO>(rowMap->getGlobalNumElements());
-  const int ell = static_cast<int>(std::min<GO>(d, maxRank + opt.oversampling));
-  Teuchos::BLAS<int, double> blas;
-  std::vector<Scalar> jac(static_cast<size_t>(nl) * r), omega(static_cast<size_t>(r) * ell),
-      ct(static_cast<size_t>(r) * ell), ctSum(ct.size());
-  MultiVector Y(rowMap, ell);
-  auto yData = [&] { return Y.getLocalViewHost(Tpetra::Access::ReadWrite).data(); };  // column-major, stride nl
-  GPHR_REQUIRE(Y.isConstantStride() && (nl == 0 || Y.getStride() == static_cast<size_t>(nl)), InputError,
-               "DEIM basis: unexpected MultiVector layout");
+class RangeFinder {
+ public:
+  RangeFinder(const SystemSet& systems, const SnapshotSet& states, const MultiVector& A, const DeimBasisOptions& opt,
+              int maxRank)
+      : systems_(systems), states_(states), A_(A), opt_(opt), rowMap_(systems[0]->nonlinearTerm().rowMap()),
+        r_(static_cast<int>(A.getNumVectors())), nl_(static_cast<LO>(rowMap_->getNodeNumElements())),
+        ell_(static_cast<int>(std::min<GO>(rowMap_->getGlobalNumElements(), maxRank + opt.oversampling))),
+        jac_(static_cast<size_t>(nl_) * r_), ct_(static_cast<size_t>(r_) * ell_), ctSum_(ct_.size()), Y_(rowMap_, ell_) {
+    GPHR_REQUIRE(Y_.isConstantStride() && (nl_ == 0 || Y_.getStride() == static_cast<size_t>(nl_)), InputError,
+                 "DEIM basis: unexpected MultiVector layout");
+  }
+
   // Pass 0: Y = sum_s J_s Omega_s.
   // Omega_s has random signs (Rademacher) rather than Gaussian entries: the range finder's
   // guarantees hold for both (HMT11 Sec. 4.6; Martinsson & Tropp 2020, Sec. 9) and the GEMM is the
   // same, but 64 signs come from one 64-bit draw: at the paper's NLS size drawing Gaussian
   // Omega_s (2k x ell = 48,000 numbers per snapshot, 1661 snapshots) took 2.2 ms a snapshot,
   // ~3.6 s of the DEIM offline time on every rank.
-  long used = forEachJacobianSnapshot(systems, states, A, opt.snapshotEvery, jac, [&](const auto& J, long s) {
-    std::mt19937_64 rng(opt.seed + 0x9E3779B97F4A7C15ull * static_cast<unsigned long long>(s + 1));
-    for (size_t i = 0; i < omega.size(); i += 64) {
-      const unsigned long long bits = rng();
-      for (size_t b = 0; b < 64 && i + b < omega.size(); ++b) omega[i + b] = (bits >> b) & 1ull ? 1.0 : -1.0;
-    }
-    if (nl > 0) blas.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, nl, ell, r, 1.0, J.data(), r, omega.data(), r, 1.0, yData(), nl);
-  });
-  // Q = orth(Y) (StreamingPod: a Householder QR of each rank's rows, the R factors reduced, one small SVD).
-  auto orth = [&] {
-    StreamingPod q(rowMap, ell, ell, -1.0);
-    q.add(Y);
-    requireNonzero(used, q.rank());
-    return rcp(new MultiVector(q.leftVectors(), Teuchos::Copy));
-  };
-  // C_s = J_s^T Q (r x ell), summed over the ranks.
-  auto project = [&](const MultiVector& Q, const std::vector<Scalar>& J) {
-    const int cols = static_cast<int>(Q.getNumVectors());
-    std::fill(ct.begin(), ct.end(), 0.0);
-    auto qv = Q.getLocalViewHost(Tpetra::Access::ReadOnly);
-    if (nl > 0) blas.GEMM(Teuchos::NO_TRANS, Teuchos::NO_TRANS, r, cols, nl, 1.0, J.data(), r, qv.data(), nl, 0.0, ct.data(), r);
-    Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, r * cols, ct.data(), ctSum.data());
-    return cols;
-  };
-  RCP<MultiVector> Q = orth();
-  for (int pass = 0; pass < opt.powerIterations; ++pass) {  // Y = M M^T Q
-    Y = MultiVector(rowMap, Q->getNumVectors());
-    forEachJacobianSnapshot(systems, states, A, opt.snapshotEvery, jac, [&](const auto& J, long) {
-      const int cols = project(*Q, J);
-      if (nl > 0) blas.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, nl, cols, r, 1.0, J.data(), r, ctSum.data(), r, 1.0, yData(), nl);
+  void sketch() {
+    std::vector<Scalar> omega(static_cast<size_t>(r_) * ell_);
+    used_ = forEachJacobianSnapshot(systems_, states_, A_, opt_.snapshotEvery, jac_, [&](const auto& J, long s) {
+      std::mt19937_64 rng(opt_.seed + 0x9E3779B97F4A7C15ull * static_cast<unsigned long long>(s + 1));
+      for (size_t i = 0; i < omega.size(); i += 64) {
+        const unsigned long long bits = rng();
+        for (size_t b = 0; b < 64 && i + b < omega.size(); ++b) omega[i + b] = (bits >> b) & 1ull ? 1.0 : -1.0;
+      }
+      if (nl_ > 0)
+        blas_.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, nl_, ell_, r_, 1.0, J.data(), r_, omega.data(), r_, 1.0, yData(), nl_);
     });
-    Q = orth();
   }
-  const int cols = static_cast<int>(Q->getNumVectors());
-  DeimBasis out;
-  double energy = 0.0;
-  auto addEnergy = [&](const std::vector<Scalar>& J) {
+
+  // Q = orth(Y) (StreamingPod: a Householder QR of each rank's rows, the R factors reduced, one small SVD).
+  RCP<MultiVector> orth() {
+    StreamingPod q(rowMap_, ell_, ell_, -1.0);
+    q.add(Y_);
+    requireNonzero(used_, q.rank());
+    return rcp(new MultiVector(q.leftVectors(), Teuchos::Copy));
+  }
+
+  // A power pass: Y = M M^T Q.
+  void powerPass(const MultiVector& Q) {
+    Y_ = MultiVector(rowMap_, Q.getNumVectors());
+    forEachJacobianSnapshot(systems_, states_, A_, opt_.snapshotEvery, jac_, [&](const auto& J, long) {
+      const int cols = project(Q, J);
+      if (nl_ > 0)
+        blas_.GEMM(Teuchos::TRANS, Teuchos::NO_TRANS, nl_, cols, r_, 1.0, J.data(), r_, ctSum_.data(), r_, 1.0, yData(), nl_);
+    });
+  }
+
+  // The last pass: C_s = J_s^T Q for every snapshot handed to the projection (and M_J's energy
+  // summed), then U = Q W.
+  DeimBasis basis(const MultiVector& Q, int maxRank) {
+    const int cols = static_cast<int>(Q.getNumVectors());
+    double energy = 0.0;
+    auto eachProjection = [&](auto&& use) {
+      forEachJacobianSnapshot(systems_, states_, A_, opt_.snapshotEvery, jac_, [&](const auto& J, long) {
+        project(Q, J);
+        use(ctSum_);
+        energy += squaredNorm(J);
+      });
+    };
+    const Projection p = opt_.gramProjection ? gramProjection(cols, r_, maxRank, eachProjection)
+                                             : qrProjection(cols, r_, maxRank, eachProjection);
+    const int keep = static_cast<int>(p.sigma.size());
+    requireNonzero(used_, keep);
+    auto local = rcp(new Map(cols, 0, rowMap_->getComm(), Tpetra::LocallyReplicated));
+    MultiVector Wk(local, keep);
+    {
+      auto w = Wk.getLocalViewHost(Tpetra::Access::OverwriteAll);
+      for (int c = 0; c < keep; ++c)
+        for (int a = 0; a < cols; ++a) w(a, c) = p.W[a + static_cast<size_t>(cols) * c];
+    }
+    DeimBasis out;
+    out.singularValues = p.sigma;
+    out.U = rcp(new MultiVector(rowMap_, keep));
+    out.U->multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, Q, Wk, 0.0);
+    out.snapshots = used_;
+    out.energy = energy;
+    return out;
+  }
+
+ private:
+  double* yData() { return Y_.getLocalViewHost(Tpetra::Access::ReadWrite).data(); }  // column-major, stride nl
+
+  // C_s = J_s^T Q (r x cols), summed over the ranks into ctSum_; returns cols.
+  int project(const MultiVector& Q, const std::vector<Scalar>& J) {
+    const int cols = static_cast<int>(Q.getNumVectors());
+    std::fill(ct_.begin(), ct_.end(), 0.0);
+    auto qv = Q.getLocalViewHost(Tpetra::Access::ReadOnly);
+    if (nl_ > 0)
+      blas_.GEMM(Teuchos::NO_TRANS, Teuchos::NO_TRANS, r_, cols, nl_, 1.0, J.data(), r_, qv.data(), nl_, 0.0, ct_.data(), r_);
+    Teuchos::reduceAll(*rowMap_->getComm(), Teuchos::REDUCE_SUM, r_ * cols, ct_.data(), ctSum_.data());
+    return cols;
+  }
+
+  // ||J_s||_F^2 summed over the ranks.
+  double squaredNorm(const std::vector<Scalar>& J) const {
     double local = 0.0, global = 0.0;
     for (double x : J) local += x * x;
-    Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, local, Teuchos::outArg(global));
-    energy += global;
-  };
-  // The last pass: C_s = J_s^T Q for every snapshot (and M_J's energy), handed to the projection.
-  auto eachProjection = [&](auto&& use) {
-    forEachJacobianSnapshot(systems, states, A, opt.snapshotEvery, jac, [&](const auto& J, long) {
-      project(*Q, J);
-      use(ctSum);
-      addEnergy(J);
-    });
-  };
-  const Projection p = opt.gramProjection ? gramProjection(cols, r, maxRank, eachProjection)
-                                          : qrProjection(cols, r, maxRank, eachProjection);
-  out.singularValues = p.sigma;
-  const std::vector<Scalar>& W = p.W;
-  const int keep = static_cast<int>(out.singularValues.size());
-  requireNonzero(used, keep);
-  auto local = rcp(new Map(cols, 0, rowMap->getComm(), Tpetra::LocallyReplicated));
-  MultiVector Wk(local, keep);
-  {
-    auto w = Wk.getLocalViewHost(Tpetra::Access::OverwriteAll);
-    for (int c = 0; c < keep; ++c)
-      for (int a = 0; a < cols; ++a) w(a, c) = W[a + static_cast<size_t>(cols) * c];
+    Teuchos::reduceAll(*rowMap_->getComm(), Teuchos::REDUCE_SUM, local, Teuchos::outArg(global));
+    return global;
   }
-  out.U = rcp(new MultiVector(rowMap, keep));
-  out.U->multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, *Q, Wk, 0.0);
-  out.snapshots = used;
-  out.energy = energy;
-  return out;
+
+  const SystemSet& systems_;
+  const SnapshotSet& states_;
+  const MultiVector& A_;
+  const DeimBasisOptions& opt_;
+  RCP<const Map> rowMap_;
+  int r_;
+  LO nl_;
+  int ell_;
+  Teuchos::BLAS<int, double> blas_;
+  std::vector<Scalar> jac_, ct_, ctSum_;
+  MultiVector Y_;
+  long used_ = 0;
+};
+
+DeimBasis randomizedDeimBasis(const SystemSet& systems, const SnapshotSet& states, const MultiVector& A,
+                              const DeimBasisOptions& opt, int maxRank) {
+  RangeFinder finder(systems, states, A, opt, maxRank);
+  finder.sketch();
+  RCP<MultiVector> Q = finder.orth();
+  for (int pass = 0; pass < opt.powerIterations; ++pass) {
+    finder.powerPass(*Q);
+    Q = finder.orth();
+  }
+  return finder.basis(*Q, maxRank);
 }
 
 }  // namespace

@@ -255,54 +255,49 @@ void StreamingPod::treeStep(std::vector<double> y, int nc) {
   setLeftVectors(leaf, tree.applyQ(std::move(W), keep), keep);
 }
 
-void StreamingPod::step(const MultiVector& X, size_t c0, size_t c1) {
-  const int r = rank(), b = static_cast<int>(c1 - c0), nc = r + b;
-  const PodRoute route = stepRoute(route_, map_->getComm()->getSize());
-  if (route == PodRoute::Stacked || route == PodRoute::Tree) {
-    // Y = [U diag(sigma), X(:, c0:c1)] straight into the column-major array the leaf QR factors in
-    // place: a MultiVector Y and its copy would be two more rows x nc arrays at the stage's peak.
-    // The array is the previous step's (every entry is written below): a fresh one per step paid
-    // its pages' faults and zeroing, 10 % of the SWE 256^2 DEIM basis on one rank (perf), more
-    // where ranks share a node's memory bandwidth.
-    const size_t rows = map_->getNodeNumElements();
-    std::vector<double> y = std::move(work_);
-    if (y.size() < rows * nc) {  // the rank still growing: a new array, nothing of the old copied
-      std::vector<double>().swap(y);
-      y.resize(rows * nc);
-    }
-    {
-      auto u = U_->getLocalViewHost(Tpetra::Access::ReadOnly);
-      auto x = X.getLocalViewHost(Tpetra::Access::ReadOnly);
-      for (int j = 0; j < r; ++j)
-        for (size_t i = 0; i < rows; ++i) y[i + rows * j] = sigma_[j] * u(i, j);
-      for (int j = 0; j < b; ++j)
-        for (size_t i = 0; i < rows; ++i) y[i + rows * (r + j)] = x(i, c0 + j);
-    }
-    if (route == PodRoute::Stacked) {
-      ++steps_.stacked;
-      return stackedStep(std::move(y), nc);
-    }
-    ++steps_.tree;
-    return treeStep(std::move(y), nc);
+// Y = [U diag(sigma), X(:, c0:c1)], this rank's rows, straight into the column-major array the
+// leaf QR factors in place: a MultiVector Y and its copy would be two more rows x nc arrays at the
+// stage's peak. The array is the previous step's (every entry is written below): a fresh one per
+// step paid its pages' faults and zeroing, 10 % of the SWE 256^2 DEIM basis on one rank (perf),
+// more where ranks share a node's memory bandwidth.
+std::vector<double> StreamingPod::leafColumns(const MultiVector& X, size_t c0, size_t c1) {
+  const int r = rank(), b = static_cast<int>(c1 - c0);
+  const size_t rows = map_->getNodeNumElements();
+  std::vector<double> y = std::move(work_);
+  if (y.size() < rows * (r + b)) {  // the rank still growing: a new array, nothing of the old copied
+    std::vector<double>().swap(y);
+    y.resize(rows * (r + b));
   }
-  MultiVector Y(map_, nc);
-  {
-    auto y = Y.getLocalViewHost(Tpetra::Access::OverwriteAll);
-    auto u = U_->getLocalViewHost(Tpetra::Access::ReadOnly);
-    auto x = X.getLocalViewHost(Tpetra::Access::ReadOnly);
-    for (size_t i = 0; i < y.extent(0); ++i) {
-      for (int j = 0; j < r; ++j) y(i, j) = sigma_[j] * u(i, j);
-      for (int j = 0; j < b; ++j) y(i, r + j) = x(i, c0 + j);
-    }
+  auto u = U_->getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto x = X.getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (int j = 0; j < r; ++j)
+    for (size_t i = 0; i < rows; ++i) y[i + rows * j] = sigma_[j] * u(i, j);
+  for (int j = 0; j < b; ++j)
+    for (size_t i = 0; i < rows; ++i) y[i + rows * (r + j)] = x(i, c0 + j);
+  return y;
+}
+
+// The same Y as a MultiVector (the replicated and tsqr routes).
+MultiVector StreamingPod::stepMatrix(const MultiVector& X, size_t c0, size_t c1) const {
+  const int r = rank(), b = static_cast<int>(c1 - c0);
+  MultiVector Y(map_, r + b);
+  auto y = Y.getLocalViewHost(Tpetra::Access::OverwriteAll);
+  auto u = U_->getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto x = X.getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (size_t i = 0; i < y.extent(0); ++i) {
+    for (int j = 0; j < r; ++j) y(i, j) = sigma_[j] * u(i, j);
+    for (int j = 0; j < b; ++j) y(i, r + j) = x(i, c0 + j);
   }
-  if (route == PodRoute::Replicated) {
-    ++steps_.replicated;
-    return replicatedStep(Y);
-  }
-  // podRoute 'tsqr'. cap_ and nc are the same on every rank: all ranks refuse together.
+  return Y;
+}
+
+// The tsqr route: Tpetra's TSQR (Y = Q R, Q explicit), then R's SVD on every rank.
+void StreamingPod::tsqrStep(MultiVector& Y) {
+  const int nc = static_cast<int>(Y.getNumVectors()), r = rank();
+  // cap_ and nc are the same on every rank: all ranks refuse together.
   const GO d = static_cast<GO>(map_->getGlobalNumElements());
   GPHR_REQUIRE(nc <= cap_, InputError, "streaming POD: podRoute 'tsqr' cannot take a step of ", nc, " columns (", r,
-               " carried + ", b, " new): TSQR needs at most as many columns as rows on every rank, and on ",
+               " carried + ", nc - r, " new): TSQR needs at most as many columns as rows on every rank, and on ",
                map_->getComm()->getSize(), " rank(s) the smallest holds ", cap_, " of the ", d,
                " rows; allowed: podRoute 'auto', 'stacked', 'tree' or 'replicated', ",
                d >= nc ? detail::concat("at most ", d / nc, " rank(s) with the rows split evenly, ") : std::string(),
@@ -325,6 +320,25 @@ void StreamingPod::step(const MultiVector& X, size_t c0, size_t c1) {
   }
   U_ = rcp(new MultiVector(map_, std::max(keep, 1)));
   if (keep > 0) U_->multiply(Teuchos::NO_TRANS, Teuchos::NO_TRANS, 1.0, Q, Wk, 0.0);
+}
+
+void StreamingPod::step(const MultiVector& X, size_t c0, size_t c1) {
+  const int nc = rank() + static_cast<int>(c1 - c0);
+  switch (stepRoute(route_, map_->getComm()->getSize())) {
+    case PodRoute::Stacked:
+      ++steps_.stacked;
+      return stackedStep(leafColumns(X, c0, c1), nc);
+    case PodRoute::Tree:
+      ++steps_.tree;
+      return treeStep(leafColumns(X, c0, c1), nc);
+    case PodRoute::Replicated:
+      ++steps_.replicated;
+      return replicatedStep(stepMatrix(X, c0, c1));
+    default: {  // PodRoute::Tsqr (stepRoute resolves Auto)
+      MultiVector Y = stepMatrix(X, c0, c1);
+      return tsqrStep(Y);
+    }
+  }
 }
 
 }  // namespace gphr

@@ -99,7 +99,10 @@ class StreamingPod {
 
  private:
   void step(const MultiVector& X, size_t c0, size_t c1);
+  std::vector<double> leafColumns(const MultiVector& X, size_t c0, size_t c1);  // Y's rows here, column-major
+  MultiVector stepMatrix(const MultiVector& X, size_t c0, size_t c1) const;       // Y as a MultiVector
   void replicatedStep(const MultiVector& Y);
+  void tsqrStep(MultiVector& Y);
   void stackedStep(std::vector<double> y, int nc);  // y: this rank's rows of Y, column-major
   void treeStep(std::vector<double> y, int nc);
   void setLeftVectors(HouseholderQr& leaf, const std::vector<double>& C, int keep);
