@@ -119,17 +119,6 @@ void startCache(const ArtifactsCache& cache, const std::string& key) {
   f->setAttribute("/training", "config", key);
 }
 
-// The shifted snapshots of one training parameter's instance.
-RCP<MultiVector> integrate(const SceneInstance& inst, const TrainingOptions& o) {
-  FullModelIntegrator integ(inst.system, o.integrator);
-  auto snaps = rcp(new MultiVector(inst.system->map(), o.steps / o.snapshotEvery + 1));
-  Vector y(*inst.y0, Teuchos::Copy);
-  integ.run(y, o.dt, o.steps, [&](long s, double, const Vector& ys, const StepReport&) {
-    if (s % o.snapshotEvery == 0) Tpetra::deep_copy(*snaps->getVectorNonConst(s / o.snapshotEvery), ys);
-  });
-  return snaps;
-}
-
 // The same states handed to `store` kSnapshotReadColumns at a time, in order (the last block
 // shorter), so that a trajectory of any length holds one block: the sequence of block sizes is
 // blockSizes(columns), the same for every parameter.
@@ -149,6 +138,18 @@ void integrateInBlocks(const SceneInstance& inst, const TrainingOptions& o,
   });
   GPHR_REQUIRE(stored == columns, SolverError, "training: the integrator handed ", stored, " of the ", columns,
                " states to store");
+}
+
+// The shifted snapshots of one training parameter's instance, all held (the training without a cache).
+RCP<MultiVector> integrate(const SceneInstance& inst, const TrainingOptions& o) {
+  auto snaps = rcp(new MultiVector(inst.system->map(), o.steps / o.snapshotEvery + 1));
+  size_t filled = 0;
+  integrateInBlocks(inst, o, [&](const MultiVector& block) {
+    const size_t b = block.getNumVectors();
+    Tpetra::deep_copy(*snaps->subViewNonConst(Teuchos::Range1D(filled, filled + b - 1)), block);
+    filled += b;
+  });
+  return snaps;
 }
 
 // The sizes of the blocks integrateInBlocks hands over for `columns` states.

@@ -281,6 +281,22 @@ TEST(Training, ResumedFromTheCacheBitForBit) {
   EXPECT_EQ(maxDifference(*none.snapshots[2], *first.snapshots[2]), 0.0);
 }
 
+TEST(Training, HeldInMemoryAcrossBlocksAsInTheCache) {
+  // 151 states: three of integrateInBlocks' blocks (64, 64, 23); the training without a cache
+  // gathers them into one MultiVector, the cached one writes them block by block: the same numbers.
+  const SmallScene small;
+  const auto& [comm, dir, scene, cache] = small;
+  TrainingOptions o = smallTraining();
+  o.parameters = {{1.0}};
+  o.steps = 150, o.snapshotEvery = 1;
+  o.groupSize = comm->getSize();
+  ASSERT_GT(static_cast<size_t>(o.steps + 1), 2 * kSnapshotReadColumns);
+  const TrainingResult cached = runTraining(scene, comm, o, &cache, "key");
+  const TrainingResult held = runTraining(scene, comm, o);
+  ASSERT_EQ(held.snapshots[0]->getNumVectors(), 151u);
+  EXPECT_EQ(maxDifference(*held.snapshots[0], *cached.snapshots[0]), 0.0);
+}
+
 // Rewrites parameter `name`'s states as `X`, sealed for `key`, with the fingerprint `print` (none
 // when empty): what a changed file, or an older gphr's, holds.
 void rewriteParameter(const ArtifactsCache& cache, const std::string& name, const MultiVector& X,
