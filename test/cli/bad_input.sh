@@ -37,6 +37,10 @@ case $case in
                    expect="key 'scene.n' has value 64, a real number (written with a point or an exponent); allowed: an integer in" ;;
   duplicate_m)     printf '%s\n  pipeline:\n    methods: [gp-deim]\n    m: [8, 4, 8]\n' "$base" > "$cfg"
                    expect="key 'pipeline.m' has entry 8 twice; allowed: each size once" ;;
+  # a k above what 2 x 11 training states give (two POD columns each: at most 44), refused before the training
+  basis_k)         printf '%s\n  training: {points: [2]}\n  reduction: {k: 45}\n  pipeline: {methods: [rom]}\n' "$base" > "$cfg"
+                   expect="k = 45 cannot come from the training: 2 parameter(s) x 11 states give a psd basis of at most k = 44"
+                   want_rc=2; after_start=1 ;;
   malformed_xml)   cfg=$work/config.xml; printf '<ParameterList name="gphr"><ParameterList name="time">\n' > "$cfg"
                    expect="is malformed XML: XML parse error at line 2: file ended before closing element 'ParameterList'" ;;
   # the full model's Newton cannot meet 1e-15 in one iteration: a solver failure (exit 3), not a status

@@ -49,6 +49,10 @@ expect="gp-adeim, the only method asked for, cannot be stored: its queries need 
 refused build ad.yaml --model ad.h5 --output art
 sed 's/methods: \[gp-adeim\]/methods: [gp-deim]/; s/withBasis: false/probes: [128]/' ad.yaml > probe.yaml
 expect="probe entry 128 is not a state entry; allowed: 0 to 127"; refused build probe.yaml --model ad.h5 --output art
+# a k above what the training's states can give (2 x 11 states, two POD columns each: k <= 44)
+sed 's/methods: \[gp-adeim\]/methods: [gp-deim]/; s/k: \[4\]/k: [45]/; /withBasis/d' ad.yaml > bigk.yaml
+expect="k = 45 cannot come from the training: 2 parameter(s) x 11 states give a psd basis of at most k = 44 on n = 64 dofs"
+refused build bigk.yaml --model ad.h5 --output art
 # XML: <ParameterList name="gphr"> is the config's root, as the key gphr is YAML's.
 cat > c.xml <<'XML'
 <ParameterList name="gphr">

@@ -64,14 +64,15 @@ ArtifactsCache artifactsCache(const RunContext& ctx, long fullDim) {
 
 RomStages runOfflineStages(const RunContext& ctx) {
   const auto inst = ctx.scene->instantiate(ctx.comm, ctx.mu, true);
+  const TrainingOptions training = trainingOptionsFrom(ctx.config, ctx.scene->parameterBox());
+  const BasisOptions basis = basisOptionsFrom(ctx.config.sublist("reduction"), basisK(ctx.config));
+  checkBasisSizeBeforeTraining(training, basis, basis.k, inst.system->space().fullDim());  // before any file
   const ArtifactsCache cache = artifactsCache(ctx, inst.system->space().fullDim());
   const ModelBuildKeys keys = cacheKeys(ctx.config);
   RomStages st;
-  st.training = runTraining(*ctx.scene, ctx.comm, trainingOptionsFrom(ctx.config, ctx.scene->parameterBox()), &cache,
-                            keys.training);
-  const BasisStageResult b = runBasisStage(st.training, inst.system->space(),
-                                           basisOptionsFrom(ctx.config.sublist("reduction"), basisK(ctx.config)),
-                                           ctx.scene->name(), &cache, keys.basis);
+  st.training = runTraining(*ctx.scene, ctx.comm, training, &cache, keys.training);
+  const BasisStageResult b =
+      runBasisStage(st.training, inst.system->space(), basis, ctx.scene->name(), &cache, keys.basis);
   st.basis = b.basis, st.basisCached = b.cached, st.basisSeconds = b.seconds, st.basisCpuSeconds = b.cpuSeconds;
   if (ctx.comm->getRank() == 0)
     std::fprintf(stderr, "[gphr] reduce: %s basis, 2k = %d, energy captured %.10f%s, %.1f s (%.1f s CPU; POD steps: "

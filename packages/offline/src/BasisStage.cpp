@@ -41,6 +41,17 @@ void writeBasis(const ArtifactsCache& cache, Hdf5File& f, const ReducedBasis& b,
 
 }  // namespace
 
+void checkBasisSizeBeforeTraining(const TrainingOptions& t, const BasisOptions& options, int k, GO fullDim) {
+  const long states = t.snapshotEvery >= 1 ? t.steps / t.snapshotEvery + 1 : 0;
+  const long snapshots = static_cast<long>(t.parameters.size()) * states;
+  if (fullDim <= 0 || k <= 0 || snapshots <= 0) return;
+  const long bound = basisRankBound(options, fullDim / 2, snapshots);
+  GPHR_REQUIRE(k <= bound, InputError, "k = ", k, " cannot come from the training: ", t.parameters.size(),
+               " parameter(s) x ", states, " states give a ", options.method, " basis of at most k = ", bound,
+               " on n = ", fullDim / 2, " dofs; allowed: k <= ", bound,
+               ", or more training states (training.points, time.T / time.dt, training.snapshotEvery)");
+}
+
 BasisStageResult runBasisStage(const TrainingResult& training, const PhaseSpace& space, const BasisOptions& options,
                                const std::string& sceneName, const ArtifactsCache* cache, const std::string& key) {
   Teuchos::Time clock("basis");

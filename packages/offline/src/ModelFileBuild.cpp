@@ -123,6 +123,8 @@ void checkModelBuildOptions(const Scene& scene, const ModelBuildOptions& o, GO f
   for (GO p : o.file.probes)
     GPHR_REQUIRE(fullDim <= 0 || (p >= 0 && p < fullDim), InputError, "probe entry ", p,
                  " is not a state entry; allowed: 0 to ", fullDim - 1);
+  const int largestK = o.ks.empty() ? 0 : *std::max_element(o.ks.begin(), o.ks.end());
+  checkBasisSizeBeforeTraining(o.training, o.basis, std::max(o.basis.k, largestK), fullDim);  // before the training
 }
 
 namespace {

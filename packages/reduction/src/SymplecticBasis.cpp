@@ -117,6 +117,21 @@ RCP<const Map> basisPodMap(const PhaseSpace& space, const BasisOptions& opt) {
   return opt.method == "cotangent" ? space.dofMap() : space.map();
 }
 
+namespace {
+// Triplets kept between steps: given, or 2k + 32 when k is given (margin for the leading k),
+// or at most kAutoRank when k comes from the energy tolerance; at most n.
+int keptTriplets(const BasisOptions& opt, GO n) {
+  const int autoRank = opt.k > 0 ? 2 * opt.k + 32 : kAutoRank;
+  return static_cast<int>(std::min<GO>(n, opt.maxRank > 0 ? opt.maxRank : std::max(autoRank, opt.k)));
+}
+}  // namespace
+
+long basisRankBound(const BasisOptions& opt, GO n, long snapshots) {
+  // psd PODs [D, J^T D], cotangent [Q, P]: 2 columns per state; beyond the states' own rank the
+  // vectors are round-off directions, kept by design (k is the user's choice)
+  return std::min<long>(2 * snapshots, keptTriplets(opt, n));
+}
+
 ReducedBasis computeSymplecticBasis(const SnapshotSet& snapshots, const PhaseSpace& space, const BasisOptions& opt,
                                     const BasisProgress* resume, const std::function<void(const BasisProgress&)>& save) {
   GPHR_REQUIRE(opt.method == "psd" || opt.method == "cotangent", InputError, "basis method '", opt.method,
@@ -126,11 +141,7 @@ ReducedBasis computeSymplecticBasis(const SnapshotSet& snapshots, const PhaseSpa
                " (allowed: >= 1)");
   const bool cot = opt.method == "cotangent";
   const LO nl = space.numLocalDofs();
-  // Triplets kept between steps: given, or 2k + 32 when k is given (margin for the leading k),
-  // or at most kAutoRank when k comes from the energy tolerance; at most n.
-  const GO n = space.n();
-  const int autoRank = opt.k > 0 ? 2 * opt.k + 32 : kAutoRank;
-  const int maxRank = static_cast<int>(std::min<GO>(n, opt.maxRank > 0 ? opt.maxRank : std::max(autoRank, opt.k)));
+  const int maxRank = keptTriplets(opt, space.n());
   // psd: the real POD of X = [D, J^T D], D = [q; p] per snapshot, carries both vectors of each
   // J-pair (2 maxRank). cotangent: the plain POD of [Q, P] on the n dofs (real vectors phi, so
   // A = blockdiag(Phi, Phi) holds exactly, round-off directions included).

@@ -25,4 +25,9 @@ BasisStageResult runBasisStage(const TrainingResult& training, const PhaseSpace&
                                const std::string& sceneName, const ArtifactsCache* cache = nullptr,
                                const std::string& key = "");
 
+/// Refuses (InputError) a basis half-size k that no training of `training`'s size gives on
+/// fullDim / 2 dofs (basisRankBound), before the training runs: without this a k past the bound
+/// failed only after it. fullDim <= 0 or k <= 0: nothing checked.
+void checkBasisSizeBeforeTraining(const TrainingOptions& training, const BasisOptions& options, int k, GO fullDim);
+
 }  // namespace gphr

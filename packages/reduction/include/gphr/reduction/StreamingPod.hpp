@@ -53,14 +53,20 @@ std::vector<double> columnSquaredNorms(const MultiVector& X);
 /// Steps a streaming POD took, by route: one type for every stage's statistics, metrics and
 /// checkpoints, so that a count is summed, stored and read in one place.
 struct PodSteps {
+  /// steps by the tsqr, replicated, stacked and tree routes
+  /// @{
   int tsqr = 0, replicated = 0, stacked = 0, tree = 0;
+  /// @}
   static constexpr int kFields = 4;  ///< numbers in put/get: tsqr, replicated, stacked, tree
-  int total() const { return tsqr + replicated + stacked + tree; }
+  int total() const { return tsqr + replicated + stacked + tree; }  ///< Steps by all routes.
+  /// Adds another POD's steps route by route (a root's and its chunks').
   PodSteps& operator+=(const PodSteps& o) {
     tsqr += o.tsqr, replicated += o.replicated, stacked += o.stacked, tree += o.tree;
     return *this;
   }
+  /// As kFields numbers at out (a checkpoint's or a reduction's array).
   void put(double* out) const { out[0] = tsqr, out[1] = replicated, out[2] = stacked, out[3] = tree; }
+  /// From kFields numbers written by put.
   static PodSteps get(const double* in) { return {int(in[0]), int(in[1]), int(in[2]), int(in[3])}; }
 };
 

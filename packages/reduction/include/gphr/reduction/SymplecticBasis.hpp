@@ -58,6 +58,12 @@ ReducedBasis computeSymplecticBasis(const SnapshotSet& snapshots, const PhaseSpa
                                     const BasisProgress* resume = nullptr,
                                     const std::function<void(const BasisProgress&)>& save = {});
 
+/// The largest k a basis of `options` can have from `snapshots` state columns on n dofs, known
+/// before the training: min(n, the triplets kept, the POD matrix's columns: 2 per state, [D, J^T D]
+/// for psd and [Q, P] for cotangent). Past the states' own rank the basis holds round-off
+/// directions (every nonzero sigma is kept); the POD may give fewer nonzero ones than the bound.
+long basisRankBound(const BasisOptions& options, GO n, long snapshots);
+
 /// The row map of the basis's streaming POD (the state map for psd, the dof map for cotangent):
 /// the map of a BasisProgress's POD state.
 RCP<const Map> basisPodMap(const PhaseSpace& space, const BasisOptions& options);
