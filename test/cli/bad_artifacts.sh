@@ -5,7 +5,8 @@
 # A changed value in the file's distributed data, which no HDF5 checksum covers, is caught by its
 # column fingerprint: in a training snapshot (read by the basis): exit 2, naming the parameter,
 # the column and the way out; in the basis or the DEIM basis: computed afresh, said on stderr,
-# and the results equal the clean run's.
+# and the results equal the clean run's. A gp-eqp fit has no fingerprint: a term outside G's rows,
+# a NaN weight or cut diagnostics are computed afresh likewise.
 # usage: bad_artifacts.sh GPHR
 set -u
 gphr=$1
@@ -85,3 +86,26 @@ change "$work/deim/artifacts.h5" deim/k2 2 3
 same changed_deim_basis "$work/deim" "$work/deim.yaml" \
   "/deim/k2 in '$work/deim/artifacts.h5' column 2 does not match its fingerprint: computed afresh" "$work/deimgood" \
   deim/k2
+# a gp-eqp fit (no fingerprint: every value checked on reading): a term outside G's rows, a NaN
+# weight, or diagnostics cut short are computed afresh, equal to the clean run's fit
+sed 's/pipeline: {rom: true}/pipeline: {rom: true, methods: [gp-eqp], m: [6]}/' "$work/nls.yaml" > "$work/eqp.yaml"
+"$gphr" run "$work/eqp.yaml" --output "$work/eqpgood" > /dev/null 2>&1 || { echo "gp-eqp setup run failed"; exit 1; }
+fit=eqp/gp-eqp_k2_m6
+for damage in "term:term 1 is 99999 (allowed: a row of G, 0 to 31)" "weight:weight 2 is nan (allowed: finite, >= 0)" \
+              "diagnostics:holds 1 diagnostics (allowed: 5)"; do
+  kind=${damage%%:*}; text=${damage#*:}
+  mkdir -p "$work/eqp_$kind" && cp "$work/eqpgood/artifacts.h5" "$work/eqp_$kind/"
+  /usr/bin/python3 - "$work/eqp_$kind/artifacts.h5" "$fit" "$kind" <<'PY'
+import sys, h5py, numpy
+with h5py.File(sys.argv[1], "r+") as f:
+    d = f[sys.argv[2]]
+    if sys.argv[3] == "term":
+        a = d[()]; a[0, 0] = 99999; d[...] = a
+    elif sys.argv[3] == "weight":
+        a = d[()]; a[1, 1] = numpy.nan; d[...] = a
+    else:
+        d.attrs["diagnostics"] = numpy.array([1.0])
+PY
+  same "changed_eqp_$kind" "$work/eqp_$kind" "$work/eqp.yaml" "/$fit in '$work/eqp_$kind/artifacts.h5' $text: computed afresh" \
+    "$work/eqpgood" "$fit"
+done

@@ -2,6 +2,7 @@
 
 #include <Teuchos_Time.hpp>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "gphr/core/Error.hpp"
@@ -30,10 +31,9 @@ CachedFit TermWeightFits::get(const std::string& method, int m) {
   if (!computed_.count(m)) {
     // One greedy path for every budget not in the cache (each budget's fit is the path up to
     // it, and its time the path's time to it).
-    std::vector<int> budgets;
+    std::vector<int> budgets{m};  // m was read above: not in the cache (or damaged there)
     for (int b : budgets_)
-      if (CachedFit c; !read(method, b, c)) budgets.push_back(b);
-    if (std::find(budgets.begin(), budgets.end(), m) == budgets.end()) budgets.push_back(m);
+      if (CachedFit c; b != m && !read(method, b, c)) budgets.push_back(b);
     const auto path = nnlsQuadraturePath(training(), budgets, tolerance_);
     for (size_t i = 0; i < budgets.size(); ++i) computed_[budgets[i]] = path[i];
   }
@@ -77,19 +77,56 @@ std::string TermWeightFits::key(const std::string& method, int m) const {
          ", m = " + std::to_string(m);
 }
 
+namespace {
+constexpr size_t kDiagnostics = 5;  // fit residual, exact-rows residual, selections, fit seconds, training seconds
+
+// What is wrong with a stored fit (terms over rows of G, `rows` of them, and their weights; its
+// diagnostics), "" if nothing: a file changed after it was written would otherwise put rows
+// outside G or NaN weights into the model file unseen. No fingerprint: every value is checked.
+std::string fitProblem(const std::vector<double>& a, const std::vector<double>& diagnostics, GO rows, bool nnls) {
+  if (a.empty() || a.size() % 2 != 0) return detail::concat("holds ", a.size(), " numbers (allowed: 2 x terms, terms >= 1)");
+  if (diagnostics.size() != kDiagnostics)
+    return detail::concat("holds ", diagnostics.size(), " diagnostics (allowed: ", kDiagnostics, ")");
+  const size_t p = a.size() / 2;
+  std::vector<GO> seen;
+  for (size_t j = 0; j < p; ++j) {
+    if (!(a[j] >= 0 && a[j] < static_cast<double>(rows)) || a[j] != std::floor(a[j]))
+      return detail::concat("term ", j + 1, " is ", a[j], " (allowed: a row of G, 0 to ", rows - 1, ")");
+    seen.push_back(static_cast<GO>(a[j]));
+    if (!std::isfinite(a[p + j]) || (nnls && a[p + j] < 0.0))
+      return detail::concat("weight ", j + 1, " is ", a[p + j], " (allowed: ", nnls ? "finite, >= 0" : "finite", ")");
+  }
+  std::sort(seen.begin(), seen.end());
+  if (std::adjacent_find(seen.begin(), seen.end()) != seen.end()) return "names a row of G twice";
+  return "";
+}
+}  // namespace
+
 // Separate opens: the DEIM basis of the refit opens the same file in between.
-bool TermWeightFits::read(const std::string& method, int m, CachedFit& out) const {
+bool TermWeightFits::read(const std::string& method, int m, CachedFit& out) {
   if (!cache_) return false;
-  const auto f = cache_->open();
   const std::string n = name(method, m);
-  if (!ArtifactsCache::holds(*f, n, key(method, m))) return false;
-  const std::vector<double> a = f->readArray(n);  // row 0 the terms, row 1 the weights
+  std::vector<double> a, d;
+  {
+    const auto f = cache_->open();
+    if (!ArtifactsCache::holds(*f, n, key(method, m))) return false;
+    a = f->readArray(n);  // row 0 the terms, row 1 the weights
+    d = f->doubleAttribute(n, "diagnostics");
+    out.fit.stop = f->stringAttribute(n, "stop");
+  }
+  const GO rows = static_cast<GO>(systems()[0]->nonlinearTerm().rowMap()->getGlobalNumElements());
+  const std::string problem = fitProblem(a, d, rows, method != method::kGpEqpRefit);
+  if (!problem.empty()) {  // computed afresh, as a basis whose fingerprint no longer matches
+    if (comm_->getRank() == 0)
+      std::fprintf(stderr, "[gphr] eqp: %s in '%s' %s: computed afresh\n", n.c_str(), cache_->path().c_str(),
+                   problem.c_str());
+    out = CachedFit();
+    return false;
+  }
   const size_t p = a.size() / 2;
   for (size_t j = 0; j < p; ++j) out.fit.terms.push_back(static_cast<GO>(a[j])), out.fit.weights.push_back(a[p + j]);
-  const std::vector<double> d = f->doubleAttribute(n, "diagnostics");
   out.fit.residual = d[0], out.exactResidual = d[1], out.fit.iterations = static_cast<int>(d[2]);
   out.fitSeconds = d[3], out.trainingSeconds = d[4];
-  out.fit.stop = f->stringAttribute(n, "stop");
   out.cached = true;
   return true;
 }

@@ -47,7 +47,7 @@ class TermWeightFits {
  private:
   std::string name(const std::string& method, int m) const;
   std::string key(const std::string& method, int m) const;
-  bool read(const std::string& method, int m, CachedFit& out) const;
+  bool read(const std::string& method, int m, CachedFit& out);
   void store(const std::string& method, int m, const CachedFit& c) const;
   CachedFit& finish(const std::string& method, int m, CachedFit& out);
   const SystemSet& systems();
