@@ -37,7 +37,7 @@ case $SIZE in issue|small) ;; *) echo "SIZE=$SIZE; allowed: issue, small" >&2; e
 work=bench-out/scaling/$SIZE; mkdir -p "$work"
 OUT_CSV=${OUT_CSV:-bench-out/scaling/scaling-$SIZE.csv}
 MPI_CSV=${OUT_CSV%.csv}-mpi.csv
-cores=$(nproc)  # before OMP_NUM_THREADS is set: GNU nproc honours it
+cores=$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)  # GNU nproc honours both
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
 case ${CRITICAL:-0} in 1) export GPHR_CRITICAL_PATH=1 ;; 0) unset GPHR_CRITICAL_PATH ;;
