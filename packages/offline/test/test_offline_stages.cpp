@@ -23,6 +23,7 @@
 #include "gphr/offline/PodCheckpoint.hpp"
 #include "gphr/reduction/SymplecticBasis.hpp"
 #include "gphr/online/ReducedModel.hpp"
+#include "gphr/timeint/FullModelIntegrator.hpp"
 
 namespace gphr {
 namespace {
@@ -295,6 +296,15 @@ TEST(Training, HeldInMemoryAcrossBlocksAsInTheCache) {
   const TrainingResult held = runTraining(scene, comm, o);
   ASSERT_EQ(held.snapshots[0]->getNumVectors(), 151u);
   EXPECT_EQ(maxDifference(*held.snapshots[0], *cached.snapshots[0]), 0.0);
+  // and both are the full model's states, in order: the integrator run directly, every state kept
+  const SceneInstance inst = scene.instantiate(comm, o.parameters[0], true);
+  FullModelIntegrator integ(inst.system, o.integrator);
+  MultiVector direct(inst.system->map(), 151);
+  Vector y(*inst.y0, Teuchos::Copy);
+  integ.run(y, o.dt, o.steps, [&](long s, double, const Vector& ys, const StepReport&) {
+    Tpetra::deep_copy(*direct.getVectorNonConst(s), ys);
+  });
+  EXPECT_EQ(maxDifference(*held.snapshots[0], direct), 0.0);
 }
 
 // Rewrites parameter `name`'s states as `X`, sealed for `key`, with the fingerprint `print` (none
