@@ -251,3 +251,65 @@ TEST(Scenes, GridPlacesTheInitialStateAtItsCoordinates) {
 }
 
 }  // namespace
+
+// The Hamiltonians and initial states of doc/scenes.md evaluated from their formulas, by plain
+// loops over the grid that share nothing with the scenes' L / f / G assembly, at a state whose
+// entries are a formula of the global index (every rank computes the whole sum; the scene's H is
+// the distributed one). Sums of ~n terms of size O(|H|): round-off ~n eps |H|, far below 1e-12.
+namespace {
+double wiggle(long gid) { return 0.3 * std::sin(1.7 * gid + 0.4) + 0.1 * std::cos(0.3 * gid); }
+
+// y(gid) = wiggle(gid) on the system's map (gid < n: q or chi; gid >= n: p or Phi).
+Vector formulaState(const HamiltonianSystem& sys) {
+  Vector y(sys.map());
+  auto v = y.getLocalViewHost(Tpetra::Access::OverwriteAll);
+  for (size_t l = 0; l < v.extent(0); ++l) v(l, 0) = wiggle(sys.map()->getGlobalElement(static_cast<LO>(l)));
+  return y;
+}
+}  // namespace
+
+TEST(Scenes, NlsHamiltonianAndInitialStateAreDocScenesFormulas) {
+  const int n = 48;
+  const double eps = 1.0932, L = M_PI / 0.11, dx = 2 * L / n;
+  auto [sys, y0] = Nls1d(n).build(test::comm(), {eps});
+  // H = 1/2 q^T (-D_xx) q + 1/2 p^T (-D_xx) p - eps/4 sum (q^2 + p^2)^2, D_xx periodic central
+  double H = 0.0;
+  auto q = [&](long i) { return wiggle((i + n) % n); };
+  auto p = [&](long i) { return wiggle(n + (i + n) % n); };
+  for (long i = 0; i < n; ++i) {
+    const double dq = (q(i + 1) - 2 * q(i) + q(i - 1)) / (dx * dx), dp = (p(i + 1) - 2 * p(i) + p(i - 1)) / (dx * dx);
+    const double r2 = q(i) * q(i) + p(i) * p(i);
+    H += -0.5 * q(i) * dq - 0.5 * p(i) * dp - eps / 4 * r2 * r2;
+  }
+  EXPECT_NEAR(sys->hamiltonian(formulaState(*sys)), H, 1e-12 * std::abs(H));
+  // q + i p = sqrt(2) sech(x) exp(i x / 2), x_i = -L + i dx
+  auto v = y0->getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (size_t l = 0; l < v.extent(0); ++l) {
+    const long gid = y0->getMap()->getGlobalElement(static_cast<LO>(l)), i = gid % n;
+    const double x = -L + i * dx, amp = std::sqrt(2.0) / std::cosh(x);
+    EXPECT_NEAR(v(l, 0), gid < n ? amp * std::cos(x / 2) : amp * std::sin(x / 2), 1e-15) << "entry " << gid;
+  }
+}
+
+TEST(Scenes, SweHamiltonianAndInitialStateAreDocScenesFormulas) {
+  const int nx = 7, n = nx * nx;
+  const double beta = 1.3, gamma = 0.9, dx = 4.0 / nx;
+  auto [sys, y0] = Swe2d(nx).build(test::comm(), {beta, gamma});
+  // H = gamma/2 sum chi^2 + gamma/2 sum chi [(D1 Phi)^2 + (D2 Phi)^2], i = a + nx b, periodic
+  auto chi = [&](long a, long b) { return wiggle((a + nx) % nx + nx * ((b + nx) % nx)); };
+  auto phi = [&](long a, long b) { return wiggle(n + (a + nx) % nx + nx * ((b + nx) % nx)); };
+  double H = 0.0;
+  for (long b = 0; b < nx; ++b)
+    for (long a = 0; a < nx; ++a) {
+      const double d1 = (phi(a + 1, b) - phi(a - 1, b)) / (2 * dx), d2 = (phi(a, b + 1) - phi(a, b - 1)) / (2 * dx);
+      H += gamma / 2 * chi(a, b) * chi(a, b) + gamma / 2 * chi(a, b) * (d1 * d1 + d2 * d2);
+    }
+  EXPECT_NEAR(sys->hamiltonian(formulaState(*sys)), H, 1e-12 * std::abs(H));
+  // chi = 1 + 1/2 exp(-beta |x|^2), Phi = 0, at (x1, x2) = (-2 + a dx, -2 + b dx)
+  auto v = y0->getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (size_t l = 0; l < v.extent(0); ++l) {
+    const long gid = y0->getMap()->getGlobalElement(static_cast<LO>(l)), i = gid % n;
+    const double x1 = -2 + (i % nx) * dx, x2 = -2 + (i / nx) * dx;
+    EXPECT_NEAR(v(l, 0), gid < n ? 1 + 0.5 * std::exp(-beta * (x1 * x1 + x2 * x2)) : 0.0, 1e-15) << "entry " << gid;
+  }
+}
