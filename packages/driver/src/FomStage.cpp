@@ -45,6 +45,12 @@ double maxDeviation(const std::vector<double>& H, double H0) {
   return d;
 }
 
+double driftBound(const Teuchos::ParameterList& integrator, int degree, const RunStats& stats) {
+  return quadratureIsExact(integrator.get<std::string>("scheme"), integrator.get<int>("quadraturePoints"), degree)
+             ? stats.driftBound
+             : std::numeric_limits<double>::quiet_NaN();
+}
+
 EvaluationSettings evaluationSettingsFrom(const Teuchos::ParameterList& cfg) {
   EvaluationSettings s;
   s.time.dt = cfg.sublist("time").get<double>("dt");
@@ -104,6 +110,7 @@ FomResult runFullModel(const EvaluationSettings& settings, const Scene& scene, c
       .set(Metric::LinearItersAvg, double(stats.linearIterations) / steps)
       .set(Metric::LinearItersPerNewton, stats.newtonIterations ? double(stats.linearIterations) / stats.newtonIterations : 0.0)
       .set(Metric::NewtonResidualMax, stats.maxResidual)
+      .set(Metric::HDriftBound, driftBound(settings.time.integrator, inst.system->nonlinearTerm().polynomialDegree(), stats))
       .set(Metric::H0, H0)
       .set(Metric::HErrMax, herr)
       .set(Metric::HErrMaxRel, H0 != 0.0 ? herr / std::abs(H0) : herr)

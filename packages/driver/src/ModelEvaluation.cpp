@@ -151,6 +151,7 @@ ModelRun evaluateReducedModel(const RCP<const Comm>& comm, const EvaluationSetti
       .set(Metric::TOnlineRunsS, times)
       .set(Metric::NewtonItersAvg, run.ok ? double(stats.newtonIterations) / steps : nan)
       .set(Metric::NewtonMatrices, run.ok ? stats.newtonMatrices : -1L)
+      .set(Metric::HDriftBound, run.ok ? driftBound(settings.integrator, settings.polynomialDegree, stats) : nan)
       .set(Metric::ErrorsAt, "saved steps (every output.saveEvery-th and the last)");
   if (run.ok) {
     const UnboundedStep u = unboundedStepOf(fom, run);

@@ -40,6 +40,7 @@ const MetricInfo kMetrics[] = {
     {"linear_iters_avg", Number},
     {"linear_iters_per_newton", Number},
     {"newton_residual_max", Number},
+    {"H_drift_bound", Number},
     {"errors_at", Text},
     {"unbounded_at_step", Integer},
     {"unbounded_reason", Text},

@@ -58,6 +58,12 @@ QuadratureRule quadratureFor(const std::string& scheme, int quadraturePoints, in
   return gaussLegendre(degree > 0 ? gaussPointsForDegree(degree) : 3);
 }
 
+bool quadratureIsExact(const std::string& scheme, int quadraturePoints, int degree) {
+  if (degree <= 0) return false;
+  const int points = scheme == "imr" ? 1 : quadraturePoints > 0 ? quadraturePoints : gaussPointsForDegree(degree);
+  return points >= gaussPointsForDegree(degree);  // Gauss-Legendre with q points: exact to degree 2q - 1
+}
+
 NewtonOptions newtonOptionsFrom(const Teuchos::ParameterList& pl) {
   NewtonOptions o;
   o.tolerance = pl.get<double>("newtonTolerance");

@@ -228,6 +228,7 @@ StepReport NoxNewtonSolver::step(const Vector& y0, Vector& y1, double dt, long s
                newtonFailureMessage(m.opts, stepNo, time, rep, "NOX Newton"), raised);
   const auto& x = dynamic_cast<const NOX::Thyra::Vector&>(group.getX());
   Tpetra::deep_copy(y1, *TOE::getConstTpetraVector(x.getThyraRCPVector()));
+  rep.gradientNorm = m.scheme.averageGradient().norm2();  // of the last residual NOX evaluated: the accepted y1's
   return rep;
 }
 

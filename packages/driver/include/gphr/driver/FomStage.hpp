@@ -32,6 +32,10 @@ struct FomResult {
 inline bool isSavedStep(long j, long steps, long saveEvery) { return j % saveEvery == 0 || j == steps; }
 /// The largest |H_j - H0| of a Hamiltonian history.
 double maxDeviation(const std::vector<double>& H, double H0);
+/// The run's bound on the drift of its own Hamiltonian (RunStats::driftBound) where the
+/// integrator's rule is exact for G of polynomial degree `degree` (quadratureIsExact); NaN (null
+/// in summary.json) where it is not, or the degree is unknown.
+double driftBound(const Teuchos::ParameterList& integrator, int degree, const RunStats& stats);
 
 /// What an evaluation against the full model runs, for the full model and every reduced one: the
 /// time loop (dt, steps, the integrator section), the saved steps, the timing repeats of the

@@ -50,6 +50,10 @@ struct StepReport {
   int linearIterations = 0;  ///< Linear (Krylov) iterations over the step's Newton iterations.
   int newtonMatrices = 0;     ///< Newton matrices assembled (and factored / preconditioned) in the step
   double residualNorm = 0.0;  ///< ||R(y1)|| at acceptance
+  /// ||gbar|| at acceptance: H(y1) - H(y0) = gbar^T R for AVF's exact rule (a discrete gradient,
+  /// gbar^T (y1 - y0) = H(y1) - H(y0), and y1 - y0 = dt J gbar + R with gbar^T J gbar = 0), so
+  /// |H(y1) - H(y0)| <= gradientNorm residualNorm; no such bound for IMR.
+  double gradientNorm = 0.0;
   /// The smallest ||R|| of the step's iterates (GPHR's Newton; infinity where not tracked): a
   /// failure that came close to the tolerance and stalled is round-off, not divergence.
   double smallestResidualNorm = std::numeric_limits<double>::infinity();
@@ -127,7 +131,10 @@ class AveragedGradientScheme {
     for (;;) {
       rep.residualNorm = residual(y0, y1, dt);
       rep.smallestResidualNorm = std::min(rep.smallestResidualNorm, rep.residualNorm);
-      if (rep.residualNorm <= opts_.tolerance) return rep;
+      if (rep.residualNorm <= opts_.tolerance) {
+        rep.gradientNorm = Backend::norm(gsum_);
+        return rep;
+      }
       GPHR_REQUIRE(std::isfinite(rep.residualNorm) && rep.newtonIterations < opts_.maxIterations,
                    SolverError, newtonFailureMessage(opts_, step, time, rep));
       bool assemble = rep.newtonIterations == 0 || !opts_.reuseJacobian;

@@ -25,6 +25,10 @@ Teuchos::ParameterList noxValidParameters();
 /// IMR: the 1-point Gauss rule. AVF: Gauss-Legendre with quadraturePoints nodes, or when 0 the
 /// fewest that are exact for G of polynomial degree `degree` (a non-polynomial G, degree 0, gets 3).
 QuadratureRule quadratureFor(const std::string& scheme, int quadraturePoints, int degree);
+/// Whether quadratureFor's rule integrates the averaged gradient exactly for G of polynomial
+/// degree `degree` (0: unknown, never): then the scheme is a discrete gradient and
+/// RunStats::driftBound bounds the drift of H (AVF with enough points; IMR for degree <= 2).
+bool quadratureIsExact(const std::string& scheme, int quadraturePoints, int degree);
 /// Newton options of the `integrator` section.
 NewtonOptions newtonOptionsFrom(const Teuchos::ParameterList& integrator);
 
@@ -35,6 +39,9 @@ struct RunStats {
   long linearIterations = 0;  ///< Linear (Krylov) iterations over all steps.
   long newtonMatrices = 0;  ///< Newton matrices assembled (dense models: LU factorisations)
   double maxResidual = 0.0;  ///< Largest Newton residual accepted.
+  /// Sum over the steps of ||gbar|| ||R|| (StepReport::gradientNorm): with AVF's exact rule,
+  /// |H(y^j) - H(y^0)| <= driftBound at every step j, beyond the round-off of evaluating H.
+  double driftBound = 0.0;
   double wallSeconds = 0.0;  ///< Wall seconds of the time loop.
 };
 
@@ -97,6 +104,7 @@ RunStats integrate(Stepper& scheme, Backend& backend, typename Backend::Vector& 
     stats.linearIterations += rep.linearIterations;
     stats.newtonMatrices += rep.newtonMatrices;
     stats.maxResidual = std::max(stats.maxResidual, rep.residualNorm);
+    stats.driftBound += rep.gradientNorm * rep.residualNorm;
     if (observer) observer(stepNo, t, y, rep);
   }
   return stats;
