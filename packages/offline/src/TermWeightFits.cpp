@@ -84,7 +84,8 @@ constexpr size_t kDiagnostics = 5;  // fit residual, exact-rows residual, select
 // diagnostics), "" if nothing: a file changed after it was written would otherwise put rows
 // outside G or NaN weights into the model file unseen. No fingerprint: every value is checked.
 std::string fitProblem(const std::vector<double>& a, const std::vector<double>& diagnostics, GO rows, bool nnls) {
-  if (a.empty() || a.size() % 2 != 0) return detail::concat("holds ", a.size(), " numbers (allowed: 2 x terms, terms >= 1)");
+  // (no terms is a fit: NNLS stops at once where no term correlates with the target)
+  if (a.size() % 2 != 0) return detail::concat("holds ", a.size(), " numbers (allowed: 2 x terms)");
   if (diagnostics.size() != kDiagnostics)
     return detail::concat("holds ", diagnostics.size(), " diagnostics (allowed: ", kDiagnostics, ")");
   const size_t p = a.size() / 2;
