@@ -212,8 +212,8 @@ std::string duplicateYamlKey(const std::string& text) {
 
 Teuchos::RCP<Teuchos::ParameterList> readParameterFile(const std::string& path, const std::string& what, bool xml) {
   const std::string text = readText(path, what);
-  if (!xml) requireSingleTopLevelKey(text, path, what);
   if (!xml) {
+    requireSingleTopLevelKey(text, path, what);
     const auto [depth, line] = yamlNesting(text);
     GPHR_REQUIRE(depth <= kMaxNesting, InputError, what, " file '", path, "' nests ", depth, " levels deep at line ",
                  line, "; allowed: at most ", kMaxNesting);

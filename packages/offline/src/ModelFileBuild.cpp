@@ -33,8 +33,6 @@ std::string ofK(const char* stage, int k) { return std::string(stage) + " k=" + 
 
 int largest(const std::vector<int>& ms) { return ms.empty() ? 0 : *std::max_element(ms.begin(), ms.end()); }
 
-// gp-adeim is stored as its options: its queries build the full system and sample its residual
-// online (alg:SP-ADEIM), from the basis in the file and the first delta0 full-model steps.
 // Why gp-adeim cannot be stored with these options ("": it can).
 std::string whyNoAdeim(const ModelBuildOptions& o) {
   if (!o.withBasis) return "its queries need the basis (build.withBasis: true)";
@@ -43,6 +41,8 @@ std::string whyNoAdeim(const ModelBuildOptions& o) {
   return "";
 }
 
+// gp-adeim is stored as its options: its queries build the full system and sample its residual
+// online (alg:SP-ADEIM), from the basis in the file and the first delta0 full-model steps.
 void addAdeimModels(const BuildState& b, int k, std::vector<StoredHyperModel>& out) {
   const auto& o = b.options;
   const std::string why = whyNoAdeim(o);
