@@ -6,16 +6,23 @@
 #   --docs   also install doxygen (Debian's), for the API reference (`cmake --build build --target doc`)
 #            and its check, the ctest test doc_undocumented. The same as GPHR_DOCS=1 in the
 #            environment. Without it nothing about doxygen changes (an installed one is kept).
+#   --tests  everything the whole test suite needs (the README's test command, .ci/run): what
+#            --docs installs, plus Debian's paraview and python3-paraview (pvbatch and ParaView's
+#            XDMF Reader, for the ctest test cli_field_paraview; ~190 MB, ~190 packages). The same
+#            as GPHR_TESTS=1 in the environment.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 docs="${GPHR_DOCS:-0}"
+tests="${GPHR_TESTS:-0}"
 for arg in "$@"; do
   case "$arg" in
     --docs) docs=1 ;;
-    *) echo "[setup] unknown option '$arg' (allowed: --docs)" >&2; exit 2 ;;
+    --tests) tests=1 ;;
+    *) echo "[setup] unknown option '$arg' (allowed: --docs, --tests)" >&2; exit 2 ;;
   esac
 done
+if [ "$tests" = 1 ]; then docs=1; fi
 
 packages=(build-essential cmake ninja-build ccache gnuplot-nox hdf5-tools python3 python3-h5py
   libopenmpi-dev openmpi-bin libhdf5-openmpi-dev libgtest-dev libopenblas-dev
@@ -28,6 +35,7 @@ packages=(build-essential cmake ninja-build ccache gnuplot-nox hdf5-tools python
   libtrilinos-amesos-dev libtrilinos-galeri-dev libtrilinos-isorropia-dev libtrilinos-trilinosss-dev
   libscotch-dev libptscotch-dev)
 if [ "$docs" = 1 ]; then packages+=(doxygen); fi
+if [ "$tests" = 1 ]; then packages+=(paraview python3-paraview); fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -17,6 +17,9 @@ case $case in
   negative_n)      printf '%s\n' "$base" | sed 's/n: 64/n: -8/' > "$cfg"; expect="scene.n' has value -8" ;;
   zero_dt)         printf '%s\n' "$base" | sed 's/dt: 0.01/dt: 0/' > "$cfg"; expect="time.dt' has value 0" ;;
   T_less_than_dt)  printf '%s\n' "$base" | sed 's/T: 0.1/T: 0.001/' > "$cfg"; expect="smaller than time.dt" ;;
+  # 1 ulp below the box: the message shows the value as read (it printed 0.9, the bound itself)
+  outside_ulp)     printf '%s\n  parameters:\n    eps: 0.89999999999999991\n' "$base" > "$cfg"
+                   expect="parameters.eps' has value 0.8999999999999999; allowed: a number in [0.9, 1.1]" ;;
   outside_box)     printf '%s\n  parameters:\n    eps: 1.5\n' "$base" > "$cfg"; expect="parameters.eps' has value 1.5; allowed: a number in [0.9, 1.1]" ;;
   unknown_key)     printf '%s\n    foo: 3\n' "$base" > "$cfg"; expect="unknown key 'time.foo'; valid keys in 'time': T, dt" ;;
   malformed_yaml)  printf 'gphr:\n  scene: [\n    name: : nls1d\n' > "$cfg"; expect="malformed YAML" ;;
@@ -46,6 +49,27 @@ case $case in
   # the full model's Newton cannot meet 1e-15 in one iteration: a solver failure (exit 3), not a status
   fom_newton)      printf '%s\n  integrator:\n    newtonTolerance: 1.0e-15\n    maxNewtonIterations: 1\n' "$base" > "$cfg"
                    expect="solver failure: Newton did not converge at step 1"; want_rc=3; after_start=1 ;;
+  # Bounded parsing (YamlText.hpp): Teuchos' reader is quadratic in one value or flow list (2 MB: > 120 s)
+  huge_value)      python3 -c "print('gphr:\n  scene:\n    name: \'' + 'x' * (2 << 20) + '\'')" > "$cfg"
+                   expect="config file '$cfg' has 2097180 bytes; allowed: at most 262144" ;;
+  huge_list)       python3 -c "print('gphr:\n  scene: {name: nls1d, n: 64}\n  training:\n    values: [' + ', '.join(['1.0'] * 400000) + ']')" > "$cfg"
+                   expect="has 2000061 bytes; allowed: at most 262144" ;;
+  long_line)       python3 -c "print('gphr:\n  scene:\n    name: \'' + 'x' * 100000 + '\'')" > "$cfg"
+                   expect="config file '$cfg': line 3 has 100012 bytes; allowed: at most 16384 (a long list in block style" ;;
+  huge_file)       { printf '%s\n' "$base"; python3 -c "print(('# ' + 'c' * 98 + '\n') * 50000, end='')"; } > "$cfg"
+                   expect="config file '$cfg' has 5050073 bytes; allowed: at most 262144" ;;
+  multiline_quote) printf 'gphr:\n  scene:\n    name: "nls1d\n      and more"\n' > "$cfg"
+                   expect="line 3 opens a quoted value it does not close; allowed: a quoted value on one line" ;;
+  block_scalar)    printf 'gphr:\n  scene:\n    name: |\n      nls1d\n' > "$cfg"; expect="line 3 starts a block scalar (| or >)" ;;
+  utf8_value)      printf '%s\n' "$base" | sed 's/name: nls1d/name: nls1d\xc3\xa9/' > "$cfg"
+                   expect="line 3 column 16 holds a non-ASCII character outside a comment; allowed: ASCII" ;;
+  # XML held to the YAML rules: Teuchos wraps 4294967360 to 64 and keeps the last of two n's silently
+  xml_wrapped_int) cfg=$work/config.xml
+                   printf '<ParameterList name="gphr"><ParameterList name="scene"><Parameter name="name" type="string" value="nls1d"/><Parameter name="n" type="int" value="4294967360"/></ParameterList></ParameterList>\n' > "$cfg"
+                   expect="key 'scene.n' has value '4294967360'; allowed: a whole number from -2147483648 to 2147483647" ;;
+  xml_duplicate)   cfg=$work/config.xml
+                   printf '<ParameterList name="gphr"><ParameterList name="scene"><Parameter name="n" type="int" value="64"/><Parameter name="n" type="int" value="32"/></ParameterList></ParameterList>\n' > "$cfg"
+                   expect="config.xml': key 'scene.n' is given twice; allowed: each key once per list" ;;
   *) echo "unknown case $case"; exit 1 ;;
 esac
 "$gphr" run "$cfg" --output "$work/out" > "$work/stdout" 2> "$work/stderr"

@@ -69,3 +69,39 @@ assert a["provenance"]["config"] == b["provenance"]["config"], "configs differ"
 assert a["runs"][0]["H0"] == b["runs"][0]["H0"] and a["runs"][0]["H_err_max"] == b["runs"][0]["H_err_max"]
 print("ok: the XML config runs as the YAML one")
 PY
+# Outputs never overlap inputs (resolved: '..', links): a query or validate whose --output holds its
+# model file or its YAML file, a build or run whose --output holds its config. Before: the input
+# was overwritten (results.h5 over the model file), exit 0.
+printf 'gphr:\n  scene: {name: nls1d, n: 64}\n  time: {T: 0.1, dt: 0.01}\n  training: {points: [2]}\n  pipeline: {methods: [gp-deim], k: [4], m: [8]}\n  build: {withBasis: true}\n' > m.yaml
+"$gphr" build m.yaml --model m.h5 --output mart > /dev/null 2> mbuild.err || fail "model build: $(cat mbuild.err)"
+printf 'queries:\n  points:\n    a: {eps: 1.0}\n' > q.yaml
+printf 'validate:\n  points:\n    a: {eps: 1.0}\n' > v.yaml
+mkdir -p d; cp m.h5 d/results.h5; cp q.yaml d/queries.csv; cp m.h5 d/validation.csv; cp m.yaml d/c.yaml
+ln -s d dl
+keep=$(cat d/results.h5 d/queries.csv d/validation.csv d/c.yaml | md5sum)
+expect="--output 'd' contains the model file 'd/results.h5', which the command reads; allowed: an output apart from its inputs"
+refused query d/results.h5 q.yaml --output d
+expect="--output 'd' contains the queries file 'd/queries.csv'"; refused query m.h5 d/queries.csv --output d
+expect="--output 'd/' contains the model file 'dl/results.h5'"; refused query dl/results.h5 q.yaml --output d/
+expect="--output 'd' contains the model file 'd/validation.csv'"; refused validate d/validation.csv v.yaml --output d
+expect="--output 'dl/../d' contains the config file 'd/c.yaml'"; refused build d/c.yaml --model m2.h5 --output dl/../d
+expect="--output 'd/..' contains the config file 'd/c.yaml'"; refused run d/c.yaml --output d/..
+expect="--model 'dl/c.yaml' is the config file 'd/c.yaml'"; refused build d/c.yaml --model dl/c.yaml --output art
+[ "$(cat d/results.h5 d/queries.csv d/validation.csv d/c.yaml | md5sum)" = "$keep" ] || fail "an input was changed"
+[ ! -e d/queries ] && [ ! -e d/fom ] && [ ! -e m2.h5 ] || fail "a refused command began its output"
+# --model where nothing can be written: refused before the training (it failed after the whole offline run)
+expect="cannot write --model '/proc/gphr-model.h5'"; refused build m.yaml --model /proc/gphr-model.h5 --output art
+# arguments are read before Kokkos starts: its own options are refused, not acted on (help printed, a library loaded)
+expect="unknown argument '--kokkos-help'"; refused run c.yaml --kokkos-help
+[ ! -s out.txt ] || fail "--kokkos-help printed: $(head -3 out.txt)"
+expect="unknown argument '--kokkos-tools-library=/nonexistent/libgphr-tool.so'"
+refused run c.yaml --kokkos-tools-library=/nonexistent/libgphr-tool.so
+# the YAML file missing before an option: named as such (it said "unknown argument 'D'")
+expect="'gphr query' needs MODEL.h5 and a YAML file before its options; found the option '--output' where the YAML file belongs"
+refused query m.h5 --output D
+# UTF-8 in comments is allowed (it was refused: "Unexpected character code -30"); outside them it is
+# refused by name (bad_input utf8_value)
+printf 'gphr:  # caf\xc3\xa9\n  scene: {name: nls1d, n: 64}  # \xce\xbb = 1\n  time: {T: 0.1, dt: 0.01}\n' > utf8.yaml
+"$gphr" run utf8.yaml --output utf8 > /dev/null 2> utf8.err || fail "a config with UTF-8 in its comments: $(cat utf8.err)"
+echo "ok: UTF-8 in comments"
+echo "PASS"

@@ -135,6 +135,18 @@ for d in (gm + "/weights", gm + "/basis_rows", gk + "/interpolation_values", gk 
 for i in range(8):  # the earliest file format (no checksums) took 314 of 1,446 such flips silently
     derive(f"header_root_{i}", flip_header("root", (i + 0.5) / 8))
 derive("header_model", flip_header("model", 0.5))
+def filtered(dataset):  # the same values through h5py's LZF filter, a plugin this libhdf5 lacks
+    def fn(g):
+        a = g[dataset][...]
+        attrs = dict(g[dataset].attrs)
+        del g[dataset]
+        g.create_dataset(dataset, data=a, compression="lzf", chunks=True)
+        for k, v in attrs.items():
+            g[dataset].attrs[k] = v
+    return with_file(fn)
+
+
+derive("lzf_weights", filtered(gm + "/weights"))
 derive("offsets_1000", set_entry(gm + "/stencil_offsets", 1, 1000))
 derive("offsets_negative", set_entry(gm + "/stencil_offsets", 1, -1))
 derive("offsets_fraction", set_entry(gm + "/stencil_offsets", 1, 0.5))

@@ -248,7 +248,7 @@ bad bad_section "unknown section 'queries.point'" 'queries:
     a: {eps: 1.0}'
 bad not_steps "is not a whole number of steps" "$q
     a: {eps: 1.0, T: 0.015}"
-bad too_many_steps "query 'a': T / dt = 1e+300 steps (T = 1, dt = 1e-300); allowed: at most 10000000" "$q
+bad too_many_steps "query 'a': T / dt = 9.999999999999999e+299 steps (T = 1, dt = 1e-300); allowed: at most 10000000" "$q
     a: {eps: 1.0, dt: 1.0e-300}"
 bad flow_duplicate "has a duplicate key 'eps' in the flow mapping at line 4; allowed: each key once per mapping" "$q
     a: {eps: 1.0, eps: 1.05}"

@@ -77,3 +77,16 @@ one_line vo 3 "point 'huge' (eps = 1e+300): the full model failed: .*residual no
 printf 'validate:\n  defaults: {T: 1.0, dt: 0.01}\n  points:\n    b: {eps: 1.0e9}\n' > v9.yaml
 one_line v1 3 "point 'b' (eps = 1000000000): the full model failed: Newton did not converge .*; it stalled at .*allowed: a larger integrator.newtonTolerance" \
   "validate on one rank, a stalling point" -- timeout 60 "$gphr" validate m.h5 v9.yaml --output v1
+
+# 7. Different inputs per rank (MPMD: each rank its own arguments) are named as a disagreement
+#    before any work, not found later as another error: two model files of different checksums,
+#    and a model file that rank 1 cannot find (it said "cannot open ...: no such file").
+sed 's/points: \[3\]/points: [2]/' b.yaml > b2.yaml
+"$gphr" build b2.yaml --model m2.h5 --output art2 > /dev/null 2> build2.err || { cat build2.err; fail "second build"; }
+printf 'queries:\n  points:\n    a: {eps: 1.0}\n' > q1.yaml
+mpmd() { timeout 60 "$mpiexec" --allow-run-as-root --oversubscribe -np 1 "$gphr" query "$1" q1.yaml --output "$3" : \
+  -np 1 "$gphr" query "$2" q1.yaml --output "$3"; }
+one_line mpmd1 2 "the ranks read different contents of reduced-model file 'm.h5'" "two model files" -- mpmd m.h5 m2.h5 mp1
+[ ! -e mp1 ] || fail "two model files: the output directory was made"
+one_line mpmd2 2 "reduced-model file 'missing.h5': cannot open .*(on rank 1; 1 of the 2 ranks read it: the ranks do not see the same input)" \
+  "a model file rank 1 lacks" -- mpmd m.h5 missing.h5 mp2

@@ -67,6 +67,7 @@ void coerceNumber(ParameterList& user, const std::string& key, const Teuchos::Pa
 }
 
 std::string valueText(const Teuchos::ParameterEntry& e) {
+  if (e.isType<double>()) return detail::concat(e.getValue<double>(nullptr));  // as read (Error.hpp's Shortest)
   std::ostringstream os;
   os.precision(12);
   os << std::boolalpha;

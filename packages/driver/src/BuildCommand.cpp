@@ -105,6 +105,7 @@ int runBuild(const std::string& configPath, const std::string& modelPath, const 
              const RCP<const Comm>& comm) {
   // The command's own set-up (config, output directory, the scene's instance for the cache) is a
   // stage too: on a large scene its instance is not free.
+  requireOutputsApart({{configPath, "the config file"}}, {{modelPath, "--model"}, {artifactsDir, "--output"}});
   StageClocks setup;
   auto setupClock = std::make_unique<StageClocks::Scope>(setup, "setup");
   RunContext ctx;
@@ -124,6 +125,7 @@ int runBuild(const std::string& configPath, const std::string& modelPath, const 
   const ModelBuildOptions options = buildOptions(ctx, stored);
   const auto inst = ctx.scene->instantiate(comm, ctx.mu, true);
   checkModelBuildOptions(*ctx.scene, options, inst.system->space().fullDim());  // before any file is made
+  requireWritableBeside(modelPath, "--model", comm);  // not found after the offline run
   prepareOutputDir(ctx, false);
   const OutputLock lock(artifactsDir, "build", comm);
   const auto parent = std::filesystem::path(modelPath).parent_path();

@@ -82,7 +82,7 @@ FomResult runFullModel(const EvaluationSettings& settings, const Scene& scene, c
   Progress progress(method::kFom, steps, settings.progressSeconds, comm->getRank() == 0);
   long saved = 0;
   const std::function<void(long, double, const Vector&)> observe = [&](long j, double t, const Vector& yj) {
-    res.hamiltonian.push_back(inst.system->hamiltonian(yj));
+    res.hamiltonian.push_back(finiteHamiltonian(inst.system->hamiltonian(yj), j));
     if (isSavedStep(j, steps, saveEvery)) {
       auto col = res.trajectory->getVectorNonConst(saved++);
       if (ref.is_null()) Tpetra::deep_copy(*col, yj);

@@ -112,7 +112,7 @@ ModelRun evaluateReducedModel(const RCP<const Comm>& comm, const EvaluationSetti
   const bool fieldStates = fom.fieldStates && fom.fieldStates->wants(method);
   DeferredLift lift(A, sys, fom, steps, saveEvery, keepStates || fieldStates, run);
   const SimulationStats sim = simulate(model, settings, z, [&](long j, double, const DenseVector& zj) {
-    if (hasHamiltonian) run.modelHamiltonian.push_back(model.hamiltonian(zj));  // the model at this step
+    if (hasHamiltonian) run.modelHamiltonian.push_back(finiteHamiltonian(model.hamiltonian(zj), j));  // the model at this step
     lift.add(j, zj);
   }, adapt);
   const RunStats& stats = sim.run;

@@ -62,6 +62,57 @@ void onRootAgreed(const RCP<const Comm>& comm, const std::string& what, const st
   agreeOnError(comm, error);
 }
 
+namespace {
+std::filesystem::path resolved(const std::string& p) {
+  std::error_code ec;
+  const auto abs = std::filesystem::absolute(p, ec).lexically_normal();
+  const auto out = std::filesystem::weakly_canonical(abs, ec);
+  return ec ? abs : out;
+}
+
+// Whether `inner` is `outer` or lies below it (whole path components).
+bool within(const std::filesystem::path& inner, const std::filesystem::path& outer) {
+  auto i = inner.begin();
+  for (auto o = outer.begin(); o != outer.end(); ++o, ++i) {
+    if (o->empty() && std::next(o) == outer.end()) break;  // a trailing separator
+    if (i == inner.end() || *i != *o) return false;
+  }
+  return true;
+}
+}  // namespace
+
+void requireOutputsApart(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs) {
+  for (const auto& out : outputs) {
+    const auto o = resolved(out.path);
+    for (const auto& in : inputs) {
+      const auto i = resolved(in.path);
+      GPHR_REQUIRE(!within(i, o), InputError, out.what, " '", out.path, "' ", i == o ? "is" : "contains", " ", in.what,
+                   " '", in.path, "', which the command reads; allowed: an output apart from its inputs (it would be "
+                   "overwritten)");
+    }
+  }
+}
+
+void requireWritableBeside(const std::string& path, const std::string& what, const RCP<const Comm>& comm) {
+  std::string error;
+  if (comm->getRank() == 0) {
+    std::error_code ec;
+    auto dir = std::filesystem::path(path).parent_path();
+    if (dir.empty()) dir = ".";
+    std::filesystem::create_directories(dir, ec);
+    const std::string probe = (dir / ("." + std::filesystem::path(path).filename().string() + ".writable")).string();
+    std::FILE* f = ec ? nullptr : std::fopen(probe.c_str(), "w");
+    if (!f) {
+      error = detail::concat("cannot write ", what, " '", path, "': ", ec ? ec.message() : std::strerror(errno),
+                             " (checked before any work)");
+    } else {
+      std::fclose(f);
+      std::remove(probe.c_str());
+    }
+  }
+  agreeOnError(comm, error);
+}
+
 void makeDirectory(const std::string& dir, const RCP<const Comm>& comm) {
   std::string error;
   if (comm->getRank() == 0) {

@@ -107,7 +107,7 @@ struct Recorder {
 // The physical states y0(mu) + A z at the saved steps (O(n k) each: asked for with states: true).
 GO writeStates(Hdf5File& f, const ReducedModel& model, const Query& q, const std::vector<double>& z, size_t saved) {
   const auto inst = model.scene().instantiate(selfComm(), q.mu, true);
-  const auto A = readReducedModelBasis(model.path(), q.k, inst.system->space());
+  const auto A = model.basis(q.k, inst.system->space());
   const auto Z = liftWorkspace(*A, static_cast<int>(saved));
   MultiVector Y(inst.system->map(), saved);
   liftStates(*A, inst.system->reference().get(), z.data(), static_cast<int>(saved), *Z, Y);
@@ -301,8 +301,10 @@ int runQuery(const std::string& modelPath, const std::string& queriesPath, const
              const RCP<const Comm>& comm, int threads) {
   if (threads == 0) threads = defaultQueryThreads();
   const int rank = comm->getRank(), size = comm->getSize();
-  const ReducedModel model(modelPath);
-  const auto queries = readQueries(queriesPath, model);
+  requireOutputsApart({{modelPath, "the model file"}, {queriesPath, "the queries file"}}, {{outputDir, "--output"}});
+  const auto loaded = loadOnEveryRank(modelPath, comm);
+  const ReducedModel& model = *loaded;
+  const auto queries = readQueriesOnEveryRank(queriesPath, model, QueryFileKind::Queries, comm);
   checkLiftingBases(model, queries, QueryFileKind::Queries, comm);
   makeDirectory(outputDir, comm);
   const OutputLock lock(outputDir, "query", comm);  // before anything is made inside: a refused run leaves nothing

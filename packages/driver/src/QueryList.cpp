@@ -1,7 +1,7 @@
 #include "gphr/core/Provenance.hpp"
 #include "gphr/driver/QueryList.hpp"
 
-#include <Teuchos_YamlParameterListCoreHelpers.hpp>
+#include <Teuchos_CommHelpers.hpp>
 
 #include <cmath>
 #include <fstream>
@@ -9,6 +9,8 @@
 #include <sstream>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/core/Fnv1a.hpp"
+#include "gphr/core/RankGroups.hpp"
 #include "gphr/driver/OutputDirectory.hpp"
 #include "gphr/driver/InputFile.hpp"
 #include "gphr/hyper/ReducedModelFile.hpp"
@@ -220,7 +222,57 @@ void checkLiftingBases(const ReducedModel& model, const std::vector<Query>& quer
   }
   if (ks.empty()) return;
   const auto inst = model.scene().instantiate(comm, *mu, true);
-  for (int k : ks) readReducedModelBasis(model.path(), k, inst.system->space());
+  for (int k : ks) model.basis(k, inst.system->space());
+}
+
+namespace {
+
+// Collective: `work` on every rank; a failure on some ranks only says so (the ranks do not see the
+// same input), then every rank throws the lowest failing rank's error (agreeOnFailure).
+template <class Work>
+void onEveryRank(const RCP<const Comm>& comm, Work&& work) {
+  GroupFailure failure = failureOf("", "", work);
+  const int mine = failure.text.empty() ? 0 : 1;
+  int failing = 0;
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, mine, Teuchos::outArg(failing));
+  if (mine && failing < comm->getSize())
+    failure.text += detail::concat(" (on rank ", comm->getRank(), "; ", comm->getSize() - failing, " of the ",
+                                   comm->getSize(), " ranks read it: the ranks do not see the same input)");
+  agreeOnFailure(*comm, failure);
+}
+
+// Collective: InputError on every rank unless `text` is the same on all (compared by its hash).
+void requireSameOnRanks(const RCP<const Comm>& comm, const std::string& text, const std::string& what) {
+  Fnv1a h;
+  h.text(text);
+  const std::string hex = h.hex();
+  const long long mine = static_cast<long long>(std::stoull(hex.substr(hex.size() - 15), nullptr, 16));
+  long long lo = 0, hi = 0;
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MIN, mine, Teuchos::outArg(lo));
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, mine, Teuchos::outArg(hi));
+  GPHR_REQUIRE(lo == hi, InputError, "the ranks read different contents of ", what, "; allowed: one input that every "
+               "rank reads alike (a file system all nodes share, not changed while gphr starts)");
+}
+
+}  // namespace
+
+std::unique_ptr<ReducedModel> loadOnEveryRank(const std::string& path, const RCP<const Comm>& comm) {
+  std::unique_ptr<ReducedModel> model;
+  const std::string what = "reduced-model file '" + path + "'";
+  onEveryRank(comm, [&] { model = std::make_unique<ReducedModel>(path); });
+  requireSameOnRanks(comm, model->data().checksum, what);
+  return model;
+}
+
+std::vector<Query> readQueriesOnEveryRank(const std::string& path, const ReducedModel& model, QueryFileKind kind,
+                                          const RCP<const Comm>& comm) {
+  std::vector<Query> out;
+  const std::string what = (kind == QueryFileKind::Queries ? "queries file '" : "validation file '") + path + "'";
+  onEveryRank(comm, [&] { out = readQueries(path, model, kind); });
+  std::string keys;
+  for (const auto& q : out) keys += q.key() + "\n";
+  requireSameOnRanks(comm, keys, what);
+  return out;
 }
 
 std::vector<Query> readQueries(const std::string& path, const ReducedModel& model, QueryFileKind kind) {

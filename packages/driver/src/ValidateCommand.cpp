@@ -36,11 +36,11 @@ namespace {
 
 // The point's evaluation: its T, dt and saveEvery with the file's integrator, one timing run per
 // model, the shifted system (the file's models are of it).
-EvaluationSettings pointSettings(const ReducedModelData& d, const Query& q) {
+EvaluationSettings pointSettings(const ReducedModel& rm, const Query& q) {
   EvaluationSettings s;
   s.time.dt = q.dt;
   s.time.steps = wholeSteps(q.T, q.dt);
-  s.time.integrator = *Teuchos::getParametersFromYamlString(d.integratorConfig);
+  s.time.integrator = rm.integrator();
   s.saveEvery = q.saveEvery;
   s.onlineRepeats = 1;
   s.shift = true;
@@ -141,7 +141,7 @@ void fullModelsOverGroups(const RunContext& ctx, const ReducedModel& rm, const s
     failure = failureOf(pointName(points[i], d), "the full model failed: ", [&] {
       const auto inst = rm.scene().instantiate(sub.comm, points[i].mu, true);
       bool cached = false;
-      fullModel(sub, rm.scene(), d, points[i], pointSettings(d, points[i]), inst.system->space(), cached);
+      fullModel(sub, rm.scene(), d, points[i], pointSettings(rm, points[i]), inst.system->space(), cached);
     });
   }
   agreeOnFailure(*ctx.comm, failure);
@@ -161,7 +161,7 @@ ValidationRecord recordOf(const ModelRun& run, const Query& q, double setupSecon
 std::vector<ValidationRecord> evaluatePoint(RunContext& ctx, const ReducedModel& rm, const Query& q, double& tFom,
                                             bool& cached) {
   const auto& d = rm.data();
-  const EvaluationSettings settings = pointSettings(d, q);
+  const EvaluationSettings settings = pointSettings(rm, q);
   const auto inst = rm.scene().instantiate(ctx.comm, q.mu, true);
   FomResult fom;
   try {
@@ -173,7 +173,7 @@ std::vector<ValidationRecord> evaluatePoint(RunContext& ctx, const ReducedModel&
   const bool outside = d.outsideBox(q.mu);
   std::vector<ValidationRecord> out;
   for (const auto& b : d.bases) {
-    const RCP<const MultiVector> A = readReducedModelBasis(rm.path(), b.k, inst.system->space());
+    const RCP<const MultiVector> A = rm.basis(b.k, inst.system->space());
     GalerkinRom rom(inst.system, A);
     out.push_back(recordOf(evaluateReducedModel(ctx.comm, settings, fom, *inst.system, *A, rom, true, method::kRom, b.k, 0), q, 0.0, outside));
     for (const auto& sm : d.models) {
@@ -200,13 +200,15 @@ std::vector<ValidationRecord> evaluatePoint(RunContext& ctx, const ReducedModel&
 
 int runValidate(const std::string& modelPath, const std::string& testsPath, const std::string& outputDir,
                 const RCP<const Comm>& comm) {
-  const ReducedModel rm(modelPath);
+  requireOutputsApart({{modelPath, "the model file"}, {testsPath, "the validation file"}}, {{outputDir, "--output"}});
+  const auto loaded = loadOnEveryRank(modelPath, comm);
+  const ReducedModel& rm = *loaded;
   const auto& d = rm.data();
   for (const auto& b : d.bases)
     GPHR_REQUIRE(b.hasBasis, InputError, "reduced-model file '", modelPath, "' holds no basis for k = ", b.k,
                  ": gphr validate lifts the reduced states to compare them with the full model; build the file with "
                  "build.withBasis: true");
-  const auto points = readQueries(testsPath, rm, QueryFileKind::Validation);
+  const auto points = readQueriesOnEveryRank(testsPath, rm, QueryFileKind::Validation, comm);
   checkLiftingBases(rm, points, QueryFileKind::Validation, comm);
   RunContext ctx;
   ctx.comm = comm;

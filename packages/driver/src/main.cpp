@@ -24,6 +24,7 @@
 #include "gphr/driver/Commands.hpp"
 #include "gphr/driver/Console.hpp"
 #include "gphr/driver/Config.hpp"
+#include "gphr/driver/OutputDirectory.hpp"
 #include "gphr/driver/OutputLock.hpp"
 #include "gphr/driver/QueryThreads.hpp"
 #include "gphr/driver/HyperStage.hpp"
@@ -95,12 +96,17 @@ Args parseArgs(int argc, char** argv) {
                "unknown command '", v[0], "'; allowed: run, build, query, validate, --help (", kUsage, ")");
   if (v[0] == "query" || v[0] == "validate") {
     GPHR_REQUIRE(v.size() >= 3, gphr::InputError, "'gphr ", v[0], "' needs MODEL.h5 and a YAML file (", kUsage, ")");
+    for (size_t i : {size_t(1), size_t(2)})  // "gphr query M.h5 --output D": the YAML file is missing
+      GPHR_REQUIRE(v[i].rfind("--", 0) != 0, gphr::InputError, "'gphr ", v[0], "' needs MODEL.h5 and a YAML file before its "
+                   "options; found the option '", v[i], "' where the ", i == 1 ? "model file" : "YAML file",
+                   " belongs (", kUsage, ")");
     a.command = v[0] == "query" ? Args::Query : Args::Validate, a.model = v[1], a.queries = v[2];
     a.output = v[0] == "query" ? "gphr-queries" : "gphr-validation";
     options(a, v, 3, false, a.command == Args::Query);
     return a;
   }
-  GPHR_REQUIRE(v.size() >= 2, gphr::InputError, "'gphr ", v[0], "' needs a CONFIG file (", kUsage, ")");
+  GPHR_REQUIRE(v.size() >= 2 && v[1].rfind("--", 0) != 0, gphr::InputError, "'gphr ", v[0], "' needs a CONFIG file",
+               v.size() >= 2 ? " before its options; found the option '" + v[1] + "'" : std::string(), " (", kUsage, ")");
   a.config = v[1];
   a.command = v[0] == "build" ? Args::Build : Args::Run;
   options(a, v, 2, a.command == Args::Build);
@@ -122,6 +128,7 @@ FILE* quiet() {
 int runMain(const Args& args, const gphr::RCP<const gphr::Comm>& comm) {
   using namespace gphr;
   const bool root = comm->getRank() == 0;
+  if (!args.config.empty()) requireOutputsApart({{args.config, "the config file"}}, {{args.output, "--output"}});
   RunContext ctx;
   ctx.config = args.config.empty() ? defaultConfig() : loadConfig(args.config);
   ctx.scene = makeScene(ctx.config.sublist("scene"));
@@ -185,16 +192,20 @@ int main(int argc, char** argv) {
     std::cout << gphr::helpText();
     return 0;
   }
-  // Kokkos::initialize reads --threads (its own, expecting --threads=N): it gets the arguments
-  // without gphr query's --threads N.
-  std::vector<char*> forKokkos;
-  for (int i = 0; i < argc; ++i) {
-    if (std::string(argv[i]) == "--threads") ++i;
-    else forKokkos.push_back(argv[i]);
+  // gphr's arguments are read before MPI and Kokkos start, and Kokkos is given none of them:
+  // Kokkos::initialize acts on its own (--kokkos-help prints its help, --kokkos-tools-library
+  // loads a library, --threads=N) before gphr could refuse them. An argument error is said once
+  // MPI runs (rank 0 alone prints it, every rank exits 2).
+  Args args;
+  std::string argumentError;
+  try {
+    args = parseArgs(argc, argv);
+  } catch (const gphr::InputError& e) {
+    argumentError = e.what();
   }
-  int kokkosArgc = static_cast<int>(forKokkos.size());
-  forKokkos.push_back(nullptr);
-  char** kokkosArgv = forKokkos.data();
+  char* programOnly[] = {argv[0], nullptr};
+  int kokkosArgc = 1;
+  char** kokkosArgv = programOnly;
   Tpetra::ScopeGuard scope(&kokkosArgc, &kokkosArgv);
   auto comm = Tpetra::getDefaultComm();
   const bool root = comm->getRank() == 0;
@@ -204,7 +215,7 @@ int main(int argc, char** argv) {
   FILE* errors = stderr;
   const int code = [&] {
     try {
-      const Args args = parseArgs(argc, argv);
+      if (!argumentError.empty()) throw gphr::InputError(argumentError);
       if (args.command == Args::Help) {
         if (root) std::cout << gphr::helpText();
         return 0;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <hdf5.h>
@@ -196,4 +197,78 @@ TEST(ReducedModelFile, RefusesBadFilesAndQueries) {
     refuses([&] { ReducedModel(path + ".missing", scene); }, "missing");
     for (const auto& p : {path, other, cut, junk}) std::remove(p.c_str());
   }
+}
+
+// What a file stores beside its numbers is checked when it is loaded, not when a query first uses
+// it: the integrator and adeim sections through the config's validators and the bounds of a
+// user's YAML, and the sample meshes' stencil widths against the scene's row kernel. Each file
+// here is written by writeReducedModelFile, so its checksum is recomputed over the damage (as a
+// hostile user can do): the checksum alone would pass every one of them.
+TEST(ReducedModelFile, StoredSectionsAndStencilWidthsAreCheckedAtLoad) {
+  auto scene = std::make_shared<Nls1d>(64, 5.0);
+  const auto hc = nlsCase(64, 4, comm());
+  ModelFileOptions opt;
+  opt.integratorConfig = integratorYaml("avf");
+  ReducedModelData good = modelFileHeader(*scene, hc.test, opt);
+  good.T = 1.0, good.dt = kDt;
+  addReducedBasis(good, *scene, hc.test, *hc.basis.A, 4, *hc.deim.U, {8}, opt);
+  StoredHyperModel adaptive;
+  adaptive.method = "gp-adeim", adaptive.k = 4, adaptive.m = 8;
+  adaptive.adeimConfig = "adeim:\n  window: 2\n  initialWindow: 5\n";
+  good.models.push_back(adaptive);
+  const std::string path = sharedPath("sections");
+  auto refusedAtLoad = [&](const ReducedModelData& d, const std::string& words) {
+    writeReducedModelFile(path, comm(), d, {Teuchos::null});
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      ReducedModel rm(path, scene);
+      ADD_FAILURE() << "loaded; expected an error naming: " << words;
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(words), std::string::npos) << what;
+      EXPECT_EQ(what.rfind("reduced-model file '" + path + "'", 0), 0u) << what;  // names the file first
+      EXPECT_EQ(what.find('\n'), std::string::npos) << what;                     // one line
+      EXPECT_LT(what.size(), 600u) << what;  // no value repeated whole
+    }
+    // A bound, not a timing: 3,000 nesting levels took 27.7 s before the limits (the issue).
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0) << words;
+  };
+  {  // the good file loads, and its adeim options are the stored ones
+    writeReducedModelFile(path, comm(), good, {Teuchos::null});
+    EXPECT_NO_THROW(ReducedModel(path, scene));
+  }
+  ReducedModelData d = good;
+  d.integratorConfig = "integrator:\n  newtonTolerance: -1.0\n";
+  refusedAtLoad(d, "newtonTolerance");
+  d.integratorConfig = "integrator:\n  newtonTolerence: 1.0e-10\n";
+  refusedAtLoad(d, "newtonTolerence");
+  d.integratorConfig.clear();  // nesting bomb: 3,000 flow levels on one line
+  d.integratorConfig = "integrator:\n  scheme: " + std::string(3000, '[') + std::string(3000, ']') + "\n";
+  refusedAtLoad(d, "nests");
+  d.integratorConfig = "integrator:\n  scheme: '" + std::string(2 << 20, 'x') + "'\n";  // a 2 MB value
+  refusedAtLoad(d, "allowed: at most");
+  d.integratorConfig = "integrator:\n  scheme: [avf\n";
+  refusedAtLoad(d, "its integrator section is malformed YAML");
+  d = good;
+  d.models.back().adeimConfig = "adeim:\n  window: 0\n";
+  refusedAtLoad(d, "gp-adeim/k4/m8 adeim section");
+  d = good;
+  {  // row 0's stencil one entry wider (an entry of row 1's, which has a reference value): the
+     // file stays consistent with itself, but the row kernel reads a fixed number per row
+    RowSample& s = d.models.front().sample;
+    const size_t r = static_cast<size_t>(s.reducedDim), e0 = s.stencil.offsets[1], extra = s.stencil.offsets[1];
+    s.stencil.gids.insert(s.stencil.gids.begin() + e0, s.stencil.gids[extra]);
+    s.basisRows.insert(s.basisRows.begin() + e0 * r, s.basisRows.begin() + extra * r,
+                       s.basisRows.begin() + (extra + 1) * r);
+    for (size_t i = 1; i < s.stencil.offsets.size(); ++i) ++s.stencil.offsets[i];
+  }
+  refusedAtLoad(d, "stencil entries; allowed: 2");
+  d = good;  // numbers out of their range, checksum recomputed: refused by the checks, not the checksum
+  d.models.front().sample.weights[1] = std::nan("");
+  refusedAtLoad(d, "/weights has entry 1 = nan; allowed: finite numbers");
+  d = good;
+  d.models.front().sample.rows[1] = d.models.front().sample.rows[0];
+  refusedAtLoad(d, "/rows names a term twice");
+  comm()->barrier();
+  if (comm()->getRank() == 0) std::remove(path.c_str());
 }

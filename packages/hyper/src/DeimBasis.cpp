@@ -66,8 +66,10 @@ Projection gramProjection(int cols, int r, int maxRank, Each&& each) {
 
 // B^T = [C_1; C_2; ...] = Q_B R, its R accumulated by a blocked QR of [R; the next snapshots'
 // rows] (denseQrFactorR, ~4 cols rows at a time), and B = R^T Q_B^T: B's singular values are R's
-// and its left singular vectors R's right ones. Resolves sigma to ~eps sigma_1; the floor is the
-// exact route's, (number of columns) eps sigma_1.
+// and its left singular vectors R's right ones. Resolves sigma to ~eps sigma_1; the floor is
+// (number of columns) eps sigma_1: this route makes GP-ADEIM's initial basis U_0 from its first
+// delta0 steps (gramProjection = false), whose m the user fixes; the training DEIM basis takes the
+// Gram route (floor 1e-7) or the exact one (kDeimRankFloor).
 template <class Each>
 Projection qrProjection(int cols, int r, int maxRank, Each&& each) {
   const int batch = std::max(1, 4 * cols / std::max(r, 1)), ld = cols + batch * r;
@@ -266,7 +268,7 @@ StreamingPod chunkPod(const SystemSet& systems, const SnapshotSet& states,
   // Snapshots per POD step (the same on any rank count): a step costs O(d (rank + columns)^2), so
   // about maxRank new columns per step balances the number of steps against their size.
   const int perBlock = opt.blockSnapshots > 0 ? opt.blockSnapshots : std::max(1, (maxRank + r - 1) / r);
-  StreamingPod pod(rowMap, maxRank, perBlock * r, -1.0, podRouteFromName(opt.podRoute));
+  StreamingPod pod(rowMap, maxRank, perBlock * r, kDeimRankFloor, podRouteFromName(opt.podRoute));
   MultiVector block(rowMap, static_cast<size_t>(perBlock) * r);
   std::vector<Scalar> jac(static_cast<size_t>(nl) * r);
   int filled = 0;
@@ -331,7 +333,7 @@ DeimChunkModes deimChunkModes(const SystemSet& systems, const SnapshotSet& state
 // One step per chunk (blockColumns = maxRank >= a chunk's rank): maxRank carried + at most maxRank
 // new columns, the size of a chunk's own steps.
 DeimRootPod::DeimRootPod(RCP<const Map> rowMap, const DeimBasisOptions& opt, int maxRank)
-    : pod_(std::move(rowMap), maxRank, maxRank, -1.0, podRouteFromName(opt.podRoute)) {}
+    : pod_(std::move(rowMap), maxRank, maxRank, kDeimRankFloor, podRouteFromName(opt.podRoute)) {}
 
 void DeimRootPod::add(const MultiVector& modes, const DeimChunkModes& stats) {
   addStatistics(sum_, stats);

@@ -3,9 +3,15 @@
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_DefaultSerialComm.hpp>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <sstream>
 
 #include "gphr/core/Error.hpp"
@@ -440,68 +446,123 @@ void writeReducedModelFile(const std::string& path, const RCP<const Comm>& comm,
   out.commit();
 }
 
-ReducedModelData readReducedModelFile(const std::string& path) {
+namespace {
+
+// The model data of an open file, validated whole (readReducedModelFile's contract).
+ReducedModelData readModelData(const Hdf5File& f) {
+  GPHR_REQUIRE(f.hasAttribute("/", "format") && f.stringAttribute("/", "format") == kFormat, InputError,
+               "not a gphr reduced-model file (no format attribute '", kFormat, "'; write one with gphr build)");
+  ReducedModelData d;
+  d.schemaVersion = static_cast<int>(wholeAttribute(f, "/", "schema_version", 0, 1e6));
+  GPHR_REQUIRE(d.schemaVersion == kReducedModelSchema, InputError, "schema version ", d.schemaVersion,
+               "; this gphr reads schema version ", kReducedModelSchema, " (rebuild the model with this gphr build)");
+  readProvenance(f, d);
+  const std::string list = f.stringAttribute("/", "models");
+  for (const auto& key : split(list, ';')) {  // method/k<k>/m<m>
+    const auto [method, k, m] = parseModelKey(key);
+    GPHR_REQUIRE(f.exists(basisGroup(k) + "/" + method + "/m" + std::to_string(m)), InputError, "attribute 'models' "
+                 "names ", key, ", which the file does not hold");
+    if (std::none_of(d.bases.begin(), d.bases.end(), [&](const StoredBasisData& x) { return x.k == k; }))
+      d.bases.push_back(readBasisData(f, d, k));
+    GPHR_REQUIRE(std::none_of(d.models.begin(), d.models.end(), [&](const StoredHyperModel& x) { return x.key() == key; }),
+                 InputError, "attribute 'models' names ", key, " twice");
+    d.models.push_back(readModel(f, d.basis(k), method, k, m));
+  }
+  GPHR_REQUIRE(!d.models.empty(), InputError, "it holds no model (attribute 'models' is empty)");
+  // a changed byte anywhere in the model data is an error, not a different model
+  GPHR_REQUIRE(f.hasAttribute("/", "checksum"), InputError, "it has no checksum attribute (write it with gphr build)");
+  const std::string stored = f.stringAttribute("/", "checksum"), computed = modelDataChecksum(d);
+  GPHR_REQUIRE(stored == computed, InputError, "its model data do not match its checksum (stored ", stored,
+               ", computed ", computed, "): the file was changed or damaged after gphr build wrote it");
+  d.checksum = stored;
+  return d;
+}
+
+}  // namespace
+
+OpenModelFile::Stamp OpenModelFile::stampOf(int fd) {
+  struct stat st {};
+  GPHR_REQUIRE(::fstat(fd, &st) == 0, InputError, "cannot stat the open file: ", std::strerror(errno));
+  Stamp s;
+  s.device = st.st_dev, s.inode = st.st_ino, s.size = static_cast<long long>(st.st_size);
+  s.modifiedNs = static_cast<long long>(st.st_mtim.tv_sec) * 1000000000LL + st.st_mtim.tv_nsec;
+  return s;
+}
+
+OpenModelFile::OpenModelFile(const std::string& path) : path_(path) {
   try {
-    Hdf5File f(path, selfComm(), Hdf5File::Mode::ReadOnly);
-    GPHR_REQUIRE(f.hasAttribute("/", "format") && f.stringAttribute("/", "format") == kFormat, InputError,
-                 "not a gphr reduced-model file (no format attribute '", kFormat, "'; write one with gphr build)");
-    ReducedModelData d;
-    d.schemaVersion = static_cast<int>(wholeAttribute(f, "/", "schema_version", 0, 1e6));
-    GPHR_REQUIRE(d.schemaVersion == kReducedModelSchema, InputError, "schema version ", d.schemaVersion,
-                 "; this gphr reads schema version ", kReducedModelSchema, " (rebuild the model with this gphr build)");
-    readProvenance(f, d);
-    const std::string list = f.stringAttribute("/", "models");
-    for (const auto& key : split(list, ';')) {  // method/k<k>/m<m>
-      const auto [method, k, m] = parseModelKey(key);
-      GPHR_REQUIRE(f.exists(basisGroup(k) + "/" + method + "/m" + std::to_string(m)), InputError, "attribute 'models' "
-                   "names ", key, ", which the file does not hold");
-      if (std::none_of(d.bases.begin(), d.bases.end(), [&](const StoredBasisData& x) { return x.k == k; }))
-        d.bases.push_back(readBasisData(f, d, k));
-      GPHR_REQUIRE(std::none_of(d.models.begin(), d.models.end(), [&](const StoredHyperModel& x) { return x.key() == key; }),
-                   InputError, "attribute 'models' names ", key, " twice");
-      d.models.push_back(readModel(f, d.basis(k), method, k, m));
+    // The descriptor first, then HDF5's open of the same path: if the path was replaced in
+    // between (their inodes differ), open both again, so that the stamp is the HDF5 file's.
+    for (int attempt = 0;; ++attempt) {
+      fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+      file_ = std::make_unique<Hdf5File>(path, selfComm(), Hdf5File::Mode::ReadOnly);
+      GPHR_REQUIRE(fd_ >= 0, InputError, "cannot open it: ", std::strerror(errno));
+      opened_ = stampOf(fd_);
+      struct stat now {};
+      if (::stat(path.c_str(), &now) == 0 && now.st_ino == opened_.inode && now.st_dev == opened_.device) break;
+      GPHR_REQUIRE(attempt < 3, InputError, "it was replaced at every one of 4 attempts to open it");
+      file_.reset();
+      ::close(fd_);
     }
-    GPHR_REQUIRE(!d.models.empty(), InputError, "it holds no model (attribute 'models' is empty)");
-    // a changed byte anywhere in the model data is an error, not a different model
-    GPHR_REQUIRE(f.hasAttribute("/", "checksum"), InputError, "it has no checksum attribute (write it with gphr build)");
-    const std::string stored = f.stringAttribute("/", "checksum"), computed = modelDataChecksum(d);
-    GPHR_REQUIRE(stored == computed, InputError, "its model data do not match its checksum (stored ", stored,
-                 ", computed ", computed, "): the file was changed or damaged after gphr build wrote it");
-    d.checksum = stored;
-    return d;
+    data_ = readModelData(*file_);
+    requireUnchanged();  // not rewritten in place while it was read
   } catch (const InputError& e) {
+    if (fd_ >= 0) ::close(fd_);
     throw InputError(detail::concat("reduced-model file '", path, "': ", e.what()));
   } catch (const std::logic_error& e) {  // .at() of a damaged attribute
+    if (fd_ >= 0) ::close(fd_);
     throw InputError(detail::concat("reduced-model file '", path, "' is damaged: ", e.what()));
   }
 }
 
-RCP<MultiVector> readReducedModelBasis(const std::string& path, int k, const PhaseSpace& space) {
-  Hdf5File f(path, space.comm(), Hdf5File::Mode::ReadOnly);
+OpenModelFile::~OpenModelFile() {
+  file_.reset();
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void OpenModelFile::requireUnchanged() const {
+  GPHR_REQUIRE(stampOf(fd_) == opened_, InputError, "it was changed in place while in use (its size or modification "
+               "time differ from those when it was opened); allowed: a model file left as it is while gphr reads it, "
+               "or replaced whole (gphr build writes a new file and renames it over the old)");
+}
+
+ReducedModelData readReducedModelFile(const std::string& path) { return OpenModelFile(path).data(); }
+
+RCP<MultiVector> OpenModelFile::basis(int k, const PhaseSpace& space) const {
   const std::string name = basisGroup(k) + "/basis";
-  GPHR_REQUIRE(f.exists(name), InputError, "reduced-model file '", path, "' holds no basis for k = ", k,
-               " (build it with build.withBasis: true)");
-  const RCP<MultiVector> A = f.readStates(name, space);
-  GPHR_REQUIRE(A->getNumVectors() == 2 * static_cast<size_t>(k), InputError, "reduced-model file '", path, "': ", name,
-               " has ", A->getNumVectors(), " columns; allowed: 2k = ", 2 * k);
+  RCP<MultiVector> A;
   int bad = 0;
   {
+    const std::lock_guard<std::mutex> lock(read_);
+    try {
+      requireUnchanged();
+    } catch (const InputError& e) {
+      throw InputError(detail::concat("reduced-model file '", path_, "': ", e.what()));
+    }
+    GPHR_REQUIRE(file_->exists(name), InputError, "reduced-model file '", path_, "' holds no basis for k = ", k,
+                 " (build it with build.withBasis: true)");
+    A = file_->readStates(name, space);
+    GPHR_REQUIRE(A->getNumVectors() == 2 * static_cast<size_t>(k), InputError, "reduced-model file '", path_, "': ",
+                 name, " has ", A->getNumVectors(), " columns; allowed: 2k = ", 2 * k);
     auto a = A->getLocalViewHost(Tpetra::Access::ReadOnly);
     for (size_t j = 0; j < a.extent(1) && !bad; ++j)
       for (size_t i = 0; i < a.extent(0) && !bad; ++i) bad = !std::isfinite(a(i, j));
   }
   int anyBad = 0;
   Teuchos::reduceAll(*space.comm(), Teuchos::REDUCE_MAX, bad, Teuchos::outArg(anyBad));
-  GPHR_REQUIRE(!anyBad, InputError, "reduced-model file '", path, "': ", name, " holds a value that is not finite; "
+  GPHR_REQUIRE(!anyBad, InputError, "reduced-model file '", path_, "': ", name, " holds a value that is not finite; "
                "allowed: finite values (the file is damaged: build it again)");
   // The basis is outside the file's checksum (distributed, and read only to lift): its
   // fingerprint catches a changed value (ColumnFingerprint.hpp; ||a_j|| = 1). Files written
   // before the fingerprint have none: only the checks above apply to them.
-  if (f.hasAttribute(name, "fingerprint")) {
-    const bool same = fingerprintMatches(f.doubleAttribute(name, "fingerprint"), *A);
-    GPHR_REQUIRE(same, InputError, "reduced-model file '", path, "': ", name,
-                 " does not match its fingerprint (a changed value; the file is damaged: build it again)");
+  std::vector<double> fingerprint;
+  {
+    const std::lock_guard<std::mutex> lock(read_);
+    if (file_->hasAttribute(name, "fingerprint")) fingerprint = file_->doubleAttribute(name, "fingerprint");
   }
+  if (!fingerprint.empty())
+    GPHR_REQUIRE(fingerprintMatches(fingerprint, *A), InputError, "reduced-model file '", path_, "': ", name,
+                 " does not match its fingerprint (a changed value; the file is damaged: build it again)");
   return A;
 }
 

@@ -37,16 +37,30 @@ struct Id {
 // What HDF5 said about the failure it just recorded (its printing is off, the stack is kept):
 // the description of the innermost error, where it was detected, e.g. "incorrect metadata
 // checksum after all read attempts" for a damaged header of a file in the 1.8 format.
+// A failure anywhere in the data-filter pipeline or the plugin loader (by the error's class or its
+// words) is said as such: its innermost error is the loader's ("can't open directory
+// .../plugins"), which names no cause.
+struct Hdf5Failure {
+  std::string reason;
+  bool filter = false;
+};
 herr_t innermostError(unsigned n, const H5E_error2_t* e, void* out) {
-  auto& reason = *static_cast<std::string*>(out);
-  if (n == 0 && e->desc != nullptr) reason = e->desc;
+  auto& f = *static_cast<Hdf5Failure*>(out);
+  if (n == 0 && e->desc != nullptr) f.reason = e->desc;
+  const std::string desc = e->desc ? e->desc : "";
+  if (e->maj_num == H5E_PLINE || e->maj_num == H5E_PLUGIN || desc.find("filter") != std::string::npos ||
+      desc.find("plugin") != std::string::npos)
+    f.filter = true;
   return 0;
 }
 
 std::string hdf5Reason() {
-  std::string reason;
-  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, innermostError, &reason);
-  return reason.empty() ? std::string() : " (HDF5: " + reason + ")";
+  Hdf5Failure f;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, innermostError, &f);
+  if (f.filter)
+    return " (HDF5: the dataset is stored through a filter -- compression or another plugin -- that this HDF5 cannot "
+           "apply; allowed: datasets without filters, as gphr writes them)";
+  return f.reason.empty() ? std::string() : " (HDF5: " + f.reason + ")";
 }
 
 // writing: the call wrote (a full disk is then a likely cause).

@@ -2,29 +2,37 @@
 
 #include <Teuchos_DefaultSerialComm.hpp>
 #include <Teuchos_Time.hpp>
-#include <Teuchos_YamlParameterListCoreHelpers.hpp>
 
 #include <cmath>
 #include <unordered_map>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/core/ParameterValidation.hpp"
+#include "gphr/core/YamlText.hpp"
 #include "gphr/core/ReplicatedGather.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/models/SceneFactory.hpp"
 #include "gphr/online/Method.hpp"
+#include "gphr/timeint/Integrator.hpp"
 
 namespace gphr {
 
 namespace {
 
-std::shared_ptr<const Scene> sceneOf(const ReducedModelData& d, const std::string& path) {
-  GPHR_REQUIRE(!d.sceneConfig.empty(), InputError, "reduced-model file '", path, "' is of scene '", d.sceneName,
+// What the file stores as YAML, parsed within the limits of a user's file (YamlText.hpp).
+// (Its top-level key is not held to one name: files written by a user's code may name it otherwise.)
+Teuchos::RCP<Teuchos::ParameterList> storedSection(const std::string& text, const std::string& what) {
+  return parseYamlText(text, "its " + what + " section");
+}
+
+std::shared_ptr<const Scene> sceneOf(const ReducedModelData& d) {
+  GPHR_REQUIRE(!d.sceneConfig.empty(), InputError, "it is of scene '", d.sceneName,
                "', which is not built in: pass that scene to ReducedModel");
-  auto pl = Teuchos::getParametersFromYamlString(d.sceneConfig);
+  const auto pl = storedSection(d.sceneConfig, "scene");
   try {
     return makeScene(*pl);
   } catch (const InputError& e) {
-    throw InputError(detail::concat("reduced-model file '", path, "': its scene: ", e.what()));
+    throw InputError(detail::concat("its scene: ", e.what()));
   }
 }
 
@@ -52,18 +60,55 @@ std::string boxText(const ReducedModelData& d) {
 }  // namespace
 
 ReducedModel::ReducedModel(const std::string& path, std::shared_ptr<const Scene> scene)
-    : path_(path), data_(readReducedModelFile(path)), scene_(scene ? scene : sceneOf(data_, path)) {
-  GPHR_REQUIRE(scene_->name() == data_.sceneName, InputError, "reduced-model file '", path, "' is of scene '",
-               data_.sceneName, "', not of the scene '", scene_->name(), "' given");
-  GPHR_REQUIRE(scene_->parameterBox().names == data_.parameterNames, InputError, "reduced-model file '", path,
-               "': its parameters differ from scene '", scene_->name(), "''s");
+    : file_(std::make_shared<const OpenModelFile>(path)) {
+  try {
+    scene_ = scene ? scene : sceneOf(data());
+    GPHR_REQUIRE(scene_->name() == data().sceneName, InputError, "it is of scene '", data().sceneName,
+                 "', not of the scene '", scene_->name(), "' given");
+    GPHR_REQUIRE(scene_->parameterBox().names == data().parameterNames, InputError,
+                 "its parameters differ from scene '", scene_->name(), "''s");
+    checkStoredSections();
+  } catch (const InputError& e) {
+    throw InputError(detail::concat("reduced-model file '", path, "': ", e.what()));
+  }
+}
+
+void ReducedModel::checkStoredSections() {
+  const ReducedModelData& d = data();
+  integrator_ = *storedSection(d.integratorConfig, "integrator");
+  try {
+    validateParameters(integrator_, integratorValidParameters(), "integrator");
+  } catch (const InputError& e) {
+    throw InputError(detail::concat("its integrator section: ", e.what()));
+  }
+  // The row kernel reads stencilSize() entries per row: a stored stencil of another width would
+  // be found by the first query of that model (ReducedRowKernel), after its output was begun.
+  std::vector<double> centre;
+  for (const auto& [lo, hi] : d.box) centre.push_back(0.5 * (lo + hi));
+  const int width = scene_->rowKernel(centre)->stencilSize();
+  for (const auto& x : d.models) {
+    if (methodInfo(x.method).needsFullResidual) {
+      const auto pl = storedSection(x.adeimConfig, x.key() + " adeim");
+      try {
+        adeim_.emplace(x.key(), adeimOptionsFrom(*pl, x.m));
+      } catch (const InputError& e) {
+        throw InputError(detail::concat("its ", x.key(), " adeim section: ", e.what()));
+      }
+      continue;
+    }
+    const auto& st = x.sample.stencil;
+    for (LO i = 0; width > 0 && i < st.numRows(); ++i)
+      GPHR_REQUIRE(st.size(i) == width, InputError, "model ", x.key(), ": row ", x.sample.rows[i], " has ", st.size(i),
+                   " stencil entries; allowed: ", width, " (the row kernel of scene ", d.sceneName, " reads ", width,
+                   ")");
+  }
 }
 
 OnlineParameterData ReducedModel::exactParameterData(const StoredBasisData& b, const std::vector<double>& mu) const {
   GPHR_REQUIRE(b.hasBasis, InputError, "setup 'exact' needs the basis in the reduced-model file (k = ", b.k,
                "); build it with build.withBasis: true, or use setup 'interpolated'");
   const auto inst = scene_->instantiate(rcp(new Teuchos::SerialComm<int>()), mu, true);
-  const auto A = readReducedModelBasis(path_, b.k, inst.system->space());
+  const auto A = basis(b.k, inst.system->space());
   OnlineParameterData out;
   out.linear = reduceLinearPart(*inst.system, *A);
   out.reference = gatherRows(*inst.system->reference(), b.referenceGids);
@@ -71,15 +116,15 @@ OnlineParameterData ReducedModel::exactParameterData(const StoredBasisData& b, c
 }
 
 bool ReducedModel::checkParameter(const std::vector<double>& mu, bool allowExtrapolation) const {
-  GPHR_REQUIRE(mu.size() == data_.box.size(), InputError, "a query of scene ", data_.sceneName, " takes ",
-               data_.box.size(), " parameter(s) (", boxText(data_), "), got ", mu.size());
+  GPHR_REQUIRE(mu.size() == data().box.size(), InputError, "a query of scene ", data().sceneName, " takes ",
+               data().box.size(), " parameter(s) (", boxText(data()), "), got ", mu.size());
   bool outside = false;
   for (size_t p = 0; p < mu.size(); ++p) {
-    GPHR_REQUIRE(std::isfinite(mu[p]), InputError, "parameter ", data_.parameterNames[p], " = ", mu[p],
+    GPHR_REQUIRE(std::isfinite(mu[p]), InputError, "parameter ", data().parameterNames[p], " = ", mu[p],
                  " is not a finite number");
-    const bool inside = mu[p] >= data_.box[p].first && mu[p] <= data_.box[p].second;
-    GPHR_REQUIRE(inside || allowExtrapolation, InputError, "parameter ", data_.parameterNames[p], " = ", mu[p],
-                 " is outside the training box (", boxText(data_), "); allowed: inside it, or extrapolate: true");
+    const bool inside = mu[p] >= data().box[p].first && mu[p] <= data().box[p].second;
+    GPHR_REQUIRE(inside || allowExtrapolation, InputError, "parameter ", data().parameterNames[p], " = ", mu[p],
+                 " is outside the training box (", boxText(data()), "); allowed: inside it, or extrapolate: true");
     outside = outside || !inside;
   }
   return outside;
@@ -89,11 +134,11 @@ OnlineModel ReducedModel::instantiate(const std::string& method, int k, int m, c
                                       bool allowExtrapolation, SetupRoute route) const {
   OnlineModel out;
   out.extrapolated_ = checkParameter(mu, allowExtrapolation);
-  const StoredHyperModel& stored = data_.model(method, k, m);
+  const StoredHyperModel& stored = data().model(method, k, m);
   GPHR_REQUIRE(!methodInfo(method).needsFullResidual, InputError, method, " k=", k, " m=", m,
                " samples the full residual online: use ReducedModel::simulateAdaptive (gphr query runs it on every "
                "rank)");
-  const StoredBasisData& basis = data_.basis(k);
+  const StoredBasisData& basis = data().basis(k);
   Teuchos::Time clock("setup");
   clock.start();
   const OnlineParameterData p = route == SetupRoute::Exact ? exactParameterData(basis, mu) : basis.at(mu);
@@ -102,8 +147,8 @@ OnlineModel ReducedModel::instantiate(const std::string& method, int k, int m, c
   mesh.sample.reference = pick(basis, p.reference, stored.sample.stencil.gids);
   mesh.linear = p.linear;
   out.model_ = rcp(new GpDeimModel(scene_->rowKernel(mu), mesh));
-  out.integrator_ = *Teuchos::getParametersFromYamlString(data_.integratorConfig);
-  out.degree_ = data_.polynomialDegree;
+  out.integrator_ = integrator_;
+  out.degree_ = data().polynomialDegree;
   out.mu_ = mu;
   out.probeGids_ = basis.probeGids;
   out.probeRows_ = basis.probeRows;
@@ -129,19 +174,25 @@ SimulationStats OnlineModel::simulate(double T, double dt, const QueryObserver& 
   std::vector<double> probes;
   DenseVector z;
   const StepHook observe = [&](long j, double t, const DenseVector& zj) {
-    const double H = model_->hamiltonian(zj);
+    const double H = finiteHamiltonian(model_->hamiltonian(zj), j);
     if (!probeGids_.empty()) probeValues(zj, probes);
     observer(QueryStep{j, t, zj, H, probes});
   };
-  return gphr::simulate(*model_, settingsOf(integrator_, degree_, T, dt), z, observer ? observe : StepHook());
+  SimulationStats stats =
+      gphr::simulate(*model_, settingsOf(integrator_, degree_, T, dt), z, observer ? observe : StepHook());
+  // Without an observer H_hr is not evaluated at the steps: the last state's is checked, so that
+  // a run whose energy is not a number is not `ok` either way (observe checks every step).
+  if (stats.ok() && !observer && !std::isfinite(model_->hamiltonian(z))) {
+    stats.status = "diverged";
+    stats.reason = detail::concat("non-finite Hamiltonian at the last step ", stats.lastStep);
+  }
+  return stats;
 }
 
 RCP<GpAdeimModel> ReducedModel::adaptiveModel(int k, int m, const SceneInstance& inst, const RCP<const MultiVector>& A,
                                               double dt) const {
-  const StoredHyperModel& stored = data_.model("gp-adeim", k, m);
-  const auto integrator = *Teuchos::getParametersFromYamlString(data_.integratorConfig);
-  const AdeimOptions o = adeimOptionsFrom(*Teuchos::getParametersFromYamlString(stored.adeimConfig), m);
-  const auto U0 = initialAdeimBasis(inst.system, *inst.y0, *A, integrator, dt, o.initialWindow, m);
+  const AdeimOptions& o = adeim_.at(data().model("gp-adeim", k, m).key());
+  const auto U0 = initialAdeimBasis(inst.system, *inst.y0, *A, integrator_, dt, o.initialWindow, m);
   return rcp(new GpAdeimModel(inst.system, A, *U0, m, reduceLinearPart(*inst.system, *A), o));
 }
 
@@ -149,25 +200,25 @@ SimulationStats ReducedModel::simulateAdaptive(int k, int m, const std::vector<d
                                                const RCP<const Comm>& comm, const QueryObserver& observer,
                                                double* setupSeconds, bool allowExtrapolation) const {
   checkParameter(mu, allowExtrapolation);
-  const StoredBasisData& basis = data_.basis(k);
+  const StoredBasisData& basis = data().basis(k);
   GPHR_REQUIRE(basis.hasBasis, InputError, "gp-adeim k=", k, " needs the basis in the file (build.withBasis: true)");
   Teuchos::Time clock("adaptive setup");
   clock.start();
   const auto inst = scene_->instantiate(comm, mu, true);
-  const RCP<const MultiVector> A = readReducedModelBasis(path_, k, inst.system->space());
-  const auto integrator = *Teuchos::getParametersFromYamlString(data_.integratorConfig);
+  const RCP<const MultiVector> A = this->basis(k, inst.system->space());
   const RCP<GpAdeimModel> hr = adaptiveModel(k, m, inst, A, dt);
   GpAdeimModel& model = *hr;
   const auto y0 = gatherRows(*inst.system->reference(), basis.probeGids);
   if (setupSeconds) *setupSeconds = clock.stop();
   std::vector<double> probes;
   const StepHook observe = [&](long j, double t, const DenseVector& z) {
+    const double H = finiteHamiltonian(model.hamiltonian(z), j);  // H_hr^j of the model of this step
     if (!observer) return;
     liftProbes(y0, basis.probeRows, z, probes);
-    observer(QueryStep{j, t, z, model.hamiltonian(z), probes});  // H_hr^j of the model of this step
+    observer(QueryStep{j, t, z, H, probes});
   };
   DenseVector z;
-  return gphr::simulate(model, settingsOf(integrator, data_.polynomialDegree, T, dt), z, observe,
+  return gphr::simulate(model, settingsOf(integrator_, data().polynomialDegree, T, dt), z, observe,
                         adeimUpdateHook(model));
 }
 

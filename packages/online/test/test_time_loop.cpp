@@ -23,9 +23,10 @@ namespace {
 class ShiftedOscillator : public DenseHamiltonian {
  public:
   long gradientCalls = 0, nanFrom = -1;
+  double energyOffset = 0.0;  ///< added to H alone (NaN: an H that overflowed while the dynamics did not)
   int dim() const override { return 2; }
   double hamiltonian(const DenseVector& z) override {
-    return 0.5 * ((z(0) + 1.0) * (z(0) + 1.0) + z(1) * z(1));
+    return 0.5 * ((z(0) + 1.0) * (z(0) + 1.0) + z(1) * z(1)) + energyOffset;
   }
   void gradient(const DenseVector& z, DenseVector& g) override {
     const bool bad = nanFrom >= 0 && ++gradientCalls > nanFrom;
@@ -147,3 +148,27 @@ TEST(MethodRegistry, StorableMethodsAgreeWithTheModelFile) {
 }
 
 }  // namespace
+
+// A model whose state stays finite while its energy is not a number (the box that made
+// every H_hr NaN: status ok, drift 0) is not `ok` where H is observed: an observer that evaluates H
+// through finiteHamiltonian (OnlineModel::simulate's, gphr run's) ends the run at step 0. Models
+// without a Hamiltonian (the classic DEIM baselines: NaN by design) are run without it.
+TEST(TimeLoop, ANonFiniteObservedHamiltonianIsADivergenceNotOk) {
+  ShiftedOscillator model;
+  model.energyOffset = std::nan("");
+  DenseVector z;
+  long observed = -1;
+  const auto watched = simulate(model, imr(0.1, 10), z, [&](long j, double, const DenseVector& zj) {
+    observed = j;
+    finiteHamiltonian(model.hamiltonian(zj), j);
+  });
+  EXPECT_EQ(watched.status, "diverged");
+  EXPECT_NE(watched.reason.find("non-finite Hamiltonian nan at step 0"), std::string::npos) << watched.reason;
+  EXPECT_EQ(observed, 0);
+  EXPECT_EQ(watched.lastStep, 0);
+  EXPECT_TRUE(simulate(model, imr(0.1, 10), z).ok());  // not observed: the loop itself does not ask for H
+  model.energyOffset = 1e300;  // large but finite: ok
+  EXPECT_TRUE(simulate(model, imr(0.1, 10), z, [&](long j, double, const DenseVector& zj) {
+                finiteHamiltonian(model.hamiltonian(zj), j);
+              }).ok());
+}

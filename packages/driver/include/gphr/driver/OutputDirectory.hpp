@@ -5,6 +5,7 @@
 #include <fstream>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "gphr/driver/RunContext.hpp"
 
@@ -25,6 +26,22 @@ void writeTextFile(const std::string& path, const std::string& text);
 /// Ends writing the text file `path` through `os`: flushes and closes it; InputError naming the path
 /// and the system's reason if it could not be opened or a write failed (a full disk).
 void finishText(std::ofstream& os, const std::string& path);
+
+/// A path a command reads or writes, and what the messages call it ("the queries file", "--output").
+struct NamedPath {
+  std::string path;  ///< as given
+  std::string what;  ///< its name in messages
+};
+/// Refuses, before any work (InputError on the calling rank), an output that is an input or a
+/// directory that contains one: the paths resolved (absolute, '.' and '..' folded, symbolic links
+/// of their existing part followed), so that no spelling or link lets a command overwrite its own
+/// input (gphr query M.h5 Q.yaml --output DIR with DIR/results.h5 as M.h5, say).
+void requireOutputsApart(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs);
+
+/// Collective: rank 0 creates and removes a file beside `path` (in its directory, created if
+/// missing), so that an output that cannot be written there (a read-only or missing directory,
+/// no permission) is an InputError naming `what` before any work, not after it.
+void requireWritableBeside(const std::string& path, const std::string& what, const RCP<const Comm>& comm);
 
 /// Collective: `error` is rank 0's (empty: none); every rank throws it as an InputError, so a
 /// failure of rank 0's work (its report, its files) ends all ranks with one message.

@@ -5,6 +5,7 @@
 /// parameters and keys) and `grid` (per parameter [from, to, count]: the tensor grid of those values,
 /// named grid-0000, ...). Every key, type and value is checked against the model file before any
 /// query runs (so no rank fails alone later).
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -51,10 +52,18 @@ enum class QueryFileKind { Queries, Validation };
 std::string resultKey(const Query& q, const ReducedModelData& data);
 /// Reads the stored bases these queries lift with (every k of a validation; a query's k with setup
 /// exact, states: true or an adaptive method), so that a damaged basis -- outside the file's
-/// checksum, checked where it is read (readReducedModelBasis) -- is an InputError before any output
+/// checksum, checked where it is read (OpenModelFile::basis) -- is an InputError before any output
 /// is written. Collective.
 void checkLiftingBases(const ReducedModel& model, const std::vector<Query>& queries, QueryFileKind kind,
                        const RCP<const Comm>& comm);
+/// The model file loaded on every rank (collective): a load that fails on some ranks only (a
+/// file one node does not see) names the disagreement, and ranks that read different contents at
+/// the path (checksums) are refused: one InputError on every rank, before any work.
+std::unique_ptr<ReducedModel> loadOnEveryRank(const std::string& path, const RCP<const Comm>& comm);
+/// readQueries() on every rank (collective), with loadOnEveryRank's agreement: the same queries
+/// on every rank, or one InputError naming the disagreement.
+std::vector<Query> readQueriesOnEveryRank(const std::string& path, const ReducedModel& model, QueryFileKind kind,
+                                          const RCP<const Comm>& comm);
 /// Reads and checks a queries (or validation) file against `model`; InputError on any problem.
 std::vector<Query> readQueries(const std::string& path, const ReducedModel& model,
                                QueryFileKind kind = QueryFileKind::Queries);

@@ -47,6 +47,18 @@ struct DeimBasisOptions {
 DeimBasisOptions deimBasisOptionsFrom(const Teuchos::ParameterList& hyper, int largestM);
 
 constexpr int kDefaultDeimRank = 400;  ///< Default largest m (singular triplets kept) of the DEIM basis.
+/// The DEIM basis' numerical rank: its vectors are the left singular vectors of the snapshots whose
+/// singular values exceed kDeimRankFloor sigma_1, in every POD of the exact route that decides it
+/// (the streaming POD of a chunk and of the chunks' root; the randomized route's Gram projection
+/// resolves only to 1e-7 sigma_1, above it). The
+/// snapshots carry round-off of their own (the training trajectories', ~1e-13 sigma_1 at most:
+/// SWE 20 x 20, whose snapshot matrix has rank 63 by an independent SVD, shows sigma_64 = 4e-14 on
+/// one rank and 1.0e-13 on three), and the streaming POD carries it from step to step, so the
+/// former floor of n_cols eps (~3e-14) kept a BLAS-dependent number of round-off directions there
+/// (79 vectors on one OpenBLAS thread, 80 on two). 1e-12 is 10x above the largest round-off
+/// measured and 2.6x below the smallest real direction in the test suite's cases (NLS n = 32:
+/// sigma_9 = 2.6e-12 sigma_1, then 2e-16): the count is the same on any kernel, thread and rank count.
+constexpr double kDeimRankFloor = 1e-12;
 
 /// The DEIM basis U (d x rank) of GP-DEIM with the singular values and snapshot statistics of its POD.
 struct DeimBasis {

@@ -7,7 +7,11 @@
 /// (rows, stencils, basis rows under them, weights). Nothing of size n or d unless the basis is
 /// asked for. Replicated data are stored as 1-D / 2-D double datasets (global ids as doubles:
 /// exact below 2^53), readable with h5dump or h5py.
+#include <sys/types.h>
+
 #include <map>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -106,13 +110,54 @@ void writeReducedModelFile(const std::string& path, const RCP<const Comm>& comm,
 /// stencil offsets consistent with the stencils, counts consistent between datasets, every value
 /// finite, every attribute of its type, and the checksum. InputError, one line naming the file, the
 /// dataset and what is allowed, for a file that is missing, truncated, of another format or schema,
-/// or changed after gphr build wrote it.
+/// or changed after gphr build wrote it. (OpenModelFile(path).data(), for a caller that reads no basis.)
 ReducedModelData readReducedModelFile(const std::string& path);
 /// The fingerprint of the model data (FNV-1a over every dataset and attribute a query reads, but the
 /// basis A and the provenance: versions, date, ranks, seconds), as the file's `checksum` holds it.
 std::string modelDataChecksum(const ReducedModelData& data);
-/// A of reduced size k on space's map (collective over its communicator). InputError if the file
-/// was built without it.
-RCP<MultiVector> readReducedModelBasis(const std::string& path, int k, const PhaseSpace& space);
+
+class Hdf5File;
+
+/// A reduced-model file held open, read-only, on the calling process alone, for as long as it is
+/// used: its model data are read and validated (readReducedModelFile's checks) once, at open, and
+/// every later read -- a basis, to lift states or to set a query up exactly -- comes from that same
+/// open file. A file replaced at its path meanwhile (write-then-rename, as gphr build writes) is
+/// not seen: the open file is the one whose data were checked; one changed in place (its size or
+/// modification time differ from those at open) is an InputError naming it. So a run never mixes
+/// two files' data, and what it is keyed by (data().checksum) is the data it used.
+class OpenModelFile {
+ public:
+  /// Opens and reads the file at `path` (InputError as readReducedModelFile()).
+  explicit OpenModelFile(const std::string& path);
+  ~OpenModelFile();
+  OpenModelFile(const OpenModelFile&) = delete;
+  OpenModelFile& operator=(const OpenModelFile&) = delete;
+  const std::string& path() const { return path_; }  ///< The path it was opened at.
+  const ReducedModelData& data() const { return data_; }  ///< Its model data, read and checked at open.
+  /// A of reduced size k on space's map, from the open file (collective over space's communicator;
+  /// thread-safe against other reads of this file, not against other HDF5 calls: Debian's HDF5 is
+  /// not thread-safe). InputError if the file holds no basis of k, the basis fails its checks
+  /// (finite values, its fingerprint), or the file was changed in place since it was opened.
+  RCP<MultiVector> basis(int k, const PhaseSpace& space) const;
+
+ private:
+  /// The file's identity and state at open: device, inode, size, modification time (ns).
+  struct Stamp {
+    dev_t device = 0;
+    ino_t inode = 0;
+    long long size = -1, modifiedNs = -1;
+    bool operator==(const Stamp& o) const {
+      return device == o.device && inode == o.inode && size == o.size && modifiedNs == o.modifiedNs;
+    }
+  };
+  static Stamp stampOf(int fd);
+  void requireUnchanged() const;
+  std::string path_;
+  int fd_ = -1;  ///< a descriptor of the opened file: its stamp is compared before each later read
+  Stamp opened_;
+  std::unique_ptr<Hdf5File> file_;
+  ReducedModelData data_;
+  mutable std::mutex read_;
+};
 
 }  // namespace gphr

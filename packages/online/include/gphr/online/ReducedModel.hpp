@@ -6,11 +6,19 @@
 ///   auto online = rm.instantiate("gp-deim", 10, 20, {1.05}); // the model at eps = 1.05
 ///   online.simulate(5.0, 0.01, [](const gphr::QueryStep& s) { ... s.z, s.hamiltonian, s.probes ... });
 ///
-/// Nothing here is collective and, on the default (interpolated) set-up route, nothing of size n
-/// or d is allocated: the scene object only supplies its row kernel at mu, the file the sample
+/// The file is held open, read-only, for the object's lifetime (OpenModelFile): everything it is
+/// used for -- the model data, checked whole when loaded, and a basis read later -- comes from that
+/// one file, even if another is written over its path meanwhile. The loading also checks what
+/// the file stores for its scene: the scene, integrator and adeim sections (bounded YAML, through
+/// the same validators as a config file) and every sample mesh's stencil widths against the
+/// scene's row kernel, so that a bad file fails here, naming itself, not in a query.
+///
+/// Loading and instantiate() are not collective and, on the default (interpolated) set-up route,
+/// nothing of size n or d is allocated: the scene object only supplies its row kernel at mu, the file the sample
 /// mesh and the parameter interpolant. The exact route builds the full system at mu and projects
 /// it (O(n k), reported as setup time); it needs the basis in the file.
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -71,10 +79,16 @@ class ReducedModel {
  public:
   /// scene: the scene the file was built for; null makes it from the file's scene section (the
   /// built-in scenes). A user's own scene is passed here; its name must match the file's.
+  /// InputError naming the file for any check it fails (see the file's description).
   explicit ReducedModel(const std::string& path, std::shared_ptr<const Scene> scene = nullptr);
-  const std::string& path() const { return path_; }  ///< Path of the file.
-  const ReducedModelData& data() const { return data_; }  ///< The file's contents.
+  const std::string& path() const { return file_->path(); }  ///< Path of the file.
+  const ReducedModelData& data() const { return file_->data(); }  ///< The file's contents.
   const Scene& scene() const { return *scene_; }  ///< The scene the file was built for.
+  /// The file's integrator section, validated (the time scheme and Newton of every query).
+  const Teuchos::ParameterList& integrator() const { return integrator_; }
+  /// The basis A of k on space's map, from the open file (OpenModelFile::basis: collective over
+  /// space's communicator; InputError if the file holds none or it fails its checks).
+  RCP<MultiVector> basis(int k, const PhaseSpace& space) const { return file_->basis(k, space); }
   /// InputError naming the box unless mu is inside it or allowExtrapolation is set (then the
   /// result is marked extrapolated); InputError naming the models held if (method, k, m) is not.
   OnlineModel instantiate(const std::string& method, int k, int m, const std::vector<double>& mu,
@@ -93,11 +107,13 @@ class ReducedModel {
                                    bool allowExtrapolation = false) const;
 
  private:
+  void checkStoredSections();  ///< the load-time checks of the scene, integrator and adeim sections
   OnlineParameterData exactParameterData(const StoredBasisData& basis, const std::vector<double>& mu) const;
   bool checkParameter(const std::vector<double>& mu, bool allowExtrapolation) const;  ///< true if outside the box
-  std::string path_;
-  ReducedModelData data_;
+  std::shared_ptr<const OpenModelFile> file_;
   std::shared_ptr<const Scene> scene_;
+  Teuchos::ParameterList integrator_;
+  std::map<std::string, AdeimOptions> adeim_;  ///< per gp-adeim model's key, its options
 };
 
 }  // namespace gphr

@@ -51,6 +51,13 @@ struct SimulationStats {
 bool allFinite(const DenseVector& z);
 /// @copydoc allFinite(const DenseVector&)
 bool allFinite(const Vector& y);
+/// H at step j of a run whose observer evaluates it, checked: a non-finite Hamiltonian (the model
+/// overflowing at its parameter while its state stays finite) ends the run as `diverged`, as a
+/// non-finite state does, instead of an `ok` run with a NaN energy and a drift of 0.
+inline double finiteHamiltonian(double H, long j) {
+  if (!std::isfinite(H)) throw SolverError(detail::concat("non-finite Hamiltonian ", H, " at step ", j));
+  return H;
+}
 
 /// The loop itself, for an integrator of timeint (DenseModelIntegrator, FullModelIntegrator) and its
 /// state y, integrated in place over `steps` steps of size dt (see the file's description).
