@@ -3,7 +3,10 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
+# The libraries and their headers; the application (gphr_driver) is installed as the gphr
+# executable only: nothing a user links or includes names it.
 get_property(_gphr_pkgs GLOBAL PROPERTY GPHR_PACKAGES)
+list(REMOVE_ITEM _gphr_pkgs gphr_driver)
 foreach(_t IN LISTS _gphr_pkgs)
   get_target_property(_src ${_t} SOURCE_DIR)
   install(DIRECTORY ${_src}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})

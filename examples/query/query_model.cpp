@@ -40,8 +40,8 @@ int main(int argc, char** argv) {
       });
       std::printf("%s k=%d m=%d at %s = %g: %s, %ld steps in %.3f s (set-up %.1e s), |H_hr - H_hr(0)| <= %.2e, "
                   "first probe at T: %.6f\n", stored.method.c_str(), stored.k, stored.m, data.parameterNames[0].c_str(),
-                  v, stats.status.c_str(), stats.run.steps, stats.onlineSeconds, online.setupSeconds(), drift, probe);
-      ok = ok && stats.status == "ok" && drift <= 1e-8 * (1.0 + std::abs(H0));
+                  v, gphr::statusName(stats.status), stats.run.steps, stats.onlineSeconds, online.setupSeconds(), drift, probe);
+      ok = ok && stats.ok() && drift <= 1e-8 * (1.0 + std::abs(H0));
     }
     return ok ? 0 : 1;
   } catch (const std::exception& e) {

@@ -35,6 +35,23 @@ link=$(grep -E -- "-o query_model( |$)" "$work/build.log" | tail -1)
 echo "examples/query link line: $link"
 [[ "$link" == *libgphr_online.a* ]] || { echo "FAIL: examples/query does not link the online library"; exit 1; }
 [[ "$link" != *libgphr_driver.a* ]] || { echo "FAIL: examples/query links the application's library gphr_driver"; exit 1; }
+# The umbrella GPHR::gphr: every library but the application's, whose library and headers are not
+# installed (the gphr executable is).
+[ ! -e "$work/prefix/include/gphr/driver" ] && ! ls "$work/prefix/lib/"libgphr_driver* > /dev/null 2>&1 \
+  || { echo "FAIL: the application's library or headers are installed"; exit 1; }
+mkdir -p "$work/umbrella"
+cp "$src/examples/query/query_model.cpp" "$work/umbrella/"
+sed 's/GPHR::online/GPHR::gphr/; s/project(gphr_query /project(gphr_umbrella /' "$src/examples/query/CMakeLists.txt" \
+  > "$work/umbrella/CMakeLists.txt"
+cmake -S "$work/umbrella" -B "$work/umbrella/build" -G Ninja -DCMAKE_PREFIX_PATH="$work/prefix" > "$work/cfg.log" \
+  || { cat "$work/cfg.log"; exit 1; }
+cmake --build "$work/umbrella/build" -v > "$work/build.log" 2>&1 || { cat "$work/build.log"; exit 1; }
+link=$(grep -E -- "-o query_model( |$)" "$work/build.log" | tail -1)
+echo "GPHR::gphr link line: $link"
+[[ "$link" == *libgphr_offline.a* && "$link" == *libgphr_online.a* ]] \
+  || { echo "FAIL: GPHR::gphr does not link the libraries"; exit 1; }
+[[ "$link" != *gphr_driver* ]] || { echo "FAIL: GPHR::gphr links the application's library gphr_driver"; exit 1; }
 cp "$src/test/support/small_nls_model.yaml" "$work/build.yaml"
 (cd "$work" && OPENBLAS_NUM_THREADS=1 "$work/prefix/bin/gphr" build build.yaml --model model.h5 --output art > /dev/null)
 "$work/query/query_model" "$work/model.h5" 0.92 1.0 1.08
+"$work/umbrella/build/query_model" "$work/model.h5" 1.0

@@ -14,6 +14,7 @@
 #include "gphr/driver/Config.hpp"
 #include "gphr/driver/OfflineStages.hpp"
 #include "gphr/driver/OutputLock.hpp"
+#include "gphr/offline/ModelFileBuilder.hpp"
 #include "gphr/driver/StageTable.hpp"
 #include "gphr/models/SceneFactory.hpp"
 #include "gphr/online/Method.hpp"
@@ -30,9 +31,7 @@ std::string sectionYaml(const Teuchos::ParameterList& cfg, const std::string& na
 }
 
 ModelFileOptions fileOptions(const Teuchos::ParameterList& cfg) {
-  ModelFileOptions o;
-  for (int g : cfg.sublist("build").get<Teuchos::Array<int>>("probes")) o.probes.push_back(g);
-  o.interpolationNodes = cfg.sublist("build").get<int>("interpolationNodes");
+  ModelFileOptions o = modelFileOptionsFrom(cfg.sublist("build"));
   o.indices = cfg.sublist("hyper").get<std::string>("indices");
   o.integratorConfig = sectionYaml(cfg, "integrator");
   return o;
@@ -42,7 +41,7 @@ ModelFileOptions fileOptions(const Teuchos::ParameterList& cfg) {
 ModelBuildOptions buildOptions(const RunContext& ctx, const std::vector<std::string>& stored) {
   const auto& cfg = ctx.config;
   ModelBuildOptions o;
-  o.training = trainingOptionsFrom(cfg, ctx.scene->parameterBox());
+  o.training = trainingOptionsOf(cfg, ctx.scene->parameterBox());
   o.basis = basisOptionsFrom(cfg.sublist("reduction"), basisK(cfg));
   o.ks = pipelineK(cfg);
   for (int m : cfg.sublist("pipeline").get<Teuchos::Array<int>>("m")) o.ms.push_back(m);

@@ -11,51 +11,24 @@
 #include "gphr/core/ParameterValidation.hpp"
 #include "gphr/driver/FieldModels.hpp"
 #include "gphr/driver/InputFile.hpp"
+#include "gphr/hyper/DeimBasis.hpp"
+#include "gphr/hyper/EmpiricalQuadrature.hpp"
+#include "gphr/offline/ModelFileBuilder.hpp"
+#include "gphr/reduction/SymplecticBasis.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/models/SceneFactory.hpp"
 #include "gphr/offline/Training.hpp"
 #include "gphr/online/Method.hpp"
+#include "gphr/online/TimeLoop.hpp"
 #include "gphr/timeint/Integrator.hpp"
 
 namespace gphr {
 
-Teuchos::ParameterList configValidParameters(const std::string& scene) {
-  Teuchos::ParameterList pl("gphr");
-  pl.sublist("scene") = sceneValidParameters(scene);
-  pl.sublist("parameters") = sceneParameterValidParameters(scene);
-  pl.sublist("time") = sceneTimeValidParameters(scene);
-  pl.sublist("integrator") = integratorValidParameters();
-  sceneLinearSolverDefaults(scene, pl.sublist("integrator").sublist("linearSolver"));
-  auto& tr = pl.sublist("training");
-  const bool nls = scene == "nls1d";
-  tr.set("points", Teuchos::Array<int>(nls ? 1 : 2, 3),
-         "training grid: equispaced points per parameter of the box (paper: [11] NLS, [5, 5] SWE)");
-  tr.set("values", Teuchos::Array<double>(),
-         "explicit training parameters, flattened (one value per box parameter each); overrides points");
-  setIntParameter(tr, "snapshotEvery", 1, 1, 1000000, "keep every N-th state of each training run");
-  setIntParameter(tr, "groupSize", 0, 0, 1000000,
-                  "ranks per training group: the ranks split into groups that integrate their own training "
-                  "parameters side by side; 0: the group count with the fewest rounds per rank of a group (a group "
-                  "per parameter where the ranks allow), none splitting a system below 4096 or above 2^18 state rows per rank; the "
-                  "snapshots are the same to round-off");
-  auto& red = pl.sublist("reduction");
-  setChoiceParameter(red, "method", "psd", Teuchos::tuple<std::string>("psd", "cotangent"),
-                     "symplectic basis: psd (complex SVD, the paper's) or cotangent lift");
-  setIntParameter(red, "k", 10, 0, 100000, "reduced size 2k; 0: smallest k meeting energyTolerance");
-  setDoubleParameter(red, "energyTolerance", 1e-6, 0.0, 1.0, "discarded snapshot energy fraction when k = 0");
-  setIntParameter(red, "blockColumns", 128, 1, 100000, "snapshot columns per incremental SVD step");
-  setIntParameter(red, "maxRank", 0, 0, 1000000,
-                  "singular triplets kept between incremental steps; 0: 2k + 32, or half the dofs per rank if k = 0");
-  const auto routes = Teuchos::tuple<std::string>("auto", "tsqr", "stacked", "tree", "replicated");
-  setChoiceParameter(red, "podRoute", "auto", routes,
-                     "incremental SVD step: auto (tree from 2 ranks: the faster measured), tsqr "
-                     "(Tpetra's TSQR; refuses a step with more carried + new columns than rows on some rank), stacked "
-                     "(a TSQR on LAPACK kernels: each rank's rows by a Householder QR in row chunks, the R factors "
-                     "stacked on every rank and one SVD of the stack; any rank count, local work divides with the ranks), tree (as stacked, "
-                     "the R factors reduced over a binary tree of ranks and one small SVD on rank 0: the work beyond "
-                     "a rank's rows grows with log2 of the ranks, not with the ranks), replicated (each step's matrix "
-                     "gathered on every rank, one LAPACK SVD: any rank count, no parallel speed-up)");
-  auto& pipe = pl.sublist("pipeline");
+namespace {
+
+// The sections only the application reads: which models `gphr run` evaluates, and its outputs.
+Teuchos::ParameterList pipelineValidParameters() {
+  Teuchos::ParameterList pipe("pipeline");
   pipe.set("rom", false, "train, build the basis and evaluate the Galerkin reduced model beside the full model");
   pipe.set("methods", Teuchos::Array<std::string>(),
            "models to evaluate beside the full model, any of: rom, gp-deim (gradient-preserving DEIM, the paper's), "
@@ -72,61 +45,11 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
                      "time budget of the repeats of one run: a further repeat starts only while the repeats so far "
                      "took less (a run of milliseconds can then be repeated hundreds of times, to sample past the "
                      "machine's slow spells, while a minutes-long one is not repeated at all)");
-  auto& hyp = pl.sublist("hyper");
-  setIntParameter(hyp, "snapshotEvery", 1, 1, 1000000,
-                  "reduced-Jacobian snapshot at every N-th stored training state (the paper: 20)");
-  setChoiceParameter(hyp, "indices", "deim", Teuchos::tuple<std::string>("deim", "qdeim"),
-                     "interpolation indices: greedy DEIM (Chaturantabut-Sorensen) or QDEIM (pivoted QR)");
-  setIntParameter(hyp, "maxRank", 0, 0, 1000000,
-                  "singular triplets kept by the streaming POD of the DEIM snapshots; 0: max(m) + 32, at most d");
-  setChoiceParameter(hyp, "svd", "exact", Teuchos::tuple<std::string>("exact", "randomized"),
-                     "DEIM basis: exact streaming POD (incremental TSQR + SVD) or the randomized range finder (HMT11)");
-  setIntParameter(hyp, "oversampling", 10, 0, 10000, "randomized: extra columns of the sketch");
-  setIntParameter(hyp, "powerIterations", 1, 0, 10, "randomized: power iterations (one streamed pass each)");
-  setIntParameter(hyp, "blockSnapshots", 0, 0, 100000,
-                  "reduced-Jacobian snapshots per incremental POD step; 0: about maxRank columns per step");
-  setIntParameter(hyp, "chunkSnapshots", 0, 0, 100000000,
-                  "svd exact: reduced-Jacobian snapshots per chunk of the hierarchical POD (each chunk POD'd on its "
-                  "own, by the rank groups side by side, then one POD of the chunks' modes); 0: about 32 maxRank "
-                  "columns per chunk, equal chunks; a number >= the snapshots used: one chunk, the plain streaming POD");
-  setIntParameter(hyp, "groupSize", 0, 0, 1000000,
-                  "svd exact: ranks per rank group of the DEIM basis stage (the groups POD the chunks side by side); "
-                  "0: one group per chunk, each with at most 2^18 state rows per rank; >= the ranks: all ranks together");
-  setChoiceParameter(hyp, "podRoute", "auto", routes, "svd exact: the incremental SVD's step route, as reduction.podRoute");
-  setChoiceParameter(hyp, "deimSnapshots", "full", Teuchos::tuple<std::string>("full", "projected"),
-                     "snapshots of the classic DEIM baseline (method deim): full = grad N(y) - grad N(y0) at the full "
-                     "model's training states (Chaturantabut-Sorensen with the shift of paper Sec. 3.3; the model adds "
-                     "grad N(y0) back), projected = grad N(y0 + A A^T (y - y0)) at the training states projected on "
-                     "the reduced basis, unshifted");
-  pl.sublist("adeim") = adeimValidParameters();
-  auto& bld = pl.sublist("build");
-  bld.set("withBasis", false,
-          "gphr build: also store the full basis A (2n x 2k numbers per k) in the model file, for the exact "
-          "set-up route and for lifting whole states; without it the file holds nothing of size n or d");
-  bld.set("probes", Teuchos::Array<int>(),
-          "gphr build: state entries (global ids 0..2n-1, q then p) whose lifted values queries can report "
-          "(only these rows of A are stored)");
-  setIntParameter(bld, "interpolationNodes", 7, 2, 33,
-                  "gphr build: Chebyshev-Lobatto nodes per parameter of the interpolant of L_r, f_r, c and the "
-                  "reference rows over the box (the n-independent set-up route of a query; its error is reported)");
-  auto& eq = pl.sublist("eqp");
-  setDoubleParameter(eq, "tolerance", 0.0, 0.0, 0.999999,
-                     "gp-eqp: stop adding terms once the relative fit residual ||C xi - b|| / ||b|| is at most this; "
-                     "0: pipeline.m terms (or fewer, when no further term improves the fit)");
-  setIntParameter(eq, "snapshotEvery", 1, 1, 1000000,
-                  "gp-eqp, gp-eqp-refit: fit the reduced gradient at every N-th stored training state");
-  setIntParameter(eq, "sketchRows", 0, 0, 100000000,
-                  "rows of the fit: 0, the exact rows (training states x 2k, held as terms x rows per rank: refused "
-                  "above 2.5e8 numbers); > 0, a CountSketch of them to this many rows (the fit's residual on the "
-                  "exact rows is reported beside, as eqp_fit_residual_exact_rows)");
-  setDoubleParameter(eq, "energyWeight", 0.0, 0.0, 1e12,
-                     "> 0: one more row per training state fitting the energy G_e - G_e(y0), scaled by this; 0: the "
-                     "gradient rows only");
-  setDoubleParameter(eq, "columnFloor", 1e-3, 0.0, 0.999999,
-                     "terms whose column norm is at most this times the largest are not candidates (a term that "
-                     "never moves in training would get an unbounded weight; doc/eqp.md measures 1e-6 against 1e-3)");
-  setIntParameter(eq, "seed", 20261124, 0, 2147483647, "sketchRows > 0: the sketch's hash seed");
-  auto& out = pl.sublist("output");
+  return pipe;
+}
+
+Teuchos::ParameterList outputValidParameters() {
+  Teuchos::ParameterList out("output");
   setIntParameter(out, "saveEvery", 10, 1, 1000000000, "keep every N-th state of the trajectory in artifacts.h5");
   setDoubleParameter(out, "progressSeconds", 2.0, 0.0, 1e9, "seconds between progress lines on stderr (0: none)");
   setDoubleParameter(out, "checkpointSeconds", 60.0, 0.0, 1e9,
@@ -148,7 +71,35 @@ Teuchos::ParameterList configValidParameters(const std::string& scene) {
   out.set("fieldTimes", Teuchos::Array<double>(),
           "times of the columns of fields.png (2-D scenes), each in [0, time.T]; the nearest saved state is shown; "
           "empty: the start, the middle and the end");
+  return out;
+}
+
+}  // namespace
+
+Teuchos::ParameterList validConfig(const std::string& scene) {
+  Teuchos::ParameterList pl("gphr");
+  pl.sublist("scene") = sceneValidParameters(scene);
+  pl.sublist("parameters") = sceneParameterValidParameters(scene);
+  pl.sublist("time") = sceneTimeValidParameters(scene);
+  pl.sublist("integrator") = integratorValidParameters();
+  sceneLinearSolverDefaults(scene, pl.sublist("integrator").sublist("linearSolver"));
+  pl.sublist("training") = trainingValidParameters(static_cast<size_t>(pl.sublist("parameters").numParams()));
+  pl.sublist("reduction") = basisValidParameters();
+  pl.sublist("pipeline") = pipelineValidParameters();
+  pl.sublist("hyper") = deimBasisValidParameters();
+  pl.sublist("adeim") = adeimValidParameters();
+  pl.sublist("build") = modelFileValidParameters();
+  pl.sublist("eqp") = quadratureValidParameters();
+  pl.sublist("output") = outputValidParameters();
   return pl;
+}
+
+TrainingOptions trainingOptionsOf(const Teuchos::ParameterList& cfg, const ParameterBox& box) {
+  TrainingOptions o = trainingOptionsFrom(cfg.sublist("training"), box);
+  o.dt = cfg.sublist("time").get<double>("dt");
+  o.steps = wholeSteps(cfg.sublist("time").get<double>("T"), o.dt);
+  o.integrator = cfg.sublist("integrator");
+  return o;
 }
 
 namespace {
@@ -162,7 +113,7 @@ Teuchos::ParameterList validateConfig(Teuchos::ParameterList cfg) {
   std::string scene = "nls1d";
   if (cfg.isSublist("scene") && cfg.sublist("scene").isType<std::string>("name"))
     scene = cfg.sublist("scene").get<std::string>("name");
-  validateParameters(cfg, configValidParameters(scene));
+  validateParameters(cfg, validConfig(scene));
   numSteps(cfg);
   trainingParameters(cfg);  // checks the training set against the box
   pipelineMethods(cfg);     // checks the method, k and m lists
@@ -213,7 +164,7 @@ long numSteps(const Teuchos::ParameterList& cfg) {
 }
 
 std::vector<std::vector<double>> trainingParameters(const Teuchos::ParameterList& cfg) {
-  return trainingOptionsFrom(cfg, makeScene(cfg.sublist("scene"))->parameterBox()).parameters;
+  return trainingOptionsFrom(cfg.sublist("training"), makeScene(cfg.sublist("scene"))->parameterBox()).parameters;
 }
 
 std::vector<std::string> pipelineMethods(const Teuchos::ParameterList& cfg) {
@@ -278,7 +229,7 @@ std::string helpText() {
         "CONFIG has one top-level key 'gphr'. Keys (generated from the validators):\n\n";
   for (const auto& scene : sceneNames()) {
     os << "--- scene.name: " << scene << " ---\n";
-    describeParameters(configValidParameters(scene), os, 2);
+    describeParameters(validConfig(scene), os, 2);
     os << "\n";
   }
   return os.str();

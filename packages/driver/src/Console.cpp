@@ -34,7 +34,7 @@ std::string runTable(const RunContext& ctx, const FomResult& fom, const RomStage
   if (rom)
     for (const auto& r : rom->runs) {
       std::snprintf(line, sizeof line, "%-9s %5d %5s  %-11s %10s %10s %9s\n", r.method.c_str(), r.k,
-                    r.m > 0 ? std::to_string(r.m).c_str() : "-", r.status(), cell(r.eL2, "%.3e").c_str(),
+                    r.m > 0 ? std::to_string(r.m).c_str() : "-", statusName(r.status()), cell(r.eL2, "%.3e").c_str(),
                     cell(r.tOnline, "%.3g").c_str(), cell(fom.tOnline / r.tOnline, "%.3g").c_str());
       os << line;
     }

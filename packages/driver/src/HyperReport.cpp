@@ -59,7 +59,7 @@ void writeRunsCsv(const RomStages& st, double fomOnline, const std::string& path
     double eRom = NAN;
     for (const auto& q : st.runs)
       if (q.method == method::kRom && q.k == r.k) eRom = q.eL2;
-    os << r.method << "," << r.k << "," << r.m << "," << r.status() << "," << r.eL2 << "," << r.tOnline << "," << (r.tOnline > 0 ? fomOnline / r.tOnline : NAN) << "," << eRom << ","
+    os << r.method << "," << r.k << "," << r.m << "," << statusName(r.status()) << "," << r.eL2 << "," << r.tOnline << "," << (r.tOnline > 0 ? fomOnline / r.tOnline : NAN) << "," << eRom << ","
        << r.metrics.number(Metric::TTotalS) << "\n";
   }
   finishText(os, path);

@@ -38,7 +38,7 @@ ModelRun unavailable(const std::string& method, int k, int m, const std::string&
   r.method = method, r.k = k, r.m = m, r.ok = false, r.available = false;
   r.eL2 = r.tOnline = std::numeric_limits<double>::quiet_NaN();  // not run: no error, no time (never 0)
   r.metrics.set(Metric::Method, method).set(Metric::K, static_cast<long>(k)).set(Metric::M, static_cast<long>(m));
-  r.metrics.set(Metric::Status, "unavailable").set(Metric::Reason, why);
+  r.metrics.set(Metric::Status, statusName(RunStatus::Unavailable)).set(Metric::Reason, why);
   return r;
 }
 

@@ -163,7 +163,7 @@ ModelRun evaluateReducedModel(const RCP<const Comm>& comm, const EvaluationSetti
       std::fprintf(stderr, "[gphr] %s unbounded from step %ld: %s\n", run.label().c_str(), run.unboundedAt,
                    run.unboundedReason.c_str());
   }
-  run.metrics.set(Metric::Status, run.status());
+  run.metrics.set(Metric::Status, statusName(run.status()));
   if (hasHamiltonian && run.ok) run.metrics.set(Metric::HModelErrMax, maxDeviation(run.modelHamiltonian, run.modelHamiltonian.front()));
   if (!run.ok) run.metrics.set(Metric::DivergedAtStep, lastStep + 1).set(Metric::DivergedReason, why);
   if (!run.ok && comm->getRank() == 0)

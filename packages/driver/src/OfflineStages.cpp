@@ -64,7 +64,7 @@ ArtifactsCache artifactsCache(const RunContext& ctx, long fullDim) {
 
 RomStages runOfflineStages(const RunContext& ctx) {
   const auto inst = ctx.scene->instantiate(ctx.comm, ctx.mu, true);
-  const TrainingOptions training = trainingOptionsFrom(ctx.config, ctx.scene->parameterBox());
+  const TrainingOptions training = trainingOptionsOf(ctx.config, ctx.scene->parameterBox());
   const BasisOptions basis = basisOptionsFrom(ctx.config.sublist("reduction"), basisK(ctx.config));
   checkBasisSizeBeforeTraining(training, basis, basis.k, inst.system->space().fullDim());  // before any file
   const ArtifactsCache cache = artifactsCache(ctx, inst.system->space().fullDim());

@@ -64,7 +64,9 @@ std::string resultChecksum(const Hdf5File& f) {
 
 // A finished query as the CSV and the summary see it.
 struct QueryOutcome {
-  std::string status, reason;
+  bool known = false;  ///< run or read on this rank (shareOutcomes fills the others)
+  RunStatus status = RunStatus::Ok;
+  std::string reason;
   double setupSeconds = NAN, onlineSeconds = NAN, drift = NAN, newtonIterations = NAN;
   bool extrapolated = false, reused = false;
 };
@@ -82,7 +84,8 @@ bool finished(const std::string& path, const std::string& key, QueryOutcome& out
                      path.c_str());
       return false;
     }
-    out.status = f.stringAttribute("/", "status");
+    out.status = statusFromName(f.stringAttribute("/", "status"));
+    out.known = true;
     out.reason = f.stringAttribute("/", "reason");
     const auto v = f.doubleAttribute("/", "numbers");  // setup_s, online_s, drift, newton, extrapolated
     out.setupSeconds = v.at(0), out.onlineSeconds = v.at(1), out.drift = v.at(2), out.newtonIterations = v.at(3);
@@ -151,13 +154,14 @@ QueryObserver recording(const Query& q, Recorder& rec) {
 
 QueryOutcome outcomeOf(const Query& q, const SimulationStats& stats, const Recorder& rec, double setup, bool outside) {
   QueryOutcome out;
+  out.known = true;
   out.status = stats.status, out.reason = stats.reason;
   out.setupSeconds = setup, out.onlineSeconds = stats.onlineSeconds;
   out.extrapolated = outside;
-  out.newtonIterations = stats.status == "ok" ? double(stats.run.newtonIterations) / wholeSteps(q.T, q.dt) : NAN;
+  out.newtonIterations = stats.ok() ? double(stats.run.newtonIterations) / wholeSteps(q.T, q.dt) : NAN;
   out.drift = 0.0;
   for (double h : rec.H) out.drift = std::max(out.drift, std::abs(h - rec.H.front()));
-  if (stats.status != "ok") out.drift = NAN;
+  if (!stats.ok()) out.drift = NAN;
   return out;
 }
 
@@ -176,7 +180,7 @@ void writeQuery(const std::string& path, const ReducedModel& model, const Query&
       if (q.states) fullDim = writeStates(f, model, q, rec.z, saved);
     }
     f.setAttribute("/", "parameter", q.mu);
-    f.setAttribute("/", "status", out.status);
+    f.setAttribute("/", "status", std::string(statusName(out.status)));
     f.setAttribute("/", "reason", out.reason);
     f.setAttribute("/", "numbers", std::vector<double>{out.setupSeconds, out.onlineSeconds, out.drift,
                                                        out.newtonIterations, out.extrapolated ? 1.0 : 0.0});
@@ -228,8 +232,8 @@ void shareOutcomes(const RCP<const Comm>& comm, std::vector<QueryOutcome>& outs)
   const size_t n = outs.size();
   std::vector<double> mine(n * 7, 0.0), all(n * 7, 0.0);
   for (size_t i = 0; i < n; ++i) {
-    if (outs[i].status.empty()) continue;
-    const double code = outs[i].status == "ok" ? 1.0 : 2.0;
+    if (!outs[i].known) continue;
+    const double code = 1.0 + static_cast<double>(outs[i].status);  // RunStatus as a number > 0
     const double v[7] = {code, outs[i].setupSeconds, outs[i].onlineSeconds, outs[i].drift,
                          outs[i].newtonIterations, outs[i].extrapolated ? 1.0 : 0.0, outs[i].reused ? 1.0 : 0.0};
     std::copy(v, v + 7, mine.begin() + i * 7);
@@ -237,7 +241,7 @@ void shareOutcomes(const RCP<const Comm>& comm, std::vector<QueryOutcome>& outs)
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, static_cast<int>(mine.size()), mine.data(), all.data());
   for (size_t i = 0; i < n; ++i) {
     const double* v = all.data() + i * 7;
-    if (outs[i].status.empty()) outs[i].status = v[0] == 1.0 ? "ok" : "diverged";
+    if (!outs[i].known) outs[i].status = static_cast<RunStatus>(static_cast<int>(v[0]) - 1), outs[i].known = true;
     outs[i].setupSeconds = v[1], outs[i].onlineSeconds = v[2], outs[i].drift = v[3];
     outs[i].newtonIterations = v[4], outs[i].extrapolated = v[5] != 0.0, outs[i].reused = v[6] != 0.0;
   }
@@ -261,7 +265,7 @@ void writeTable(const std::string& dir, const ReducedModelData& d, const std::ve
           << (methodInfo(q.method).needsFullResidual ? "full system"
               : q.setup == SetupRoute::Exact                        ? "exact"
                                                                     : "interpolated")
-          << "," << o.status << ","
+          << "," << statusName(o.status) << ","
           << (o.extrapolated ? "yes" : "no") << "," << number(o.setupSeconds) << "," << number(o.onlineSeconds)
           << "," << number(o.drift) << "," << number(o.newtonIterations) << "," << (o.reused ? "yes" : "no") << "\n";
     }
@@ -350,7 +354,7 @@ int runQuery(const std::string& modelPath, const std::string& queriesPath, const
   // rank 0 writes the tables; its failure (a full disk, say) ends every rank
   onRootAgreed(comm, "gphr query: the results", [&] {
     long ran = 0, ok = 0;
-    for (const auto& o : outs) ran += !o.reused, ok += o.status == "ok";
+    for (const auto& o : outs) ran += !o.reused, ok += o.status == RunStatus::Ok;
     writeResults(outputDir, queries);
     writeTable(outputDir, model.data(), queries, outs);
     JsonObject s;

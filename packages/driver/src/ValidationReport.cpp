@@ -72,13 +72,13 @@ void plotErrorMaps(const std::string& dir, const ReducedModelData& d, const std:
     dat << "# " << s.label << "\n";
     for (const auto& r : records)
       if (r.label() == s.label)
-        dat << num(r.mu[0]) << " " << num(r.mu[1]) << " " << (r.status == "ok" ? num(std::log10(r.eL2)) : "NaN")
+        dat << num(r.mu[0]) << " " << num(r.mu[1]) << " " << (r.status == RunStatus::Ok ? num(std::log10(r.eL2)) : "NaN")
             << "\n";
     dat << "\n\n";
   }
   double lo = 0.0, hi = -30.0;
   for (const auto& r : records)
-    if (r.status == "ok" && r.eL2 > 0) {
+    if (r.status == RunStatus::Ok && r.eL2 > 0) {
       lo = std::min(lo, std::floor(std::log10(r.eL2)));
       hi = std::max(hi, std::ceil(std::log10(r.eL2)));
     }
@@ -111,7 +111,7 @@ void plotErrors(const std::string& dir, const ReducedModelData& d, const std::ve
   for (const auto& s : stats) {
     std::vector<std::pair<double, double>> pts;
     for (const auto& r : records)
-      if (r.label() == s.label && r.status == "ok") pts.emplace_back(r.mu[0], r.eL2);
+      if (r.label() == s.label && r.status == RunStatus::Ok) pts.emplace_back(r.mu[0], r.eL2);
     std::sort(pts.begin(), pts.end());
     dat << "# " << s.label << "\n";
     for (const auto& [x, e] : pts) dat << num(x) << " " << num(e) << "\n";
@@ -163,7 +163,7 @@ std::vector<ModelStatistics> modelStatistics(const std::vector<ValidationRecord>
     double worst = -1.0;
     for (const auto* r : by[s.label]) {
       ++s.points;
-      const bool ok = r->status == "ok" && std::isfinite(r->eL2);
+      const bool ok = r->status == RunStatus::Ok && std::isfinite(r->eL2);
       s.ok += ok;
       const double err = ok ? r->eL2 : std::numeric_limits<double>::infinity();
       e.push_back(err);
@@ -194,16 +194,17 @@ std::string recordsChecksum(const std::string& body) {
 // One record line (writePointRecords' format); false where it does not parse whole.
 bool parseRecord(const std::string& line, ValidationRecord& r) {
   std::istringstream ls(line);
-  std::string eL2, online, setup, mu;
+  std::string status, eL2, online, setup, mu;
   int extrap = 0;
   std::getline(ls, r.point, '\t'), std::getline(ls, r.method, '\t');
-  ls >> r.k >> r.m >> r.status >> eL2 >> online >> setup >> extrap >> mu;
+  ls >> r.k >> r.m >> status >> eL2 >> online >> setup >> extrap >> mu;
   if (!ls && !ls.eof()) return false;
   try {
+    r.status = statusFromName(status);
     r.eL2 = std::stod(eL2), r.onlineSeconds = std::stod(online), r.setupSeconds = std::stod(setup);
     std::istringstream ms(mu);
     for (std::string x; std::getline(ms, x, ',');) r.mu.push_back(std::stod(x));
-  } catch (const std::exception&) {  // std::stod: not a number, or out of range
+  } catch (const std::exception&) {  // std::stod: not a number, or out of range; an unknown status
     return false;
   }
   r.extrapolated = extrap != 0;
@@ -248,7 +249,7 @@ void writePointRecords(const std::string& path, const std::string& key, const st
     std::ostringstream os;
     os << "key\t" << key << "\nfom_s\t" << num(fomSeconds) << "\n";
     for (const auto& r : recs)
-      os << r.point << "\t" << r.method << "\t" << r.k << "\t" << r.m << "\t" << r.status << "\t" << num(r.eL2) << "\t"
+      os << r.point << "\t" << r.method << "\t" << r.k << "\t" << r.m << "\t" << statusName(r.status) << "\t" << num(r.eL2) << "\t"
          << num(r.onlineSeconds) << "\t" << num(r.setupSeconds) << "\t" << r.extrapolated << "\t" << muText(r.mu)
          << "\n";
     writeText(path, os.str() + recordsChecksum(os.str()) + "\n");
@@ -274,7 +275,7 @@ void writeValidationReport(const std::string& dir, const ReducedModel& model, co
   for (const auto& r : records) {
     csv << r.point;
     for (double x : r.mu) csv << "," << num(x);
-    csv << "," << r.label() << "," << r.method << "," << r.k << "," << r.m << "," << num(r.eL2) << "," << r.status
+    csv << "," << r.label() << "," << r.method << "," << r.k << "," << r.m << "," << num(r.eL2) << "," << statusName(r.status)
         << "," << (r.extrapolated ? "yes" : "no") << "," << num(r.onlineSeconds) << "," << num(r.setupSeconds) << "\n";
   }
   writeText(dir + "/validation.csv", csv.str());

@@ -52,7 +52,7 @@ std::vector<DenseVector> queried(OnlineModel& online, double T, double dt, std::
     if (H) H->push_back(s.hamiltonian);
     if (probes) probes->push_back(s.probes);
   });
-  EXPECT_EQ(stats.status, "ok") << stats.reason;
+  EXPECT_TRUE(stats.ok()) << statusName(stats.status) << ": " << stats.reason;
   return out;
 }
 

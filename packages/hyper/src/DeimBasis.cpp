@@ -9,6 +9,7 @@
 #include <random>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/core/ParameterValidation.hpp"
 #include "gphr/hyper/JacobianSnapshots.hpp"
 #include "gphr/reduction/DenseQr.hpp"
 #include "gphr/reduction/DenseSvd.hpp"
@@ -240,7 +241,10 @@ DeimBasis randomizedDeimBasis(const SystemSet& systems, const SnapshotSet& state
 }  // namespace
 
 int deimMaxRank(const DeimBasisOptions& opt, GO d) {
-  return static_cast<int>(std::min<GO>(d, opt.maxRank > 0 ? opt.maxRank : kDefaultDeimRank));
+  const int wanted = opt.maxRank > 0    ? opt.maxRank
+                     : opt.largestM > 0 ? opt.largestM + kDeimRankMargin
+                                        : kDefaultDeimRank;
+  return static_cast<int>(std::min<GO>(d, wanted));
 }
 
 DeimChunks deimChunks(const SnapshotSet& states, const DeimBasisOptions& opt, int r, int maxRank) {
@@ -373,6 +377,37 @@ DeimBasis computeDeimBasis(const SystemSet& systems,
   return root.basis();
 }
 
+Teuchos::ParameterList deimBasisValidParameters() {
+  Teuchos::ParameterList hyp("hyper");
+  setIntParameter(hyp, "snapshotEvery", 1, 1, 1000000,
+                  "reduced-Jacobian snapshot at every N-th stored training state (the paper: 20)");
+  setChoiceParameter(hyp, "indices", "deim", Teuchos::tuple<std::string>("deim", "qdeim"),
+                     "interpolation indices: greedy DEIM (Chaturantabut-Sorensen) or QDEIM (pivoted QR)");
+  const auto routes = podRouteNames();
+  setIntParameter(hyp, "maxRank", 0, 0, 1000000,
+                  "singular triplets kept by the streaming POD of the DEIM snapshots; 0: max(m) + 32, at most d");
+  setChoiceParameter(hyp, "svd", "exact", Teuchos::tuple<std::string>("exact", "randomized"),
+                     "DEIM basis: exact streaming POD (incremental TSQR + SVD) or the randomized range finder (HMT11)");
+  setIntParameter(hyp, "oversampling", 10, 0, 10000, "randomized: extra columns of the sketch");
+  setIntParameter(hyp, "powerIterations", 1, 0, 10, "randomized: power iterations (one streamed pass each)");
+  setIntParameter(hyp, "blockSnapshots", 0, 0, 100000,
+                  "reduced-Jacobian snapshots per incremental POD step; 0: about maxRank columns per step");
+  setIntParameter(hyp, "chunkSnapshots", 0, 0, 100000000,
+                  "svd exact: reduced-Jacobian snapshots per chunk of the hierarchical POD (each chunk POD'd on its "
+                  "own, by the rank groups side by side, then one POD of the chunks' modes); 0: about 32 maxRank "
+                  "columns per chunk, equal chunks; a number >= the snapshots used: one chunk, the plain streaming POD");
+  setIntParameter(hyp, "groupSize", 0, 0, 1000000,
+                  "svd exact: ranks per rank group of the DEIM basis stage (the groups POD the chunks side by side); "
+                  "0: one group per chunk, each with at most 2^18 state rows per rank; >= the ranks: all ranks together");
+  setChoiceParameter(hyp, "podRoute", "auto", Teuchos::Array<std::string>(routes.begin(), routes.end()), "svd exact: the incremental SVD's step route, as reduction.podRoute");
+  setChoiceParameter(hyp, "deimSnapshots", "full", Teuchos::tuple<std::string>("full", "projected"),
+                     "snapshots of the classic DEIM baseline (method deim): full = grad N(y) - grad N(y0) at the full "
+                     "model's training states (Chaturantabut-Sorensen with the shift of paper Sec. 3.3; the model adds "
+                     "grad N(y0) back), projected = grad N(y0 + A A^T (y - y0)) at the training states projected on "
+                     "the reduced basis, unshifted");
+  return hyp;
+}
+
 DeimBasisOptions deimBasisOptionsFrom(const Teuchos::ParameterList& hyp, int largestM) {
   DeimBasisOptions o;
   o.snapshotEvery = hyp.get<int>("snapshotEvery");
@@ -383,7 +418,8 @@ DeimBasisOptions deimBasisOptionsFrom(const Teuchos::ParameterList& hyp, int lar
   o.oversampling = hyp.get<int>("oversampling");
   o.powerIterations = hyp.get<int>("powerIterations");
   o.podRoute = hyp.get<std::string>("podRoute");
-  o.maxRank = hyp.get<int>("maxRank") > 0 ? hyp.get<int>("maxRank") : largestM + 32;
+  o.maxRank = hyp.get<int>("maxRank");
+  o.largestM = largestM;
   return o;
 }
 

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/core/ParameterValidation.hpp"
 #include "gphr/core/IndexHash.hpp"
 #include "gphr/hyper/JacobianSnapshots.hpp"
 #include "gphr/reduction/Deim.hpp"
@@ -375,6 +376,27 @@ double exactRowsResidual(const SystemSet& systems,
 RCP<GpDeimModel> buildQuadratureModel(const HamiltonianSystem& system, const MultiVector& A, const QuadratureFit& fit,
                                       const ReducedLinearPart& linear) {
   return rcp(new GpDeimModel(system.nonlinearTermPtr(), buildSampleMesh(system, A, fit.terms, fit.weights, linear)));
+}
+
+Teuchos::ParameterList quadratureValidParameters() {
+  Teuchos::ParameterList eq("eqp");
+  setDoubleParameter(eq, "tolerance", 0.0, 0.0, 0.999999,
+                     "gp-eqp: stop adding terms once the relative fit residual ||C xi - b|| / ||b|| is at most this; "
+                     "0: pipeline.m terms (or fewer, when no further term improves the fit)");
+  setIntParameter(eq, "snapshotEvery", 1, 1, 1000000,
+                  "gp-eqp, gp-eqp-refit: fit the reduced gradient at every N-th stored training state");
+  setIntParameter(eq, "sketchRows", 0, 0, 100000000,
+                  "rows of the fit: 0, the exact rows (training states x 2k, held as terms x rows per rank: refused "
+                  "above 2.5e8 numbers); > 0, a CountSketch of them to this many rows (the fit's residual on the "
+                  "exact rows is reported beside, as eqp_fit_residual_exact_rows)");
+  setDoubleParameter(eq, "energyWeight", 0.0, 0.0, 1e12,
+                     "> 0: one more row per training state fitting the energy G_e - G_e(y0), scaled by this; 0: the "
+                     "gradient rows only");
+  setDoubleParameter(eq, "columnFloor", 1e-3, 0.0, 0.999999,
+                     "terms whose column norm is at most this times the largest are not candidates (a term that "
+                     "never moves in training would get an unbounded weight; doc/eqp.md measures 1e-6 against 1e-3)");
+  setIntParameter(eq, "seed", 20261124, 0, 2147483647, "sketchRows > 0: the sketch's hash seed");
+  return eq;
 }
 
 QuadratureOptions quadratureOptionsFrom(const Teuchos::ParameterList& eq) {

@@ -65,7 +65,7 @@ void addAdeimModels(const BuildState& b, int k, std::vector<StoredHyperModel>& o
 RCP<const MultiVector> deimBasisOf(const BuildState& b, const MultiVector& A, int k) {
   const StageClocks::Scope clock(b.clocks, ofK("deim basis", k));
   DeimBasisOptions opt = b.options.deim;
-  if (opt.maxRank == 0) opt.maxRank = largest(b.options.ms) + 32;
+  if (opt.largestM == 0) opt.largestM = largest(b.options.ms);  // what maxRank 0 keeps room for (deimMaxRank)
   return runDeimBasisStage(b.scene, b.comm, b.training, A, *b.instance.system, opt, b.cache, b.options.keys.deim).basis.U;
 }
 

@@ -10,6 +10,7 @@
 #include <set>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/core/ParameterValidation.hpp"
 #include "gphr/core/ReplicatedGather.hpp"
 #include "gphr/core/Provenance.hpp"
 #include "gphr/hyper/SampleMesh.hpp"
@@ -103,6 +104,27 @@ StoredBasisData basisData(const Scene& scene, const HamiltonianSystem& like, con
 }
 
 }  // namespace
+
+ModelFileOptions modelFileOptionsFrom(const Teuchos::ParameterList& build) {
+  ModelFileOptions o;
+  for (int g : build.get<Teuchos::Array<int>>("probes")) o.probes.push_back(g);
+  o.interpolationNodes = build.get<int>("interpolationNodes");
+  return o;
+}
+
+Teuchos::ParameterList modelFileValidParameters() {
+  Teuchos::ParameterList bld("build");
+  bld.set("withBasis", false,
+          "gphr build: also store the full basis A (2n x 2k numbers per k) in the model file, for the exact "
+          "set-up route and for lifting whole states; without it the file holds nothing of size n or d");
+  bld.set("probes", Teuchos::Array<int>(),
+          "gphr build: state entries (global ids 0..2n-1, q then p) whose lifted values queries can report "
+          "(only these rows of A are stored)");
+  setIntParameter(bld, "interpolationNodes", 7, 2, 33,
+                  "gphr build: Chebyshev-Lobatto nodes per parameter of the interpolant of L_r, f_r, c and the "
+                  "reference rows over the box (the n-independent set-up route of a query; its error is reported)");
+  return bld;
+}
 
 ReducedModelData modelFileHeader(const Scene& scene, const SceneInstance& inst, const ModelFileOptions& opt) {
   ReducedModelData d;

@@ -9,6 +9,7 @@
 
 #include "gphr/core/ColumnFingerprint.hpp"
 #include "gphr/core/Error.hpp"
+#include "gphr/core/ParameterValidation.hpp"
 #include "gphr/core/RankGroups.hpp"
 #include "gphr/online/TimeLoop.hpp"
 #include "gphr/timeint/FullModelIntegrator.hpp"
@@ -37,9 +38,8 @@ std::vector<std::vector<double>> trainingGrid(const ParameterBox& box, const std
   }
 }
 
-TrainingOptions trainingOptionsFrom(const Teuchos::ParameterList& cfg, const ParameterBox& box) {
+TrainingOptions trainingOptionsFrom(const Teuchos::ParameterList& tr, const ParameterBox& box) {
   TrainingOptions o;
-  const auto& tr = cfg.sublist("training");
   const auto& values = tr.get<Teuchos::Array<double>>("values");
   const size_t p = box.names.size();
   if (!values.empty()) {
@@ -58,13 +58,24 @@ TrainingOptions trainingOptionsFrom(const Teuchos::ParameterList& cfg, const Par
       throw InputError(detail::concat("training set: ", e.what()));
     }
   }
-  const auto& time = cfg.sublist("time");
-  o.dt = time.get<double>("dt");
-  o.steps = wholeSteps(time.get<double>("T"), o.dt);
   o.snapshotEvery = tr.get<int>("snapshotEvery");
-  o.integrator = cfg.sublist("integrator");
   if (tr.isParameter("groupSize")) o.groupSize = tr.get<int>("groupSize");
   return o;
+}
+
+Teuchos::ParameterList trainingValidParameters(size_t parameters) {
+  Teuchos::ParameterList tr("training");
+  tr.set("points", Teuchos::Array<int>(static_cast<int>(parameters), 3),
+         "training grid: equispaced points per parameter of the box (paper: [11] NLS, [5, 5] SWE)");
+  tr.set("values", Teuchos::Array<double>(),
+         "explicit training parameters, flattened (one value per box parameter each); overrides points");
+  setIntParameter(tr, "snapshotEvery", 1, 1, 1000000, "keep every N-th state of each training run");
+  setIntParameter(tr, "groupSize", 0, 0, 1000000,
+                  "ranks per training group: the ranks split into groups that integrate their own training "
+                  "parameters side by side; 0: the group count with the fewest rounds per rank of a group (a group "
+                  "per parameter where the ranks allow), none splitting a system below 4096 or above 2^18 state rows per rank; the "
+                  "snapshots are the same to round-off");
+  return tr;
 }
 
 namespace {

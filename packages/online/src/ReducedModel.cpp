@@ -183,7 +183,7 @@ SimulationStats OnlineModel::simulate(double T, double dt, const QueryObserver& 
   // Without an observer H_hr is not evaluated at the steps: the last state's is checked, so that
   // a run whose energy is not a number is not `ok` either way (observe checks every step).
   if (stats.ok() && !observer && !std::isfinite(model_->hamiltonian(z))) {
-    stats.status = "diverged";
+    stats.status = RunStatus::Diverged;
     stats.reason = detail::concat("non-finite Hamiltonian at the last step ", stats.lastStep);
   }
   return stats;

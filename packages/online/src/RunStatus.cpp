@@ -26,9 +26,25 @@ UnboundedStep firstUnboundedStep(double H0, double fomMaxNorm, const std::vector
   return out;
 }
 
-const char* runStatus(bool finished, bool available, long unboundedAt) {
-  if (!finished) return available ? "diverged" : "unavailable";
-  return unboundedAt >= 0 ? "unbounded" : "ok";
+const char* statusName(RunStatus status) {
+  switch (status) {
+    case RunStatus::Ok: return "ok";
+    case RunStatus::Unbounded: return "unbounded";
+    case RunStatus::Diverged: return "diverged";
+    case RunStatus::Unavailable: return "unavailable";
+  }
+  return "unknown";
+}
+
+RunStatus statusFromName(const std::string& name) {
+  for (RunStatus s : {RunStatus::Ok, RunStatus::Unbounded, RunStatus::Diverged, RunStatus::Unavailable})
+    if (name == statusName(s)) return s;
+  throw InputError(detail::concat("status '", name, "'; allowed: ok, unbounded, diverged, unavailable"));
+}
+
+RunStatus runStatus(bool finished, bool available, long unboundedAt) {
+  if (!finished) return available ? RunStatus::Diverged : RunStatus::Unavailable;
+  return unboundedAt >= 0 ? RunStatus::Unbounded : RunStatus::Ok;
 }
 
 }  // namespace gphr

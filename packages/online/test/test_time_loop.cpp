@@ -82,7 +82,7 @@ TEST(TimeLoop, AdaptiveHookRunsAfterTheObserverAndItsFailureIsADivergence) {
         order.push_back("adapt " + std::to_string(j));
         if (j == 4) throw SolverError("degenerate update");
       });
-  EXPECT_EQ(stats.status, "diverged");
+  EXPECT_EQ(stats.status, RunStatus::Diverged);
   EXPECT_FALSE(stats.ok());
   EXPECT_EQ(stats.reason, "degenerate update");
   EXPECT_EQ(stats.lastStep, 4);
@@ -97,7 +97,7 @@ TEST(TimeLoop, NonFiniteGradientEndsTheRunAsDivergedBeforeTheObserverSeesIt) {
   DenseVector z;
   long observed = -1;
   const auto stats = simulate(model, imr(0.1, 50), z, [&](long j, double, const DenseVector&) { observed = j; });
-  EXPECT_EQ(stats.status, "diverged");
+  EXPECT_EQ(stats.status, RunStatus::Diverged);
   EXPECT_FALSE(stats.reason.empty());
   EXPECT_GT(stats.lastStep, 0);
   EXPECT_LT(stats.lastStep, 50);
@@ -162,7 +162,7 @@ TEST(TimeLoop, ANonFiniteObservedHamiltonianIsADivergenceNotOk) {
     observed = j;
     finiteHamiltonian(model.hamiltonian(zj), j);
   });
-  EXPECT_EQ(watched.status, "diverged");
+  EXPECT_EQ(watched.status, RunStatus::Diverged);
   EXPECT_NE(watched.reason.find("non-finite Hamiltonian nan at step 0"), std::string::npos) << watched.reason;
   EXPECT_EQ(observed, 0);
   EXPECT_EQ(watched.lastStep, 0);

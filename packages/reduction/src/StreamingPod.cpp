@@ -26,6 +26,8 @@ PodRoute podRouteFromName(const std::string& name) {
   return PodRoute::Replicated;
 }
 
+std::vector<std::string> podRouteNames() { return {"auto", "tsqr", "stacked", "tree", "replicated"}; }
+
 // auto: the tree from 2 ranks on. With TPQRT at its levels its small factorizations cost 0.7x the
 // stacked route's GESDD at p = 2 and 0.4x at 4 on one core, and whole steps (2048 rows per rank,
 // c = 512) were 1.13-1.28x faster on 2 ranks, 1.52x on 3, 1.80x on 4 (bench/pod_tree_micro.cpp;

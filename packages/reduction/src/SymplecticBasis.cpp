@@ -6,6 +6,7 @@
 #include <complex>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/core/ParameterValidation.hpp"
 #include "gphr/reduction/StreamingPod.hpp"
 
 namespace gphr {
@@ -228,6 +229,28 @@ ReducedBasis computeSymplecticBasis(const SnapshotSet& snapshots, const PhaseSpa
       a(nl + i, k + j) = e(i, j);
     }
   return out;
+}
+
+Teuchos::ParameterList basisValidParameters() {
+  Teuchos::ParameterList red("reduction");
+  setChoiceParameter(red, "method", "psd", Teuchos::tuple<std::string>("psd", "cotangent"),
+                     "symplectic basis: psd (complex SVD, the paper's) or cotangent lift");
+  setIntParameter(red, "k", 10, 0, 100000, "reduced size 2k; 0: smallest k meeting energyTolerance");
+  setDoubleParameter(red, "energyTolerance", 1e-6, 0.0, 1.0, "discarded snapshot energy fraction when k = 0");
+  setIntParameter(red, "blockColumns", 128, 1, 100000, "snapshot columns per incremental SVD step");
+  setIntParameter(red, "maxRank", 0, 0, 1000000,
+                  "singular triplets kept between incremental steps; 0: 2k + 32, or half the dofs per rank if k = 0");
+  const auto names = podRouteNames();
+  const Teuchos::Array<std::string> routes(names.begin(), names.end());
+  setChoiceParameter(red, "podRoute", "auto", routes,
+                     "incremental SVD step: auto (tree from 2 ranks: the faster measured), tsqr "
+                     "(Tpetra's TSQR; refuses a step with more carried + new columns than rows on some rank), stacked "
+                     "(a TSQR on LAPACK kernels: each rank's rows by a Householder QR in row chunks, the R factors "
+                     "stacked on every rank and one SVD of the stack; any rank count, local work divides with the ranks), tree (as stacked, "
+                     "the R factors reduced over a binary tree of ranks and one small SVD on rank 0: the work beyond "
+                     "a rank's rows grows with log2 of the ranks, not with the ranks), replicated (each step's matrix "
+                     "gathered on every rank, one LAPACK SVD: any rank count, no parallel speed-up)");
+  return red;
 }
 
 BasisOptions basisOptionsFrom(const Teuchos::ParameterList& red, int k) {

@@ -7,11 +7,19 @@
 #include <vector>
 
 #include "gphr/core/Provenance.hpp"
+#include "gphr/offline/Training.hpp"
 
 namespace gphr {
 
-/// The valid list for a given scene (the scene decides its size key and parameters).
-Teuchos::ParameterList configValidParameters(const std::string& sceneName);
+/// The valid list for a given scene (the scene decides its size key and parameters), assembled
+/// from the sections' own validators: each options struct's package declares its keys, defaults
+/// and documentation beside the reader of its options (trainingValidParameters beside
+/// trainingOptionsFrom, ...); only `pipeline` and `output`, which the application alone reads, are
+/// declared here.
+Teuchos::ParameterList validConfig(const std::string& sceneName);
+/// The training options of a validated config: its training section's, with the time step, the
+/// steps and the integrator of its time and integrator sections.
+TrainingOptions trainingOptionsOf(const Teuchos::ParameterList& cfg, const ParameterBox& box);
 /// Read (by extension: .yaml/.yml or .xml) and validate. InputError on any problem, one line.
 Teuchos::ParameterList loadConfig(const std::string& path);
 /// Validate a list already in memory (e.g.\ the built-in default) and return it completed.

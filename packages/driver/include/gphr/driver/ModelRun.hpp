@@ -36,11 +36,12 @@ struct ModelRun {
   RunMetrics metrics;  ///< The figures of its "runs" entry of summary.json.
   std::string label() const;  ///< Method with k and m, as the report names the run.
   /// ok | unbounded | diverged | unavailable (RunStatus.hpp)
-  const char* status() const { return runStatus(ok, available, unboundedAt); }
+  RunStatus status() const { return runStatus(ok, available, unboundedAt); }
   bool bounded() const { return ok && unboundedAt < 0; }  ///< status ok
   /// report.md: a run that failed or blew up in bold
   std::string statusText() const {
-    return bounded() || !available ? status() : std::string("**") + status() + "**";
+    const std::string name = statusName(status());
+    return bounded() || !available ? name : "**" + name + "**";
   }
 };
 

@@ -17,7 +17,8 @@ namespace gphr {
 struct ValidationRecord {
   /// Name of the test point, method of the model, status of the run.
   /// @{
-  std::string point, method, status;
+  std::string point, method;
+  RunStatus status = RunStatus::Ok;  ///< the run's status
   /// @}
   std::vector<double> mu;  ///< The parameter mu of the point.
   /// Reduced size k and DEIM size m.

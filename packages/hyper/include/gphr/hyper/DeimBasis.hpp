@@ -19,7 +19,8 @@ namespace gphr {
 
 /// Options of the DEIM basis: its rank, the snapshots used, and the SVD (exact streaming POD or randomized).
 struct DeimBasisOptions {
-  int maxRank = 0;        ///< singular triplets kept between blocks (>= the largest m wanted); 0: min(d, 400)
+  int maxRank = 0;        ///< singular triplets kept between blocks (>= the largest m wanted); 0: deimMaxRank()
+  int largestM = 0;       ///< the largest DEIM size wanted (0: not known), which maxRank 0 keeps room for
   int snapshotEvery = 1;  ///< use every N-th stored training state (the paper: 20)
   int blockSnapshots = 0; ///< reduced-Jacobian snapshots (2k columns each) per POD step; 0: ~maxRank columns
   /// exact: reduced-Jacobian snapshots per chunk of the hierarchical POD (DeimChunks); 0: about
@@ -43,10 +44,14 @@ struct DeimBasisOptions {
 };
 
 /// The options of a `hyper` configuration section (validated: every key present); largestM: the
-/// largest DEIM size wanted (maxRank 0 keeps largestM + 32 triplets).
+/// largest DEIM size wanted (DeimBasisOptions::largestM: what maxRank 0 keeps, deimMaxRank()).
 DeimBasisOptions deimBasisOptionsFrom(const Teuchos::ParameterList& hyper, int largestM);
+/// The keys of a `hyper` section with their defaults, ranges and documentation: the DEIM basis
+/// (deimBasisOptionsFrom), its interpolation indices and the classic DEIM baseline's snapshots.
+Teuchos::ParameterList deimBasisValidParameters();
 
-constexpr int kDefaultDeimRank = 400;  ///< Default largest m (singular triplets kept) of the DEIM basis.
+constexpr int kDefaultDeimRank = 400;  ///< maxRank 0 without a largest m: the triplets kept.
+constexpr int kDeimRankMargin = 32;    ///< maxRank 0 with a largest m: the triplets kept beyond it.
 /// The DEIM basis' numerical rank: its vectors are the left singular vectors of the snapshots whose
 /// singular values exceed kDeimRankFloor sigma_1, in every POD of the exact route that decides it
 /// (the streaming POD of a chunk and of the chunks' root; the randomized route's Gram projection
@@ -106,7 +111,9 @@ struct DeimChunkModes {
 DeimChunkModes deimChunkModes(const SystemSet& systems, const SnapshotSet& states,
                               const MultiVector& A, const DeimBasisOptions& options, int maxRank, SnapshotRange range,
                               ReducedStateCache* cache = nullptr);
-/// The largest DEIM rank the options keep for a row map of d rows (options.maxRank, or the default, at most d).
+/// The largest DEIM rank the options keep for a row map of d rows, at most d: options.maxRank, or
+/// for 0 (the default, the one place it is decided) largestM + kDeimRankMargin, or kDefaultDeimRank
+/// where no largest m is known.
 int deimMaxRank(const DeimBasisOptions& options, GO d);
 
 /// The root of the hierarchical POD: a streaming POD of the chunks' modes U_q diag(sigma_q), one

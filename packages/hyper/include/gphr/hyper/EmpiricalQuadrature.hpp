@@ -37,6 +37,9 @@ struct QuadratureOptions {
 
 /// The options of an `eqp` configuration section (validated: every key present).
 QuadratureOptions quadratureOptionsFrom(const Teuchos::ParameterList& eqp);
+/// The keys of an `eqp` section with their defaults, ranges and documentation (quadratureOptionsFrom
+/// reads them; `tolerance`, the fit's stopping residual, is the term-weight fits').
+Teuchos::ParameterList quadratureValidParameters();
 
 /// The training system of the fit: this rank's columns (its own rows of G, as their reduced-gradient
 /// columns), the target b (replicated) and the column norms.

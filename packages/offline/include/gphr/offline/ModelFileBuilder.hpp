@@ -2,6 +2,8 @@
 /// @file
 /// The contents of a reduced-model file (doc/model-file.md) from the offline results: what
 /// `gphr build` writes, callable from a user's code with a basis and DEIM basis of its own.
+#include <Teuchos_ParameterList.hpp>
+
 #include <string>
 #include <vector>
 
@@ -17,6 +19,12 @@ struct ModelFileOptions {
   std::string indices = "deim";  ///< DEIM indices: deim | qdeim
   std::string integratorConfig;  ///< YAML of the integrator section (empty: the defaults)
 };
+
+/// The options a `build` section sets (probes, interpolationNodes); the indices and the integrator's
+/// YAML are the caller's (sections hyper and integrator).
+ModelFileOptions modelFileOptionsFrom(const Teuchos::ParameterList& build);
+/// The keys of a `build` section with their defaults, ranges and documentation.
+Teuchos::ParameterList modelFileValidParameters();
 
 /// The file's header for `scene` (instance: any shifted instance of it; supplies the degree of G).
 ReducedModelData modelFileHeader(const Scene& scene, const SceneInstance& instance, const ModelFileOptions& options);

@@ -38,9 +38,12 @@ int trainingGroupSize(long fullDim, int ranks, long parameters);
 constexpr long kTrainingRowsPerRank = 4096;  ///< The fewest state rows per rank worth splitting a system over.
 constexpr long kMaxTrainingRowsPerRank = 1L << 18;  ///< The most state rows per rank a group's system may put on one.
 
-/// The training options of a `gphr` configuration's sections time (T, dt), training (values or
-/// points, snapshotEvery) and integrator, the parameters checked against `box`.
-TrainingOptions trainingOptionsFrom(const Teuchos::ParameterList& config, const ParameterBox& box);
+/// The options a `training` section sets (values or points, snapshotEvery, groupSize), the
+/// parameters checked against `box`; the time step, steps and integrator are the caller's.
+TrainingOptions trainingOptionsFrom(const Teuchos::ParameterList& training, const ParameterBox& box);
+/// The keys of a `training` section with their defaults, ranges and documentation, for a box of
+/// `parameters` parameters (the default grid: 3 points each).
+Teuchos::ParameterList trainingValidParameters(size_t parameters);
 
 /// The tensor grid over `box` with points[i] equispaced values of parameter i (1: its midpoint),
 /// the first parameter fastest. InputError unless there is one count per parameter, each in [1, 10000].

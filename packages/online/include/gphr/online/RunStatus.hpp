@@ -37,7 +37,19 @@ struct UnboundedStep {
 UnboundedStep firstUnboundedStep(double H0, double fomMaxNorm, const std::vector<double>& hamiltonian,
                                  const std::vector<double>& stateNorms);
 
-/// ok | unbounded | diverged | unavailable, as the file's description defines them.
-const char* runStatus(bool finished, bool available, long unboundedAt);
+/// The status of a run (the file's description): one type for the time loop, the runs of `gphr
+/// run`, queries and validation points; files and reports write it as its name.
+enum class RunStatus {
+  Ok,          ///< ran to the end, within the full model's range
+  Unbounded,   ///< ran to the end, its lift out of the full model's range
+  Diverged,    ///< Newton failed or the state or its H became non-finite
+  Unavailable  ///< not run: the offline data cannot support its (k, m)
+};
+/// ok | unbounded | diverged | unavailable: the word every file and report writes.
+const char* statusName(RunStatus status);
+/// The status of a name statusName() gives; InputError naming the word and the names otherwise.
+RunStatus statusFromName(const std::string& name);
+/// The status of a run, as the file's description defines it.
+RunStatus runStatus(bool finished, bool available, long unboundedAt);
 
 }  // namespace gphr

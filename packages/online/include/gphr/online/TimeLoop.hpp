@@ -15,6 +15,7 @@
 #include "gphr/core/DenseHamiltonian.hpp"
 #include "gphr/core/Error.hpp"
 #include "gphr/core/Types.hpp"
+#include "gphr/online/RunStatus.hpp"
 #include "gphr/timeint/Integrator.hpp"
 
 namespace gphr {
@@ -41,10 +42,10 @@ struct SimulationStats {
   RunStats run;                 ///< Newton and time-loop statistics
   double onlineSeconds = 0.0;   ///< the loop's wall seconds without the observer's share (the adaptive hook counts)
   double observeSeconds = 0.0;  ///< the observer's seconds
-  std::string status = "ok";    ///< ok | diverged
+  RunStatus status = RunStatus::Ok;  ///< Ok, or Diverged (the loop decides no other)
   std::string reason;           ///< why it diverged
   long lastStep = 0;            ///< the last step whose state was observed
-  bool ok() const { return status == "ok"; }  ///< it ran to the end
+  bool ok() const { return status == RunStatus::Ok; }  ///< it ran to the end
 };
 
 /// Whether every entry of a state is finite (dense: entry by entry; distributed: its norm, collective).
@@ -78,7 +79,7 @@ SimulationStats observedTimeLoop(Integrator& integ, State& y, double dt, long st
       if (adapt) adapt(j, t, yj);
     });
   } catch (const SolverError& e) {
-    stats.status = "diverged";
+    stats.status = RunStatus::Diverged;
     stats.reason = e.what();
     if (obs.isRunning()) stats.observeSeconds += obs.stop();
   }

@@ -40,6 +40,8 @@ class HouseholderQr;
 enum class PodRoute { Auto, Tsqr, Stacked, Tree, Replicated };
 /// "auto" | "tsqr" | "stacked" | "tree" | "replicated" (the config's podRoute values); anything else: InputError.
 PodRoute podRouteFromName(const std::string& name);
+/// The route names podRouteFromName() takes, in the order --help lists them.
+std::vector<std::string> podRouteNames();
 /// The rank count from which auto takes the tree route.
 constexpr int kTreeRouteFromRanks = 2;
 /// The route a step takes on `ranks` ranks: `route`, or for Auto stacked below kTreeRouteFromRanks, else tree.

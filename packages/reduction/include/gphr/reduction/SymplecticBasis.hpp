@@ -71,6 +71,9 @@ RCP<const Map> basisPodMap(const PhaseSpace& space, const BasisOptions& options)
 /// The options of a `reduction` configuration section (validated: every key present) for a basis
 /// of half-size k (0: chosen by the energy tolerance).
 BasisOptions basisOptionsFrom(const Teuchos::ParameterList& reduction, int k);
+/// The keys of a `reduction` section with their defaults, ranges and documentation: what
+/// basisOptionsFrom() reads (and `k`, the reduced size of `gphr run`).
+Teuchos::ParameterList basisValidParameters();
 
 /// The leading 2k columns of a symplectic basis of size kb: [E_k, J^T E_k] = columns [0, k) and
 /// [kb, kb + k) (still orthonormal and symplectic).
