@@ -17,24 +17,25 @@ work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cmake --install "$build" --prefix "$work/prefix" > /dev/null
 test -f "$work/prefix/lib/cmake/GPHR/GPHRConfig.cmake"
 test -f "$work/prefix/include/gphr/core/HamiltonianSystem.hpp"
-cmake -S "$src/examples/embedding" -B "$work/embed" -G Ninja -DCMAKE_PREFIX_PATH="$work/prefix" > "$work/cfg.log" \
-  || { cat "$work/cfg.log"; exit 1; }
-cmake --build "$work/embed" -v > "$work/build.log" 2>&1 || { cat "$work/build.log"; exit 1; }
-link=$(grep -E -- "-o fpu_lattice( |$)" "$work/build.log" | tail -1)
-echo "examples/embedding link line: $link"
-[[ "$link" == *libgphr_offline.a* && "$link" == *libgphr_online.a* ]] \
-  || { echo "FAIL: examples/embedding does not link the offline and online libraries"; exit 1; }
-[[ "$link" != *libgphr_driver.a* ]] || { echo "FAIL: examples/embedding links the application's library gphr_driver"; exit 1; }
+# consumer LABEL SOURCE BUILD TARGET LIBS...: configures and builds the project SOURCE against the
+# installed package, prints TARGET's link line and fails unless it names each of LIBS and not the
+# application's library gphr_driver.
+consumer() {
+  local label=$1 source=$2 dir=$3 target=$4; shift 4
+  cmake -S "$source" -B "$dir" -G Ninja -DCMAKE_PREFIX_PATH="$work/prefix" > "$work/cfg.log" \
+    || { cat "$work/cfg.log"; exit 1; }
+  cmake --build "$dir" -v > "$work/build.log" 2>&1 || { cat "$work/build.log"; exit 1; }
+  local link
+  link=$(grep -E -- "-o $target( |$)" "$work/build.log" | tail -1)
+  echo "$label link line: $link"
+  for lib in "$@"; do [[ "$link" == *"$lib"* ]] || { echo "FAIL: $label does not link $lib"; exit 1; }; done
+  [[ "$link" != *gphr_driver* ]] || { echo "FAIL: $label links the application's library gphr_driver"; exit 1; }
+}
+consumer examples/embedding "$src/examples/embedding" "$work/embed" fpu_lattice libgphr_offline.a libgphr_online.a
 (cd "$work" && "$work/embed/fpu_lattice" fpu1.h5)
 (cd "$work" && "$mpiexec" --allow-run-as-root --oversubscribe -np 2 "$work/embed/fpu_lattice" fpu2.h5)
 # examples/query on a model built by the installed gphr.
-cmake -S "$src/examples/query" -B "$work/query" -G Ninja -DCMAKE_PREFIX_PATH="$work/prefix" > "$work/cfg.log" \
-  || { cat "$work/cfg.log"; exit 1; }
-cmake --build "$work/query" -v > "$work/build.log" 2>&1 || { cat "$work/build.log"; exit 1; }
-link=$(grep -E -- "-o query_model( |$)" "$work/build.log" | tail -1)
-echo "examples/query link line: $link"
-[[ "$link" == *libgphr_online.a* ]] || { echo "FAIL: examples/query does not link the online library"; exit 1; }
-[[ "$link" != *libgphr_driver.a* ]] || { echo "FAIL: examples/query links the application's library gphr_driver"; exit 1; }
+consumer examples/query "$src/examples/query" "$work/query" query_model libgphr_online.a
 # The umbrella GPHR::gphr: every library but the application's, whose library and headers are not
 # installed (the gphr executable is).
 [ ! -e "$work/prefix/include/gphr/driver" ] && ! ls "$work/prefix/lib/"libgphr_driver* > /dev/null 2>&1 \
@@ -43,14 +44,7 @@ mkdir -p "$work/umbrella"
 cp "$src/examples/query/query_model.cpp" "$work/umbrella/"
 sed 's/GPHR::online/GPHR::gphr/; s/project(gphr_query /project(gphr_umbrella /' "$src/examples/query/CMakeLists.txt" \
   > "$work/umbrella/CMakeLists.txt"
-cmake -S "$work/umbrella" -B "$work/umbrella/build" -G Ninja -DCMAKE_PREFIX_PATH="$work/prefix" > "$work/cfg.log" \
-  || { cat "$work/cfg.log"; exit 1; }
-cmake --build "$work/umbrella/build" -v > "$work/build.log" 2>&1 || { cat "$work/build.log"; exit 1; }
-link=$(grep -E -- "-o query_model( |$)" "$work/build.log" | tail -1)
-echo "GPHR::gphr link line: $link"
-[[ "$link" == *libgphr_offline.a* && "$link" == *libgphr_online.a* ]] \
-  || { echo "FAIL: GPHR::gphr does not link the libraries"; exit 1; }
-[[ "$link" != *gphr_driver* ]] || { echo "FAIL: GPHR::gphr links the application's library gphr_driver"; exit 1; }
+consumer GPHR::gphr "$work/umbrella" "$work/umbrella/build" query_model libgphr_offline.a libgphr_online.a
 cp "$src/test/support/small_nls_model.yaml" "$work/build.yaml"
 (cd "$work" && OPENBLAS_NUM_THREADS=1 "$work/prefix/bin/gphr" build build.yaml --model model.h5 --output art > /dev/null)
 "$work/query/query_model" "$work/model.h5" 0.92 1.0 1.08

@@ -129,6 +129,9 @@ int runBuild(const std::string& configPath, const std::string& modelPath, const 
   const OutputLock lock(artifactsDir, "build", comm);
   const auto parent = std::filesystem::path(modelPath).parent_path();
   if (!parent.empty()) makeDirectory(parent.string(), comm);
+  if (comm->getRank() == 0)  // the default --output is easy to miss: say where the cache goes
+    std::fprintf(stderr, "[gphr] build: model file %s; artifacts cache and stage tables in %s\n", modelPath.c_str(),
+                 artifactsDir.c_str());
   if (comm->getRank() == 0)
     for (const auto& m : skipped)
       std::fprintf(stderr, "[gphr] build: %s is not stored (%s)\n", m.c_str(),

@@ -124,7 +124,8 @@ bool ReducedModel::checkParameter(const std::vector<double>& mu, bool allowExtra
                  " is not a finite number");
     const bool inside = mu[p] >= data().box[p].first && mu[p] <= data().box[p].second;
     GPHR_REQUIRE(inside || allowExtrapolation, InputError, "parameter ", data().parameterNames[p], " = ", mu[p],
-                 " is outside the training box (", boxText(data()), "); allowed: inside it, or extrapolate: true");
+                 " is outside the training box (", boxText(data()),
+                 "); allowed: inside it, or allowExtrapolation = true (a query's extrapolate: true)");
     outside = outside || !inside;
   }
   return outside;
