@@ -75,9 +75,9 @@ RomStages runOfflineStages(const RunContext& ctx) {
       runBasisStage(st.training, inst.system->space(), basis, ctx.scene->name(), &cache, keys.basis);
   st.basis = b.basis, st.basisCached = b.cached, st.basisSeconds = b.seconds, st.basisCpuSeconds = b.cpuSeconds;
   if (ctx.comm->getRank() == 0)
-    std::fprintf(stderr, "[gphr] reduce: %s basis, 2k = %d, energy captured %.10f%s, %.1f s (%.1f s CPU; POD steps: "
-                 "%d tsqr, %d stacked, %d tree, %d replicated)\n", st.basis.method.c_str(), 2 * st.basis.k,
-                 st.basis.energyCaptured, st.basisCached ? " (cached)" : "", st.basisSeconds, st.basisCpuSeconds,
+    std::fprintf(stderr, "[gphr] reduce: %s basis, 2k = %d, snapshot energy left out 1 - captured = %.1e%s, %.1f s "
+                 "(%.1f s CPU; POD steps: %d tsqr, %d stacked, %d tree, %d replicated)\n", st.basis.method.c_str(),
+                 2 * st.basis.k, 1.0 - st.basis.energyCaptured, st.basisCached ? " (cached)" : "", st.basisSeconds, st.basisCpuSeconds,
                  st.basis.podSteps.tsqr, st.basis.podSteps.stacked, st.basis.podSteps.tree, st.basis.podSteps.replicated);
   return st;
 }

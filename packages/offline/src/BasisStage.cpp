@@ -96,6 +96,11 @@ BasisStageResult runBasisStage(const TrainingResult& training, const PhaseSpace&
                      clock.totalElapsedTime(true), kept ? ", checkpointed" : "");
     };
     out.basis = computeSymplecticBasis(training.snapshots, space, options, &resume, save);
+    // save() runs between parameters only (the last one's POD is the basis, written next): the
+    // sequence of lines ends at count of count here.
+    if (space.comm()->getRank() == 0 && resume.blocks < static_cast<size_t>(count))
+      std::fprintf(stderr, "[gphr] basis: parameter %d of %d POD'd, %.1f s\n", count, count,
+                   clock.totalElapsedTime(true));
     if (cache) {
       writeBasis(*cache, *cache->open(), out.basis, space, sceneName, training, key);
       checkpoint.clear();  // their work is in the basis now

@@ -199,8 +199,9 @@ CachedDeimBasis runDeimBasisStage(const Scene& scene, const RCP<const Comm>& com
   }
   out.seconds = clock.stop();
   if (comm->getRank() == 0)
-    std::fprintf(stderr, "[gphr] deim basis k = %d: %zu vectors from %ld snapshots%s, %.1f s\n", k,
-                 out.basis.singularValues.size(), out.basis.snapshots, out.cached ? " (cached)" : "", out.seconds);
+    std::fprintf(stderr, "[gphr] deim basis k = %d: %zu vectors (the snapshots' numerical rank, at most maxRank) from "
+                 "%ld snapshots of 2k = %d columns each%s, %.1f s\n", k, out.basis.singularValues.size(),
+                 out.basis.snapshots, 2 * k, out.cached ? " (cached)" : "", out.seconds);
   return out;
 }
 
