@@ -5,16 +5,11 @@
 
 #include <cerrno>
 #include <cstdlib>
-#include <limits>
-
-#include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <map>
+#include <limits>
 #include <set>
 #include <sstream>
-#include <utility>
-#include <vector>
 
 #include "gphr/core/Error.hpp"
 #include "gphr/core/YamlText.hpp"

@@ -7,7 +7,6 @@
 // the point asks for the exact one) and lifted with the stored basis for the error eq:errNR.
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_DefaultSerialComm.hpp>
-#include <Teuchos_YamlParameterListCoreHelpers.hpp>
 
 #include <algorithm>
 #include <cmath>

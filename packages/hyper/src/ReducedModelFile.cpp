@@ -531,6 +531,7 @@ ReducedModelData readReducedModelFile(const std::string& path) { return OpenMode
 RCP<MultiVector> OpenModelFile::basis(int k, const PhaseSpace& space) const {
   const std::string name = basisGroup(k) + "/basis";
   RCP<MultiVector> A;
+  std::vector<double> fingerprint;  // read with the basis, under one lock and one stamp check
   int bad = 0;
   {
     const std::lock_guard<std::mutex> lock(read_);
@@ -544,6 +545,7 @@ RCP<MultiVector> OpenModelFile::basis(int k, const PhaseSpace& space) const {
     A = file_->readStates(name, space);
     GPHR_REQUIRE(A->getNumVectors() == 2 * static_cast<size_t>(k), InputError, "reduced-model file '", path_, "': ",
                  name, " has ", A->getNumVectors(), " columns; allowed: 2k = ", 2 * k);
+    if (file_->hasAttribute(name, "fingerprint")) fingerprint = file_->doubleAttribute(name, "fingerprint");
     auto a = A->getLocalViewHost(Tpetra::Access::ReadOnly);
     for (size_t j = 0; j < a.extent(1) && !bad; ++j)
       for (size_t i = 0; i < a.extent(0) && !bad; ++i) bad = !std::isfinite(a(i, j));
@@ -555,11 +557,6 @@ RCP<MultiVector> OpenModelFile::basis(int k, const PhaseSpace& space) const {
   // The basis is outside the file's checksum (distributed, and read only to lift): its
   // fingerprint catches a changed value (ColumnFingerprint.hpp; ||a_j|| = 1). Files written
   // before the fingerprint have none: only the checks above apply to them.
-  std::vector<double> fingerprint;
-  {
-    const std::lock_guard<std::mutex> lock(read_);
-    if (file_->hasAttribute(name, "fingerprint")) fingerprint = file_->doubleAttribute(name, "fingerprint");
-  }
   if (!fingerprint.empty())
     GPHR_REQUIRE(fingerprintMatches(fingerprint, *A), InputError, "reduced-model file '", path_, "': ", name,
                  " does not match its fingerprint (a changed value; the file is damaged: build it again)");

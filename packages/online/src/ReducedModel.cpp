@@ -159,6 +159,16 @@ OnlineModel ReducedModel::instantiate(const std::string& method, int k, int m, c
 }
 
 namespace {
+// A run whose observer did not evaluate H_hr (none was given) has its last state's checked, so
+// that a run whose energy is not a number is never `ok` (an observer checks every step).
+SimulationStats unobservedEnergyChecked(SimulationStats stats, DenseHamiltonian& model, const DenseVector& z) {
+  if (stats.ok() && !std::isfinite(model.hamiltonian(z))) {
+    stats.status = RunStatus::Diverged;
+    stats.reason = detail::concat("non-finite Hamiltonian at the last step ", stats.lastStep);
+  }
+  return stats;
+}
+
 // The time loop's settings of a query: the file's integrator at step dt over T / dt steps.
 SimulationSettings settingsOf(const Teuchos::ParameterList& integrator, int degree, double T, double dt) {
   SimulationSettings out;
@@ -179,15 +189,8 @@ SimulationStats OnlineModel::simulate(double T, double dt, const QueryObserver& 
     if (!probeGids_.empty()) probeValues(zj, probes);
     observer(QueryStep{j, t, zj, H, probes});
   };
-  SimulationStats stats =
-      gphr::simulate(*model_, settingsOf(integrator_, degree_, T, dt), z, observer ? observe : StepHook());
-  // Without an observer H_hr is not evaluated at the steps: the last state's is checked, so that
-  // a run whose energy is not a number is not `ok` either way (observe checks every step).
-  if (stats.ok() && !observer && !std::isfinite(model_->hamiltonian(z))) {
-    stats.status = RunStatus::Diverged;
-    stats.reason = detail::concat("non-finite Hamiltonian at the last step ", stats.lastStep);
-  }
-  return stats;
+  if (observer) return gphr::simulate(*model_, settingsOf(integrator_, degree_, T, dt), z, observe);
+  return unobservedEnergyChecked(gphr::simulate(*model_, settingsOf(integrator_, degree_, T, dt), z), *model_, z);
 }
 
 RCP<GpAdeimModel> ReducedModel::adaptiveModel(int k, int m, const SceneInstance& inst, const RCP<const MultiVector>& A,
@@ -214,13 +217,13 @@ SimulationStats ReducedModel::simulateAdaptive(int k, int m, const std::vector<d
   std::vector<double> probes;
   const StepHook observe = [&](long j, double t, const DenseVector& z) {
     const double H = finiteHamiltonian(model.hamiltonian(z), j);  // H_hr^j of the model of this step
-    if (!observer) return;
     liftProbes(y0, basis.probeRows, z, probes);
     observer(QueryStep{j, t, z, H, probes});
   };
   DenseVector z;
-  return gphr::simulate(model, settingsOf(integrator_, data().polynomialDegree, T, dt), z, observe,
-                        adeimUpdateHook(model));
+  const SimulationSettings settings = settingsOf(integrator_, data().polynomialDegree, T, dt);
+  if (observer) return gphr::simulate(model, settings, z, observe, adeimUpdateHook(model));
+  return unobservedEnergyChecked(gphr::simulate(model, settings, z, StepHook(), adeimUpdateHook(model)), model, z);
 }
 
 }  // namespace gphr
