@@ -162,6 +162,17 @@ derive("models_as_number", set_attr("/", "models", 1.5))
 derive("models_repeated", set_attr("/", "models", key + ";" + key))
 derive("models_bad_key", set_attr("/", "models", f"{method}/kx/{mm}"))
 derive("models_missing_group", set_attr("/", "models", f"{method}/{kk}/m999"))
+
+
+def as_method(name):  # the model's group copied under another method's name, the list naming it
+    def edit(g):
+        g.copy(gm, f"/{kk}/{name}/{mm}")
+        g.attrs["models"] = f"{name}/{kk}/{mm}"
+    return edit
+
+
+derive("models_rom_method", with_file(as_method("rom")))  # a method no model file holds
+derive("models_unknown_method", with_file(as_method("pod-deim")))
 derive("checksum_deleted", set_attr("/", "checksum", None))
 derive("checksum_changed", set_attr("/", "checksum", "fnv1a64:0000000000000000"))
 derive("time_as_string", set_attr("/", "time", "1 0.01"))

@@ -17,7 +17,7 @@
 #include "gphr/offline/ModelFileBuilder.hpp"
 #include "gphr/driver/StageTable.hpp"
 #include "gphr/models/SceneFactory.hpp"
-#include "gphr/online/Method.hpp"
+#include "gphr/core/Method.hpp"
 
 namespace gphr {
 

@@ -18,7 +18,7 @@
 #include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/models/SceneFactory.hpp"
 #include "gphr/offline/Training.hpp"
-#include "gphr/online/Method.hpp"
+#include "gphr/core/Method.hpp"
 #include "gphr/online/TimeLoop.hpp"
 #include "gphr/timeint/Integrator.hpp"
 
@@ -172,7 +172,7 @@ std::vector<std::string> pipelineMethods(const Teuchos::ParameterList& cfg) {
   std::vector<std::string> out;
   for (const auto& m : pipe.get<Teuchos::Array<std::string>>("methods")) {
     GPHR_REQUIRE(isMethod(m), InputError, "key 'pipeline.methods' has entry '", m, "'; allowed: ", methodNames());
-    if (m != method::kFom && std::find(out.begin(), out.end(), m) == out.end()) out.push_back(m);
+    if (methodInfo(m).reduced() && std::find(out.begin(), out.end(), m) == out.end()) out.push_back(m);
   }
   if (pipe.get<bool>("rom") && std::find(out.begin(), out.end(), method::kRom) == out.end()) out.insert(out.begin(), method::kRom);
   // sizes >= 1, each once (a size twice would be built and run twice, and a model file cannot hold it twice)
@@ -186,11 +186,12 @@ std::vector<std::string> pipelineMethods(const Teuchos::ParameterList& cfg) {
   requireSizes(pipe.get<Teuchos::Array<int>>("k"), "pipeline.k");
   const auto& ms = pipe.get<Teuchos::Array<int>>("m");
   requireSizes(ms, "pipeline.m");
-  const bool adaptive = std::find(out.begin(), out.end(), method::kGpAdeim) != out.end();
+  const bool adaptive =
+      std::any_of(out.begin(), out.end(), [](const std::string& m) { return methodInfo(m).adaptive(); });
   const bool wantsM =
-      std::any_of(out.begin(), out.end(), [](const std::string& m) { return methodInfo(m).hyperReduced; });
+      std::any_of(out.begin(), out.end(), [](const std::string& m) { return methodInfo(m).takesM; });
   GPHR_REQUIRE(!wantsM || !ms.empty(), InputError, "key 'pipeline.m' is empty but pipeline.methods asks for ",
-               methodNames([](const MethodInfo& m) { return m.hyperReduced; }),
+               methodNames([](const MethodInfo& m) { return m.takesM; }),
                "; allowed: a list of DEIM sizes / term budgets");
   if (adaptive)
     for (int m : ms) adeimOptionsFrom(cfg.sublist("adeim"), m);  // the adeim constraints that involve m

@@ -1,4 +1,4 @@
-#include "gphr/online/Method.hpp"
+#include "gphr/core/Method.hpp"
 #include "gphr/driver/Console.hpp"
 
 #include <cmath>

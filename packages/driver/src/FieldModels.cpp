@@ -4,19 +4,19 @@
 #include <cmath>
 
 #include "gphr/core/Error.hpp"
-#include "gphr/online/Method.hpp"
+#include "gphr/core/Method.hpp"
 
 namespace gphr {
 
 namespace {
-bool notFom(const MethodInfo& m) { return std::string(m.name) != method::kFom; }  // the full model is always shown
+bool reduced(const MethodInfo& m) { return m.reduced(); }  // the full model is always shown
 }  // namespace
 
 std::vector<std::string> fieldModelNames(const Teuchos::ParameterList& cfg) {
   std::vector<std::string> out;
   for (const auto& name : cfg.sublist("output").get<Teuchos::Array<std::string>>("fieldModels")) {
-    GPHR_REQUIRE(name == "best" || (isMethod(name) && name != method::kFom), InputError, "key 'output.fieldModels' has entry '",
-                 name, "'; allowed: best or one of ", methodNames(notFom));
+    GPHR_REQUIRE(name == "best" || (isMethod(name) && methodInfo(name).reduced()), InputError, "key 'output.fieldModels' has entry '",
+                 name, "'; allowed: best or one of ", methodNames(reduced));
     if (std::find(out.begin(), out.end(), name) == out.end()) out.push_back(name);
   }
   return out;
@@ -34,8 +34,8 @@ std::vector<double> fieldTimes(const Teuchos::ParameterList& cfg) {
 
 bool keepsFieldStates(const std::vector<std::string>& names, const std::string& method) {
   return std::any_of(names.begin(), names.end(), [&](const std::string& name) {
-    // every method but the full and the Galerkin model is a hyper-reduction (sdeim too, whose m is fixed)
-    return name == method || (name == "best" && method != method::kRom && method != method::kFom);
+    // "best": the most accurate hyper-reduction (sdeim too, whose m is fixed)
+    return name == method || (name == "best" && methodInfo(method).hyperReduced());
   });
 }
 

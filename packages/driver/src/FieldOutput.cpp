@@ -3,7 +3,7 @@
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/XdmfWriter.hpp"
 #include "gphr/io/Hdf5File.hpp"
-#include "gphr/online/Method.hpp"
+#include "gphr/core/Method.hpp"
 
 namespace gphr {
 

@@ -10,7 +10,7 @@
 #include "gphr/driver/FieldModels.hpp"
 #include "gphr/driver/Gnuplot.hpp"
 #include "gphr/driver/XdmfWriter.hpp"
-#include "gphr/online/Method.hpp"
+#include "gphr/core/Method.hpp"
 
 namespace gphr {
 

@@ -10,7 +10,7 @@
 #include "gphr/core/Error.hpp"
 #include "gphr/online/TimeLoop.hpp"
 #include "gphr/timeint/FullModelIntegrator.hpp"
-#include "gphr/online/Method.hpp"
+#include "gphr/core/Method.hpp"
 
 namespace gphr {
 

@@ -11,7 +11,7 @@
 #include "gphr/driver/Gnuplot.hpp"
 #include "gphr/driver/ModelEvaluation.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
-#include "gphr/online/Method.hpp"
+#include "gphr/core/Method.hpp"
 
 namespace gphr {
 
@@ -40,6 +40,14 @@ std::vector<std::string> methodsWith(const RomStages& st, const std::function<bo
   return out;
 }
 
+// The models of the paper's tab:taur, whose hyper-reduction's total cost report.md compares: the
+// DEIM-weighted ones, fixed (GP-DEIM) or adapted online (GP-ADEIM).
+bool deimWeighted(const MethodInfo& m) { return m.fit == TermWeightFit::Deim || m.adaptive(); }
+
+bool anyAdaptive(const RomStages& st) {
+  return std::any_of(st.runs.begin(), st.runs.end(), [](const ModelRun& r) { return r.info().adaptive(); });
+}
+
 bool anyUnbounded(const RomStages& st) {
   return std::any_of(st.runs.begin(), st.runs.end(), [](const ModelRun& r) { return r.unboundedAt >= 0; });
 }
@@ -58,7 +66,7 @@ void writeRunsCsv(const RomStages& st, double fomOnline, const std::string& path
   for (const auto& r : st.runs) {
     double eRom = NAN;
     for (const auto& q : st.runs)
-      if (q.method == method::kRom && q.k == r.k) eRom = q.eL2;
+      if (q.info().reduction == Reduction::Galerkin && q.k == r.k) eRom = q.eL2;
     os << r.method << "," << r.k << "," << r.m << "," << statusName(r.status()) << "," << r.eL2 << "," << r.tOnline << "," << (r.tOnline > 0 ? fomOnline / r.tOnline : NAN) << "," << eRom << ","
        << r.metrics.number(Metric::TTotalS) << "\n";
   }
@@ -100,7 +108,7 @@ void writeAdeimUpdates(const FomResult& fom, const std::vector<ModelRun>& runs, 
   os << "run,k,m,update,step,t,rank,coefficient_rank,m_s,resampled,sampled_residual_before,sampled_residual_after,"
         "full_residual,cond1_PtU,update_s,dH_total,eps_fom,eps_hr,deim_end,deim_start,bound,paper_bound\n";
   for (const auto& r : runs) {
-    if (r.method != method::kGpAdeim || r.modelHamiltonian.empty()) continue;
+    if (!r.info().adaptive() || r.modelHamiltonian.empty()) continue;
     const double H0 = fom.hamiltonian.front();
     double segStart = r.modelHamiltonian.front();
     double paperSum = std::abs(H0 - r.hamiltonian.front()) + std::abs(r.hamiltonian.front() - segStart), starts = 0.0;
@@ -131,7 +139,7 @@ void writeAdeimUpdates(const FomResult& fom, const std::vector<ModelRun>& runs, 
 std::string adeimWindowCaution(const RunContext& ctx, const RomStages& st) {
   std::ostringstream md;
   for (const auto& r : st.runs) {
-    if (r.method != method::kGpAdeim || !r.available) continue;
+    if (!r.info().adaptive() || !r.available) continue;
     const AdeimOptions o = adeimOptionsFrom(ctx.config.sublist("adeim"), r.m);
     const int wbar = 2 * r.k * o.window;
     if (wbar >= r.m) continue;
@@ -147,7 +155,7 @@ std::string adeimWindowCaution(const RunContext& ctx, const RomStages& st) {
   // status is ok and its error is then the fixed pair's (U_0, P_0).
   const long steps = numSteps(ctx.config);
   for (const auto& r : st.runs) {
-    if (r.method != method::kGpAdeim || !r.ok || !r.adeimUpdates.empty()) continue;
+    if (!r.info().adaptive() || !r.ok || !r.adeimUpdates.empty()) continue;
     const AdeimOptions o = adeimOptionsFrom(ctx.config.sublist("adeim"), r.m);
     md << "\nNo update ran in " << r.label() << ": adeim.initialWindow = " << o.initialWindow << " exceeds the "
        << steps << " steps of the run, so it is the non-adaptive model of its initial pair (U_0, P_0).\n";
@@ -161,8 +169,8 @@ std::string adeimWindowCaution(const RunContext& ctx, const RomStages& st) {
 std::string termWeightsTable(const RomStages& st) {
   std::ostringstream md;
   for (const auto& r : st.runs) {
-    const bool eqp = r.method == method::kGpEqp || r.method == method::kGpEqpRefit;
-    if ((!eqp && r.method != method::kGpDeim) || !r.available) continue;
+    const bool eqp = r.info().quadratureFit();
+    if (r.info().reduction != Reduction::TermWeights || !r.available) continue;
     if (md.tellp() == 0)
       md << "\n## Term weights: GP-DEIM and empirical quadrature\n\n"
             "| method | k | m | status | E_L2 | terms | weight min | weight max | fit residual | exact rows | "
@@ -192,7 +200,7 @@ std::string reportMd(const RunContext& ctx, const FomResult& fom, const RomStage
   for (const auto& r : st.runs) {
     double eRom = NAN, tRom = NAN;
     for (const auto& q : st.runs)
-      if (q.method == method::kRom && q.k == r.k) eRom = q.eL2, tRom = q.tOnline;
+      if (q.info().reduction == Reduction::Galerkin && q.k == r.k) eRom = q.eL2, tRom = q.tOnline;
     md << "| " << r.method << " | " << r.k << " | " << (r.m ? std::to_string(r.m) : "-") << " | "
        << r.statusText() << " | " << fmt(r.eL2) << " | " << fmt(r.eL2 / eRom) << " | "
        << fmt(r.tOnline, "%.3f") << " | " << fmt(tRom / r.tOnline, "%.2f") << "x | " << fmt(fomOnline / r.tOnline, "%.2f")
@@ -213,9 +221,7 @@ std::string reportMd(const RunContext& ctx, const FomResult& fom, const RomStage
     if (best) md << "| " << fmt(level, "%.0e") << " | " << best->label() << " | " << fmt(best->eL2) << " | "
                  << fmt(best->tOnline, "%.3f") << " |\n";
   }
-  bool adaptive = false;
-  for (const auto& r : st.runs) adaptive |= r.method == method::kGpAdeim;
-  if (adaptive) {
+  if (anyAdaptive(st)) {
     md << "\n## GP-DEIM vs GP-ADEIM: total cost of the hyper-reduction\n\n"
           "t_total = hyper-reduction offline (DEIM basis + pair; GP-ADEIM: the first delta0 full-model steps and "
           "their POD) + online (GP-ADEIM: updates included), as the paper's tab:taur. A DEIM basis read from the cache "
@@ -223,12 +229,12 @@ std::string reportMd(const RunContext& ctx, const FomResult& fom, const RomStage
           "| method | k | m | status | E_L2 | offline s | online s | total s | updates | mean rank | max local H_hr drift |\n"
           "|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const auto& r : st.runs) {
-      if (r.method != method::kGpDeim && r.method != method::kGpAdeim) continue;
+      if (!deimWeighted(r.info())) continue;
       const auto num = [&](Metric m) { return r.metrics.number(m); };
       md << "| " << r.method << " | " << r.k << " | " << r.m << " | " << r.statusText() << " | "
          << fmt(r.eL2) << " | " << fmt(num(Metric::THyperOfflineS), "%.3f") << " | " << fmt(r.tOnline, "%.3f") << " | "
-         << fmt(num(Metric::TTotalS), "%.3f") << " | " << (r.method == method::kGpAdeim ? fmt(num(Metric::Updates), "%.0f") : "-")
-         << " | " << (r.method == method::kGpAdeim ? fmt(num(Metric::UpdateRankMean), "%.1f") : "-") << " | "
+         << fmt(num(Metric::TTotalS), "%.3f") << " | " << (r.info().adaptive() ? fmt(num(Metric::Updates), "%.0f") : "-")
+         << " | " << (r.info().adaptive() ? fmt(num(Metric::UpdateRankMean), "%.1f") : "-") << " | "
          << fmt(num(Metric::HModelErrMax)) << " |\n";
     }
     md << "\nPer update (rank, m_s, residuals, the terms of eq:Hambound): adeim_updates.csv and adeim_updates.png; "
@@ -243,9 +249,6 @@ std::string reportMd(const RunContext& ctx, const FomResult& fom, const RomStage
   return md.str();
 }
 
-bool hasMethod(const RomStages& st, const char* name) {
-  return std::any_of(st.runs.begin(), st.runs.end(), [&](const ModelRun& r) { return r.method == name; });
-}
 
 // error_vs_m.png: E_L2 against m, one curve per (method, k), the ROM's error as a line per k.
 bool plotErrorVsM(const RomStages& st, const std::string& runs, const std::string& png) {
@@ -254,7 +257,7 @@ bool plotErrorVsM(const RomStages& st, const std::string& runs, const std::strin
     << "set title 'Relative error E_L2 against the number of sampled terms m'\nplot ";
   std::vector<std::pair<std::string, int>> curves;
   for (const auto& r : st.runs)
-    if (r.method != method::kRom && std::find(curves.begin(), curves.end(), std::make_pair(r.method, r.k)) == curves.end())
+    if (r.info().reduction != Reduction::Galerkin && std::find(curves.begin(), curves.end(), std::make_pair(r.method, r.k)) == curves.end())
       curves.push_back({r.method, r.k});
   bool first = true;
   for (const auto& [m, k] : curves) {
@@ -263,7 +266,7 @@ bool plotErrorVsM(const RomStages& st, const std::string& runs, const std::strin
     first = false;
   }
   for (const auto& r : st.runs)
-    if (r.method == method::kRom)
+    if (r.info().reduction == Reduction::Galerkin)
       b << (first ? "" : ", ") << r.eL2 << " with lines dt 2 lw 2 title 'rom 2k=" << 2 * r.k << "'", first = false;
   if (anyUnbounded(st)) b << ", " << unboundedPoints(runs, "column('m')");
   b << "\n";
@@ -306,7 +309,7 @@ bool plotAdeimUpdates(const RomStages& st, const std::map<std::string, std::stri
   std::ostringstream residuals, ranks;
   bool first = true;
   for (const auto& r : st.runs) {
-    if (r.method != method::kGpAdeim || r.adeimUpdates.empty()) continue;
+    if (!r.info().adaptive() || r.adeimUpdates.empty()) continue;
     const std::string sel = gnuplotQuoted(csv) + " using (strcol('run') eq '" + r.label() + "' ? ";
     const auto any = [&](auto value) {
       return std::any_of(r.adeimUpdates.begin(), r.adeimUpdates.end(), [&](const AdeimUpdateRecord& u) { return value(u) > 0.0; });
@@ -379,7 +382,7 @@ void writeHyperData(const RunContext& ctx, const FomResult& fom, const RomStages
     writeHamiltonianTerms(fom, *terms, dt, p.at("hamiltonian_terms.csv"));
     written.push_back("hamiltonian_terms.csv");
   }
-  if (hasMethod(st, method::kGpAdeim)) {
+  if (anyAdaptive(st)) {
     writeAdeimUpdates(fom, st.runs, dt, p.at("adeim_updates.csv"));
     written.push_back("adeim_updates.csv");
   }
@@ -391,7 +394,7 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
                                           const std::map<std::string, std::string>& p, bool plots) {
   const ModelRun* terms = nullptr;  // the GP-DEIM run with the largest k, then m
   for (const auto& r : st.runs)
-    if (r.method == method::kGpDeim && r.ok && (!terms || r.k > terms->k || (r.k == terms->k && r.m > terms->m))) terms = &r;
+    if (r.info().fit == TermWeightFit::Deim && r.ok && (!terms || r.k > terms->k || (r.k == terms->k && r.m > terms->m))) terms = &r;
   std::vector<std::string> written;
   writeHyperData(ctx, fom, st, terms, p, written);
   if (!plots || !haveGnuplot()) return written;
@@ -402,7 +405,7 @@ std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult
   plotted(plotErrorVsM(st, runs, p.at("error_vs_m.png")), "error_vs_m.png");
   plotted(plotPareto(st, runs, p.at("pareto.png")), "pareto.png");
   if (terms) plotted(plotHamiltonianTerms(*terms, p), "hamiltonian_terms.png");
-  if (hasMethod(st, method::kGpAdeim)) {
+  if (anyAdaptive(st)) {
     plotted(plotAdeimUpdates(st, p), "adeim_updates.png");
     plotted(plotErrorVsTotalTime(st, runs, p.at("error_vs_total_time.png")), "error_vs_total_time.png");
   }

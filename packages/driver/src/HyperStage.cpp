@@ -17,7 +17,7 @@
 #include "gphr/reduction/Deim.hpp"
 #include "gphr/offline/TermWeightFits.hpp"
 #include "gphr/reduction/GalerkinRom.hpp"
-#include "gphr/online/Method.hpp"
+#include "gphr/core/Method.hpp"
 
 namespace gphr {
 
@@ -253,15 +253,16 @@ void runGradientDeim(const RunContext& ctx, const FomResult& fom, RomStages& st,
     GradientDeimPair pair = makeGradientDeimPair(Ug, m, A);
     // The classic DEIM of full snapshots interpolates grad N - grad N(y0) (gradientDeimBasis):
     // grad N(y0) at the test parameter is added back. SDEIM interpolates grad N itself.
-    if (method == method::kDeim && kind == GradientSnapshots::Full) pair = withReferenceGradient(std::move(pair), *inst.system, A);
+    const GradientBasis basis = methodInfo(method).gradientBasis;
+    if (basis == GradientBasis::Snapshots && kind == GradientSnapshots::Full) pair = withReferenceGradient(std::move(pair), *inst.system, A);
     GradientDeimModel model(*inst.system, A, pair, linear);
     const double tPair = clock.stop();
     ModelRun run = evaluateReducedModel(ctx.comm, evaluationSettingsFrom(ctx.config), fom, *inst.system, A, model, false, method, k, m,
-                                        method == method::kSdeim);
+                                        basis == GradientBasis::ReducedBasis);
     run.metrics.set(Metric::KernelRowsPerEvaluation, static_cast<long>(model.kernelRowsPerEvaluation()))
         .set(Metric::TDeimBasisS, tBasis)
         .set(Metric::TDeimPairS, tPair)
-        .set(Metric::DeimSnapshots, method == method::kDeim ? snapshots : std::string("-"))
+        .set(Metric::DeimSnapshots, basis == GradientBasis::Snapshots ? snapshots : std::string("-"))
         .set(Metric::CondPtU, pair.conditionNumber)
         .set(Metric::TOfflineS, st.training.seconds + st.basisSeconds + tBasis + tPair);
     st.runs.push_back(std::move(run));

@@ -27,7 +27,7 @@
 #include "gphr/driver/QueryThreads.hpp"
 #include "gphr/driver/XdmfWriter.hpp"
 #include "gphr/online/ReducedModel.hpp"
-#include "gphr/online/Method.hpp"
+#include "gphr/core/Method.hpp"
 #include "gphr/io/Hdf5File.hpp"
 
 namespace gphr {

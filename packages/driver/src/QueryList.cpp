@@ -14,7 +14,7 @@
 #include "gphr/driver/OutputDirectory.hpp"
 #include "gphr/driver/InputFile.hpp"
 #include "gphr/hyper/ReducedModelFile.hpp"
-#include "gphr/online/Method.hpp"
+#include "gphr/core/Method.hpp"
 
 namespace gphr {
 

@@ -23,7 +23,7 @@
 #include "gphr/driver/Gnuplot.hpp"
 #include "gphr/driver/HyperReport.hpp"
 #include "gphr/io/Hdf5File.hpp"
-#include "gphr/online/Method.hpp"
+#include "gphr/core/Method.hpp"
 
 namespace gphr {
 
@@ -214,7 +214,7 @@ void writeSingularValues(const std::vector<double>& s, const std::string& csv, c
 const ModelRun* firstRomRun(const RomStages* rom) {
   if (rom)
     for (const auto& r : rom->runs)
-      if (r.method == method::kRom) return &r;
+      if (r.info().reduction == Reduction::Galerkin) return &r;
   return nullptr;
 }
 

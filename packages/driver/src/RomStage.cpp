@@ -2,7 +2,7 @@
 
 #include "gphr/driver/ModelEvaluation.hpp"
 #include "gphr/reduction/GalerkinRom.hpp"
-#include "gphr/online/Method.hpp"
+#include "gphr/core/Method.hpp"
 
 namespace gphr {
 

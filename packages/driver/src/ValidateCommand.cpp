@@ -27,7 +27,7 @@
 #include "gphr/io/Hdf5File.hpp"
 #include "gphr/reduction/GalerkinRom.hpp"
 #include "gphr/offline/Training.hpp"
-#include "gphr/online/Method.hpp"
+#include "gphr/core/Method.hpp"
 
 namespace gphr {
 

@@ -32,7 +32,7 @@
 #include "gphr/driver/RomStage.hpp"
 #include "gphr/io/Hdf5File.hpp"
 #include "gphr/models/SceneFactory.hpp"
-#include "gphr/online/Method.hpp"
+#include "gphr/core/Method.hpp"
 
 namespace {
 

@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/core/Method.hpp"
 #include "gphr/core/Fnv1a.hpp"
 #include "gphr/core/ColumnFingerprint.hpp"
 #include "gphr/io/Hdf5File.hpp"
@@ -229,7 +230,11 @@ ModelKey parseModelKey(const std::string& key) {
   };
   GPHR_REQUIRE(a != std::string::npos && b != a && a > 0 && key.find('/', a + 1) == b, InputError,
                "attribute 'models' has entry '", key, "'; allowed: method/k<k>/m<m>");
-  return ModelKey{key.substr(0, a), whole(key.substr(a + 1, b - a - 1), 'k'), whole(key.substr(b + 1), 'm')};
+  const std::string method = key.substr(0, a);
+  GPHR_REQUIRE(isMethod(method) && methodInfo(method).storable, InputError, "attribute 'models' has entry '", key,
+               "' of method '", method, "', which no model file holds; allowed: ",
+               methodNames([](const MethodInfo& info) { return info.storable; }));
+  return ModelKey{method, whole(key.substr(a + 1, b - a - 1), 'k'), whole(key.substr(b + 1), 'm')};
 }
 
 StoredBasisData readBasisData(const Hdf5File& f, const ReducedModelData& d, int k) {

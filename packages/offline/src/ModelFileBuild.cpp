@@ -11,7 +11,7 @@
 #include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/offline/DeimBasisStage.hpp"
 #include "gphr/offline/TermWeightFits.hpp"
-#include "gphr/online/Method.hpp"
+#include "gphr/core/Method.hpp"
 #include "gphr/reduction/Deim.hpp"
 
 namespace gphr {
@@ -78,9 +78,10 @@ std::vector<StoredHyperModel> modelsOfK(const BuildState& b, const MultiVector& 
   auto deimBasis = [&] { return U.is_null() ? (U = deimBasisOf(b, A, k)) : U; };
   std::unique_ptr<TermWeightFits> fits;  // both term-weight methods' fits share its training system
   for (const auto& method : o.methods) {
-    if (method == method::kGpAdeim) {
+    const MethodInfo& info = methodInfo(method);
+    if (info.adaptive()) {
       addAdeimModels(b, k, out);
-    } else if (method == method::kGpDeim) {
+    } else if (info.fit == TermWeightFit::Deim) {
       const auto& basis = *deimBasis();
       const StageClocks::Scope clock(b.clocks, ofK("gp-deim", k));
       auto deim = gpDeimModels(b.instance, A, k, basis, o.ms, o.file.indices);

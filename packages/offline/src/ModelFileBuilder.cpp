@@ -15,7 +15,7 @@
 #include "gphr/core/Provenance.hpp"
 #include "gphr/hyper/SampleMesh.hpp"
 #include "gphr/reduction/Deim.hpp"
-#include "gphr/online/Method.hpp"
+#include "gphr/core/Method.hpp"
 
 namespace gphr {
 

@@ -6,9 +6,14 @@
 #include <cstdio>
 
 #include "gphr/core/Error.hpp"
-#include "gphr/online/Method.hpp"
+#include "gphr/core/Method.hpp"
 
 namespace gphr {
+
+namespace {
+// gp-eqp-refit: GP-DEIM's terms, weights refit (one fit per budget, off the NNLS path)
+bool isRefit(const std::string& method) { return methodInfo(method).fit == TermWeightFit::LeastSquaresRefit; }
+}  // namespace
 
 TermWeightFits::TermWeightFits(const Scene& scene, RCP<const Comm> comm, const TrainingResult& training,
                                const MultiVector& A, const QuadratureOptions& options, double tolerance,
@@ -21,7 +26,7 @@ TermWeightFits::TermWeightFits(const Scene& scene, RCP<const Comm> comm, const T
 }
 
 CachedFit TermWeightFits::get(const std::string& method, int m) {
-  const bool refit = method == method::kGpEqpRefit;
+  const bool refit = isRefit(method);
   CachedFit out;
   if (read(method, m, out)) return out;
   if (refit) {  // its own fit, never in computed_ (the NNLS path's fits by budget)
@@ -73,7 +78,7 @@ std::string TermWeightFits::name(const std::string& method, int m) const {
 
 // The revision: 2, the budgets' fits along one greedy path (the same fits, times along the path).
 std::string TermWeightFits::key(const std::string& method, int m) const {
-  return (method == method::kGpEqpRefit ? refitKey_ : nnlsKey_) + "eqp revision 2, k = " + std::to_string(k_) +
+  return (isRefit(method) ? refitKey_ : nnlsKey_) + "eqp revision 2, k = " + std::to_string(k_) +
          ", m = " + std::to_string(m);
 }
 
@@ -116,7 +121,7 @@ bool TermWeightFits::read(const std::string& method, int m, CachedFit& out) {
     out.fit.stop = f->stringAttribute(n, "stop");
   }
   const GO rows = static_cast<GO>(systems()[0]->nonlinearTerm().rowMap()->getGlobalNumElements());
-  const std::string problem = fitProblem(a, d, rows, method != method::kGpEqpRefit);
+  const std::string problem = fitProblem(a, d, rows, !isRefit(method));
   if (!problem.empty()) {  // computed afresh, as a basis whose fingerprint no longer matches
     if (comm_->getRank() == 0)
       std::fprintf(stderr, "[gphr] eqp: %s in '%s' %s: computed afresh\n", n.c_str(), cache_->path().c_str(),

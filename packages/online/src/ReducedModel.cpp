@@ -12,7 +12,7 @@
 #include "gphr/core/ReplicatedGather.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/models/SceneFactory.hpp"
-#include "gphr/online/Method.hpp"
+#include "gphr/core/Method.hpp"
 #include "gphr/timeint/Integrator.hpp"
 
 namespace gphr {

@@ -11,8 +11,6 @@
 #include <vector>
 
 #include "gphr/core/Error.hpp"
-#include "gphr/hyper/ReducedModelFile.hpp"
-#include "gphr/online/Method.hpp"
 #include "gphr/online/TimeLoop.hpp"
 
 using namespace gphr;
@@ -115,35 +113,6 @@ TEST(TimeLoop, WholeSteps) {
     wholeSteps(1.0, 0.3);
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("not a whole number of steps"), std::string::npos) << e.what();
-  }
-}
-
-TEST(MethodRegistry, NamesAreUniqueAndUnknownOnesAreRefusedByName) {
-  const auto& all = methodRegistry();
-  for (size_t i = 0; i < all.size(); ++i)
-    for (size_t j = i + 1; j < all.size(); ++j) EXPECT_NE(std::string(all[i].name), all[j].name);
-  EXPECT_EQ(methodNames(), "fom, rom, gp-deim, gp-adeim, deim, sdeim, gp-eqp, gp-eqp-refit");
-  EXPECT_TRUE(isMethod("gp-deim"));
-  EXPECT_FALSE(isMethod("gp_deim"));
-  try {
-    methodInfo("gp_deim");
-    ADD_FAILURE() << "an unknown method was accepted";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("'gp_deim'; allowed: fom, rom, gp-deim"), std::string::npos) << e.what();
-  }
-}
-
-TEST(MethodRegistry, StorableMethodsAgreeWithTheModelFile) {
-  EXPECT_EQ(methodNames([](const MethodInfo& m) { return m.storable; }), "gp-deim, gp-adeim, gp-eqp, gp-eqp-refit");
-  for (const auto& m : methodRegistry()) {
-    EXPECT_EQ(m.storable, std::string(m.fromFile) != "") << m.name;
-    if (!m.storable) continue;
-    // the file's own rule of what a stored model holds (hyper's reader and writer)
-    StoredHyperModel stored;
-    stored.method = m.name;
-    EXPECT_EQ(m.needsFullResidual, stored.onlineNeedsFullSystem()) << m.name;
-    EXPECT_TRUE(m.hyperReduced) << m.name;
-    EXPECT_EQ(m.termWeights, !m.needsFullResidual) << m.name;  // a sample mesh with weights, or the full system
   }
 }
 

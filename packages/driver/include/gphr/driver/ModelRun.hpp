@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "gphr/core/Method.hpp"
 #include "gphr/core/Types.hpp"
 #include "gphr/driver/RunMetrics.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
@@ -35,6 +36,8 @@ struct ModelRun {
   std::string unboundedReason;  ///< which bound it passed, with the figures
   RunMetrics metrics;  ///< The figures of its "runs" entry of summary.json.
   std::string label() const;  ///< Method with k and m, as the report names the run.
+  /// What its method is (the registry's entry: reports select runs by its traits).
+  const MethodInfo& info() const { return methodInfo(method); }
   /// ok | unbounded | diverged | unavailable (RunStatus.hpp)
   RunStatus status() const { return runStatus(ok, available, unboundedAt); }
   bool bounded() const { return ok && unboundedAt < 0; }  ///< status ok

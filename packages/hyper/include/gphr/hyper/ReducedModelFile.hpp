@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "gphr/core/Method.hpp"
 #include "gphr/core/PhaseSpace.hpp"
 #include "gphr/hyper/ParameterInterpolant.hpp"
 #include "gphr/reduction/ReducedHamiltonian.hpp"
@@ -36,7 +37,7 @@ struct StoredHyperModel {
   /// sample mesh and its queries build the full system (`onlineNeedsFullSystem()`).
   std::string adeimConfig;
   /// True for models whose online phase needs the full system (gp-adeim).
-  bool onlineNeedsFullSystem() const { return method == "gp-adeim"; }
+  bool onlineNeedsFullSystem() const { return methodInfo(method).needsFullResidual; }
   /// The model's name in the file: `method/k<k>/m<m>`.
   std::string key() const { return method + "/k" + std::to_string(k) + "/m" + std::to_string(m); }
 };
