@@ -199,18 +199,18 @@ def flip(path, at):
         g.seek(at)
         g.write(bytes([b ^ 0x10]))
 with h5py.File(f"{d}/fom/grid-0000.h5", "r") as f:
-    header = h5py.h5o.get_info(f["states"].id).addr + 20
+    header = h5py.h5o.get_info(f["fom/states"].id).addr + 20
 with h5py.File(f"{d}/fom/grid-0001.h5", "r") as f:
-    a = f["states"][...]
-    value = f["states"].id.get_offset() + 8 * int(abs(a).argmax()) + 5  # a mantissa byte of the largest entry
+    a = f["fom/states"][...]
+    value = f["fom/states"].id.get_offset() + 8 * int(abs(a).argmax()) + 5  # a mantissa byte of the largest entry
 flip(f"{d}/fom/grid-0000.h5", header)
 flip(f"{d}/fom/grid-0001.h5", value)
 PY
 "$gphr" validate m/nls_basis.h5 vlong.yaml --output vkilled > /dev/null 2> vdamaged.err || { cat vdamaged.err; fail "validate over damaged resumption files"; }
 grep -q "grid-0000.txt is damaged (checksum mismatch): point redone" vdamaged.err || fail "the changed record was not said: $(cat vdamaged.err)"
-grep -q "fom/grid-0000.h5 is unreadable or damaged (.*incorrect metadata checksum.*): full model run again" vdamaged.err \
+grep -q "fom/grid-0000.h5 cannot be used (.*incorrect metadata checksum.*): the full model is run again and the file replaced" vdamaged.err \
   || fail "the damaged full-model cache was not said: $(cat vdamaged.err)"
-grep -q "fom/grid-0001.h5 is unreadable or damaged (its data do not match their fingerprint and checksum): full model run again" \
+grep -q "fom/grid-0001.h5 cannot be used (dataset /fom/states column [0-9]* does not match its fingerprint): the full model is run again and the file replaced" \
   vdamaged.err || fail "the changed full-model state was not said: $(cat vdamaged.err)"
 python3 - <<'PY' || fail "the validation over damaged resumption files differs from the clean one"
 import json

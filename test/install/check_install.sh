@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs GPHR from the build tree into a temporary prefix, builds examples/embedding (GPHR::offline:
-# it trains, builds and writes a model file of its own scene, then queries it) and examples/query
+# Installs GPHR from the build tree into a temporary prefix, builds examples/embedding
+# (GPHR::evaluation: it trains, builds and writes a model file of its own scene with the offline
+# library, queries it, and measures each query's E_L2 against the full model) and examples/query
 # (GPHR::online) - their link lines are printed and must name the libraries they use and none of
 # the application's, gphr_driver - against the *installed* package, from projects that
 # enable LANGUAGES CXX only, as a C++-only consumer would; runs the embedding on 1 and 2 ranks, and
@@ -31,9 +32,16 @@ consumer() {
   for lib in "$@"; do [[ "$link" == *"$lib"* ]] || { echo "FAIL: $label does not link $lib"; exit 1; }; done
   [[ "$link" != *gphr_driver* ]] || { echo "FAIL: $label links the application's library gphr_driver"; exit 1; }
 }
-consumer examples/embedding "$src/examples/embedding" "$work/embed" fpu_lattice libgphr_offline.a libgphr_online.a
-(cd "$work" && "$work/embed/fpu_lattice" fpu1.h5)
-(cd "$work" && "$mpiexec" --allow-run-as-root --oversubscribe -np 2 "$work/embed/fpu_lattice" fpu2.h5)
+consumer examples/embedding "$src/examples/embedding" "$work/embed" fpu_lattice libgphr_evaluation.a \
+  libgphr_offline.a libgphr_online.a
+# each of the three queries reports its E_L2 from the evaluation library, on 1 and 2 ranks
+embed() {
+  (cd "$work" && "$@") | tee "$work/embed.txt"
+  [ "$(grep -c 'E_L2 = [0-9.e+-]* (ok) -> ok' "$work/embed.txt")" -eq 3 ] \
+    || { echo "FAIL: the embedding does not report 3 queries with E_L2 and status ok"; exit 1; }
+}
+embed "$work/embed/fpu_lattice" fpu1.h5
+embed "$mpiexec" --allow-run-as-root --oversubscribe -np 2 "$work/embed/fpu_lattice" fpu2.h5
 # examples/query on a model built by the installed gphr.
 consumer examples/query "$src/examples/query" "$work/query" query_model libgphr_online.a
 # The umbrella GPHR::gphr: every library but the application's, whose library and headers are not

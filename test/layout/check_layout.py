@@ -21,7 +21,8 @@ ALLOWED = {
     "hyper": {"core", "timeint", "reduction", "io"},
     "online": {"core", "models", "timeint", "reduction", "hyper", "io"},
     "offline": {"core", "models", "timeint", "reduction", "hyper", "io", "online"},
-    "driver": {"core", "models", "timeint", "reduction", "hyper", "io", "online", "offline"},
+    "evaluation": {"core", "models", "timeint", "reduction", "hyper", "io", "online", "offline"},
+    "driver": {"core", "models", "timeint", "reduction", "hyper", "io", "online", "offline", "evaluation"},
 }
 # Tests of a package may also use the packages that build their fixtures (never the application).
 TEST_EXTRA = {"reduction": {"timeint", "models"}, "hyper": {"models"}, "online": {"models"},

@@ -36,9 +36,8 @@ std::vector<int> mList(const Teuchos::ParameterList& cfg) {
 ModelRun unavailable(const std::string& method, int k, int m, const std::string& why) {
   ModelRun r;
   r.method = method, r.k = k, r.m = m, r.ok = false, r.available = false;
-  r.eL2 = r.tOnline = std::numeric_limits<double>::quiet_NaN();  // not run: no error, no time (never 0)
-  r.metrics.set(Metric::Method, method).set(Metric::K, static_cast<long>(k)).set(Metric::M, static_cast<long>(m));
-  r.metrics.set(Metric::Status, statusName(RunStatus::Unavailable)).set(Metric::Reason, why);
+  // not run: its error and times stay NaN (ReducedEvaluation::kNotMeasured), never 0
+  r.metrics.set(Metric::Reason, why);
   return r;
 }
 
@@ -55,11 +54,11 @@ double romHessianMinEig(const SceneInstance& inst, const MultiVector& A, int k) 
 // the reduced model, with the diagnostics they share: Hess H_hr(z0)'s smallest eigenvalue beside
 // the reduced model's, whether convexity was lost, and the online size.
 ModelRun evaluateTermModel(const RunContext& ctx, const FomResult& fom, const SceneInstance& inst, const MultiVector& A,
-                           GpDeimModel& model, const std::string& method, int k, int m, double lminR, bool keep) {
+                           GpDeimModel& model, const std::string& method, int k, int m, double lminR) {
   DenseMatrix Hhr(2 * k, 2 * k);
   model.addHessian(DenseVector(2 * k), 1.0, Hhr);
   const double lminHr = smallestEigenvalue(Hhr);
-  ModelRun run = evaluateReducedModel(ctx.comm, evaluationSettingsFrom(ctx.config), fom, *inst.system, A, model, true, method, k, m, keep);
+  ModelRun run = evaluateRun(evaluationSettingsFrom(ctx.config), fom, *inst.system, A, model, {method, k, m, {}});
   run.metrics.set(Metric::HessMinEigHr, lminHr)
       .set(Metric::HessMinEigRom, lminR)
       .set(Metric::ConvexityLost, lminHr < 0.0 && lminR >= 0.0)
@@ -86,7 +85,7 @@ void runGpDeim(const RunContext& ctx, const FomResult& fom, RomStages& st, const
     auto hr = buildGpDeimModel(*inst.system, A, *db.basis.U, m, indices, &w, &linear);
     const double tPair = clock.stop();
     // The space-time comparison of fig:pcolor_n40_n60 uses m = 2k.
-    ModelRun run = evaluateTermModel(ctx, fom, inst, A, *hr, method::kGpDeim, k, m, lminR, m == 2 * k);
+    ModelRun run = evaluateTermModel(ctx, fom, inst, A, *hr, method::kGpDeim, k, m, lminR);
     run.metrics.set(Metric::CondPtU, w.conditionNumber)
         .set(Metric::DeimWeightMin, *std::min_element(w.weights.begin(), w.weights.end()))
         .set(Metric::DeimWeightMax, *std::max_element(w.weights.begin(), w.weights.end()))
@@ -142,7 +141,7 @@ void runGpEqp(const RunContext& ctx, const FomResult& fom, RomStages& st, const 
     clock.start();
     auto hr = buildQuadratureModel(*inst.system, A, c.fit, linear);
     const double tMesh = clock.stop();
-    ModelRun run = evaluateTermModel(ctx, fom, inst, A, *hr, method, k, m, lminR, false);
+    ModelRun run = evaluateTermModel(ctx, fom, inst, A, *hr, method, k, m, lminR);
     const auto [wmin, wmax] = std::minmax_element(c.fit.weights.begin(), c.fit.weights.end());
     const double offline = c.trainingSeconds + c.fitSeconds + tMesh;
     run.metrics.set(Metric::EqpTerms, static_cast<long>(c.fit.terms.size()))
@@ -197,7 +196,7 @@ void setAdeimSummary(ModelRun& run, const AdeimOptions& o, double tInitial, doub
       .set(Metric::TDeimPairS, tPair)
       .set(Metric::THyperOfflineS, tInitial + tPair)
       .set(Metric::TTotalS, tInitial + tPair + run.tOnline);
-  if (run.ok) run.metrics.set(Metric::HModelErrMax, localHamiltonianDrift(run));
+  if (run.ok) run.modelHamiltonianDrift = localHamiltonianDrift(run);
 }
 
 // GP-ADEIM (alg:SP-ADEIM) for every m: (U_0, P_0) from the first delta0 full-model steps at the
@@ -234,7 +233,7 @@ void runGpAdeim(const RunContext& ctx, const FomResult& fom, RomStages& st, cons
     // Jacobian approximation like any lagged one, and the lag rule refactors when Newton slows
     // (resetting it at every update cost 600 LU factorisations instead of 143 on the NLS benchmark).
     const StepHook hook = adeimUpdateHook(model);
-    ModelRun run = evaluateReducedModel(ctx.comm, evaluationSettingsFrom(ctx.config), fom, *inst.system, *A, model, true, method::kGpAdeim, k, m, false, hook);
+    ModelRun run = evaluateRun(evaluationSettingsFrom(ctx.config), fom, *inst.system, *A, model, {method::kGpAdeim, k, m, hook});
     run.adeimUpdates = model.updates();
     setAdeimSummary(run, o, tInitial, tPair);
     st.runs.push_back(std::move(run));
@@ -257,8 +256,7 @@ void runGradientDeim(const RunContext& ctx, const FomResult& fom, RomStages& st,
     if (basis == GradientBasis::Snapshots && kind == GradientSnapshots::Full) pair = withReferenceGradient(std::move(pair), *inst.system, A);
     GradientDeimModel model(*inst.system, A, pair, linear);
     const double tPair = clock.stop();
-    ModelRun run = evaluateReducedModel(ctx.comm, evaluationSettingsFrom(ctx.config), fom, *inst.system, A, model, false, method, k, m,
-                                        basis == GradientBasis::ReducedBasis);
+    ModelRun run = evaluateRun(evaluationSettingsFrom(ctx.config), fom, *inst.system, A, model, {method, k, m, {}});
     run.metrics.set(Metric::KernelRowsPerEvaluation, static_cast<long>(model.kernelRowsPerEvaluation()))
         .set(Metric::TDeimBasisS, tBasis)
         .set(Metric::TDeimPairS, tPair)

@@ -219,9 +219,9 @@ const ModelRun* firstRomRun(const RomStages* rom) {
 }
 
 JsonObject summaryOf(const RunContext& ctx, const FomResult& fom, const RomStages* rom) {
-  std::vector<JsonObject> runs{fom.metrics.json()};
+  std::vector<JsonObject> runs{fom.json()};
   if (rom)
-    for (const auto& r : rom->runs) runs.push_back(r.metrics.json());
+    for (const auto& r : rom->runs) runs.push_back(r.json());
   JsonObject summary;
   summary.set("scene", ctx.scene->name())
       .set("integrator", ctx.config.sublist("integrator").get<std::string>("scheme"))

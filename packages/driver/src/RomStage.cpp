@@ -11,8 +11,7 @@ void runRom(const RunContext& ctx, const FomResult& fom, RomStages& st) {
   for (int k : stageK(ctx.config, st.basis)) {
     auto A = leadingBasis(st.basis, k);
     GalerkinRom rom(inst.system, A);
-    ModelRun run = evaluateReducedModel(ctx.comm, evaluationSettingsFrom(ctx.config), fom, *inst.system, *A, rom, true,
-                                        method::kRom, k, 0);
+    ModelRun run = evaluateRun(evaluationSettingsFrom(ctx.config), fom, *inst.system, *A, rom, {method::kRom, k, 0, {}});
     run.metrics.set(Metric::Basis, st.basis.method)
         .set(Metric::EnergyCaptured, st.basis.energyCaptured)
         .set(Metric::TrainingParameters, static_cast<long>(st.training.parameters.size()))

@@ -126,6 +126,11 @@ RunMetrics& RunMetrics::put(Metric m, Value v, int kind) {
   return *this;
 }
 
+RunMetrics& RunMetrics::merge(const RunMetrics& later) {
+  for (const auto& [m, v] : later.values_) put(m, v, info(m).kind);  // a kind later holds is its table's
+  return *this;
+}
+
 const RunMetrics::Value* RunMetrics::find(Metric m) const {
   for (const auto& [key, value] : values_)
     if (key == m) return &value;

@@ -6,16 +6,13 @@
 // hyper-reduced models are loaded from the file as a query loads them (interpolated set-up unless
 // the point asks for the exact one) and lifted with the stored basis for the error eq:errNR.
 #include <Teuchos_CommHelpers.hpp>
-#include <Teuchos_DefaultSerialComm.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
-#include "gphr/core/ColumnFingerprint.hpp"
 #include "gphr/core/Error.hpp"
-#include "gphr/core/Fnv1a.hpp"
 #include "gphr/core/RankGroups.hpp"
 #include "gphr/driver/ValidateCommand.hpp"
 #include "gphr/driver/OutputDirectory.hpp"
@@ -24,7 +21,7 @@
 #include "gphr/driver/OutputLock.hpp"
 #include "gphr/driver/QueryList.hpp"
 #include "gphr/driver/ValidationReport.hpp"
-#include "gphr/io/Hdf5File.hpp"
+#include "gphr/evaluation/ReferenceCache.hpp"
 #include "gphr/reduction/GalerkinRom.hpp"
 #include "gphr/offline/Training.hpp"
 #include "gphr/core/Method.hpp"
@@ -62,61 +59,13 @@ std::string pointName(const Query& q, const ReducedModelData& d) {
   return s + ")";
 }
 
-std::string hamiltonianChecksum(const std::vector<double>& H) {
-  Fnv1a h;
-  h.numbers(H);
-  return h.hex();
-}
-
-// The full model at the point, from DIR/fom/<point>.h5 when its key matches and its data their
-// fingerprint (the trajectory, ColumnFingerprint.hpp) and checksum (H), else run and cached.
-FomResult fullModel(const RunContext& ctx, const Scene& scene, const ReducedModelData& d, const Query& q,
-                    const EvaluationSettings& settings, const PhaseSpace& space, bool& cached) {
-  const std::string path = ctx.outputDir + "/fom/" + q.name + ".h5", key = fomKey(q, d);
-  int usable = 0;
-  if (ctx.comm->getRank() == 0 && std::ifstream(path).good()) {
-    try {
-      Hdf5File f(path, rcp(new Teuchos::SerialComm<int>()), Hdf5File::Mode::ReadOnly);
-      usable = f.hasAttribute("/", "key") && f.stringAttribute("/", "key") == key;
-    } catch (const std::exception&) {
-      usable = 0;  // damaged: run again
-    }
-  }
-  Teuchos::broadcast(*ctx.comm, 0, Teuchos::outArg(usable));
-  cached = usable != 0;
-  FomResult fom;
-  if (cached) {
-    try {  // every rank reads the same file, so every rank fails alike
-      Hdf5File f(path, ctx.comm, Hdf5File::Mode::ReadOnly);
-      fom.trajectory = f.readStates("/states", space);
-      fom.hamiltonian = f.readArray("/hamiltonian");
-      fom.tOnline = f.doubleAttribute("/", "t_online_s").at(0);
-      GPHR_REQUIRE(f.hasAttribute("/", "fingerprint") &&
-                       fingerprintMatches(f.doubleAttribute("/", "fingerprint"), *fom.trajectory) &&
-                       f.stringAttribute("/", "checksum") == hamiltonianChecksum(fom.hamiltonian),
-                   InputError, "its data do not match their fingerprint and checksum");
-      return fom;
-    } catch (const InputError& e) {  // a damaged cache (HDF5's header checksums, ours): run it again
-      cached = false;
-      if (ctx.comm->getRank() == 0)
-        std::fprintf(stderr, "[gphr] validate: %s is unreadable or damaged (%s): full model run again\n",
-                     path.c_str(), e.what());
-    }
-  }
-  fom = runFullModel(settings, scene, q.mu, ctx.comm);
-  RenameOnCommit commit(path, ctx.comm);
-  {
-    Hdf5File f(commit.tempPath(), ctx.comm, Hdf5File::Mode::Create);
-    f.writeStates("/states", *fom.trajectory, space);
-    f.writeArray("/hamiltonian", fom.hamiltonian, fom.hamiltonian.size(), 1);
-    f.setAttribute("/", "t_online_s", std::vector<double>{fom.tOnline});
-    f.setAttribute("/", "fingerprint", columnFingerprint(*fom.trajectory));  // distributed: no FNV
-    f.setAttribute("/", "checksum", hamiltonianChecksum(fom.hamiltonian));
-    f.flush();
-    f.setAttribute("/", "key", key);
-  }
-  commit.commit();
-  return fom;
+// The full model at the point, from DIR/fom/<point>.h5 where it holds it under the point's key
+// (the evaluation library's reference cache), else run and stored there.
+FomResult fullModel(const RunContext& ctx, const ReducedModel& rm, const Query& q, const EvaluationSettings& settings,
+                    const HamiltonianSystem& system, bool& cached) {
+  FullModelReference ref = cachedFullModel(ctx.outputDir + "/fom/" + q.name + ".h5", fomKey(q, rm.data()), settings,
+                                           rm.scene(), q.mu, ctx.comm, &cached);
+  return fomResultOf(std::move(ref), system, settings, ctx.comm->getSize());
 }
 
 // The full models of the points whose results are not in DIR/points, over rank groups
@@ -140,7 +89,7 @@ void fullModelsOverGroups(const RunContext& ctx, const ReducedModel& rm, const s
     failure = failureOf(pointName(points[i], d), "the full model failed: ", [&] {
       const auto inst = rm.scene().instantiate(sub.comm, points[i].mu, true);
       bool cached = false;
-      fullModel(sub, rm.scene(), d, points[i], pointSettings(rm, points[i]), inst.system->space(), cached);
+      fullModel(sub, rm, points[i], pointSettings(rm, points[i]), *inst.system, cached);
     });
   }
   agreeOnFailure(*ctx.comm, failure);
@@ -164,7 +113,7 @@ std::vector<ValidationRecord> evaluatePoint(RunContext& ctx, const ReducedModel&
   const auto inst = rm.scene().instantiate(ctx.comm, q.mu, true);
   FomResult fom;
   try {
-    fom = fullModel(ctx, rm.scene(), d, q, settings, inst.system->space(), cached);
+    fom = fullModel(ctx, rm, q, settings, *inst.system, cached);
   } catch (const SolverError& e) {  // worded as over rank groups (fullModelsOverGroups)
     throw SolverError(detail::concat("the full model failed: ", e.what()));
   }
@@ -174,7 +123,7 @@ std::vector<ValidationRecord> evaluatePoint(RunContext& ctx, const ReducedModel&
   for (const auto& b : d.bases) {
     const RCP<const MultiVector> A = rm.basis(b.k, inst.system->space());
     GalerkinRom rom(inst.system, A);
-    out.push_back(recordOf(evaluateReducedModel(ctx.comm, settings, fom, *inst.system, *A, rom, true, method::kRom, b.k, 0), q, 0.0, outside));
+    out.push_back(recordOf(evaluateRun(settings, fom, *inst.system, *A, rom, {method::kRom, b.k, 0, {}}), q, 0.0, outside));
     for (const auto& sm : d.models) {
       if (sm.k != b.k) continue;
       if (methodInfo(sm.method).needsFullResidual) {  // gp-adeim: on the full system, adapting as it runs
@@ -182,13 +131,12 @@ std::vector<ValidationRecord> evaluatePoint(RunContext& ctx, const ReducedModel&
         clock.start();
         const auto hr = rm.adaptiveModel(sm.k, sm.m, inst, A, q.dt);
         const double setup = clock.stop();
-        const ModelRun run = evaluateReducedModel(ctx.comm, settings, fom, *inst.system, *A, *hr, true, sm.method, sm.k, sm.m,
-                                                  false, adeimUpdateHook(*hr));
+        const ModelRun run = evaluateRun(settings, fom, *inst.system, *A, *hr, {sm.method, sm.k, sm.m, adeimUpdateHook(*hr)});
         out.push_back(recordOf(run, q, setup, outside));
         continue;
       }
       OnlineModel online = rm.instantiate(sm.method, sm.k, sm.m, q.mu, true, q.setup);
-      const ModelRun run = evaluateReducedModel(ctx.comm, settings, fom, *inst.system, *A, online.model(), true, sm.method, sm.k, sm.m);
+      const ModelRun run = evaluateRun(settings, fom, *inst.system, *A, online.model(), {sm.method, sm.k, sm.m, {}});
       out.push_back(recordOf(run, q, online.setupSeconds(), outside));
     }
   }

@@ -144,7 +144,7 @@ int runMain(const Args& args, const gphr::RCP<const gphr::Comm>& comm) {
   std::unique_ptr<RomStages> rom;
   const auto methods = pipelineMethods(ctx.config);
   if (!methods.empty()) rom = std::make_unique<RomStages>(runOfflineStages(ctx));
-  const FomResult fom = runFullModel(evaluationSettingsFrom(ctx.config), *ctx.scene, ctx.mu, comm);
+  const FomResult fom = runFom(evaluationSettingsFrom(ctx.config), *ctx.scene, ctx.mu, comm, fieldStateModels(ctx.config));
   if (rom && std::find(methods.begin(), methods.end(), method::kRom) != methods.end()) runRom(ctx, fom, *rom);
   if (rom) runHyperReduction(ctx, fom, *rom);
   writeReport(ctx, fom, rom.get());

@@ -54,6 +54,8 @@ struct MethodInfo {
   bool reduced() const { return reduction != Reduction::None; }
   /// A hyper-reduced model: reduced, and not the Galerkin ROM of all d terms.
   bool hyperReduced() const { return reduced() && reduction != Reduction::Galerkin; }
+  /// It has a Hamiltonian of its own (H_r, H_hr); the DEIM baselines interpolate a field that is not a gradient.
+  bool hasHamiltonian() const { return reduction != Reduction::GradientDeim; }
   /// Its online model adapts as it runs (GP-ADEIM's updates: their records, window and cost).
   bool adaptive() const { return reduction == Reduction::AdaptiveDeim; }
   /// Its weights come from an empirical-quadrature fit (gp-eqp, gp-eqp-refit).

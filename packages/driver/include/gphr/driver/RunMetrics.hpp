@@ -52,6 +52,8 @@ class RunMetrics {
   RunMetrics& set(Metric m, const char* value) { return set(m, std::string(value)); }
   RunMetrics& set(Metric m, const std::vector<double>& values);
   /// @}
+  /// Sets every metric of `later`, in its order: one set here already is replaced in place.
+  RunMetrics& merge(const RunMetrics& later);
   bool has(Metric m) const { return find(m) != nullptr; }  ///< Whether the run set it.
   /// A number or integer metric as a double; NaN when the run did not set it.
   double number(Metric m) const;
