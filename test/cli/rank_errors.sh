@@ -61,7 +61,7 @@ echo "ok: $(grep 'gphr:' bad.err)"
 sed 's/methods: \[gp-deim\]/methods: [gp-adeim]/' b.yaml > adeim.yaml
 "$gphr" build adeim.yaml --model a.h5 --output aart > /dev/null 2> adeim.err || { cat adeim.err; fail "gp-adeim build"; }
 printf 'queries:\n  defaults: {T: 1.0, dt: 0.01, k: 6, m: 12, method: gp-adeim}\n  points:\n    big: {eps: 1.0e12, extrapolate: true}\n' > qa.yaml
-one_line qa 3 "gphr: solver failure: query 'big' (gp-adeim k=6 m=12): Newton did not converge" \
+one_line qa 3 "gphr: solver failure: query 'big' (gp-adeim k=6 m=12): the first 5 full-model steps (adeim.initialWindow): Newton did not converge" \
   "a failing gp-adeim query" -- np2 "$gphr" query a.h5 qa.yaml --output qa
 
 # 5. An overflow is named as one: eps = 1e300 makes the full model's residual infinite at the

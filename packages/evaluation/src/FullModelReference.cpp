@@ -4,11 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 
 #include "gphr/core/Error.hpp"
 #include "gphr/core/Method.hpp"
-#include "gphr/core/ParameterValidation.hpp"
 #include "gphr/timeint/FullModelIntegrator.hpp"
 
 namespace gphr {
@@ -37,20 +35,6 @@ class Progress {
   Teuchos::Time clock_;
 };
 }  // namespace
-
-double maxDeviation(const std::vector<double>& H, double H0) {
-  double d = 0.0;
-  for (double h : H) d = std::max(d, std::abs(h - H0));
-  return d;
-}
-
-double driftBound(const SimulationSettings& time, int degree, const RunStats& stats) {
-  Teuchos::ParameterList integrator = time.integrator;  // a user's section: its defaults filled in, as the integrators do
-  validateParameters(integrator, integratorValidParameters(), "integrator");
-  return quadratureIsExact(integrator.get<std::string>("scheme"), integrator.get<int>("quadraturePoints"), degree)
-             ? stats.driftBound
-             : std::numeric_limits<double>::quiet_NaN();
-}
 
 double FullModelReference::maxStateNorm() const {
   std::vector<double> norms(trajectory->getNumVectors());

@@ -17,6 +17,7 @@
 #include "gphr/reduction/PivotedCholesky.hpp"
 #include "gphr/reduction/SymmetricEigen.hpp"
 #include "gphr/timeint/FullModelIntegrator.hpp"
+#include "gphr/timeint/ObservedTimeLoop.hpp"
 
 namespace gphr {
 
@@ -439,9 +440,12 @@ RCP<MultiVector> initialAdeimBasis(RCP<const HamiltonianSystem> system, const Ve
   FullModelIntegrator integ(system, integrator);
   Vector y(y0, Teuchos::Copy);
   auto states = rcp(new MultiVector(system->map(), delta0 + 1));
-  integ.run(y, dt, delta0, [&](long j, double, const Vector& yj, const StepReport&) {
+  const std::function<void(long, double, const Vector&)> keep = [&](long j, double, const Vector& yj) {
     Tpetra::deep_copy(*states->getVectorNonConst(j), yj);
-  });
+  };
+  // The one observed loop: a non-finite state never becomes a snapshot of U_0.
+  const SimulationStats sim = observedTimeLoop(integ, y, dt, delta0, keep);
+  GPHR_REQUIRE(sim.ok(), SolverError, "the first ", delta0, " full-model steps (adeim.initialWindow): ", sim.reason);
   DeimBasisOptions opt;
   opt.maxRank = m;
   opt.svd = "randomized";

@@ -13,6 +13,7 @@
 #include "gphr/core/RankGroups.hpp"
 #include "gphr/online/TimeLoop.hpp"
 #include "gphr/timeint/FullModelIntegrator.hpp"
+#include "gphr/timeint/ObservedTimeLoop.hpp"
 
 namespace gphr {
 
@@ -140,13 +141,17 @@ void integrateInBlocks(const SceneInstance& inst, const TrainingOptions& o,
   MultiVector block(inst.system->map(), std::min(kSnapshotReadColumns, columns));
   size_t filled = 0, stored = 0;
   Vector y(*inst.y0, Teuchos::Copy);
-  integ.run(y, o.dt, o.steps, [&](long s, double, const Vector& ys, const StepReport&) {
+  const std::function<void(long, double, const Vector&)> observe = [&](long s, double, const Vector& ys) {
     if (s % o.snapshotEvery != 0) return;
     Tpetra::deep_copy(*block.getVectorNonConst(filled), ys);
     if (++filled < block.getNumVectors() && stored + filled < columns) return;
     store(*block.subView(Teuchos::Range1D(0, filled - 1)));
     stored += filled, filled = 0;
-  });
+  };
+  // The one observed loop: a non-finite state ends it (never a snapshot); the training's full model
+  // is a reference, so its divergence is the training's error (runTraining names the parameter).
+  const SimulationStats sim = observedTimeLoop(integ, y, o.dt, o.steps, observe);
+  if (!sim.ok()) throw SolverError(sim.reason);
   GPHR_REQUIRE(stored == columns, SolverError, "training: the integrator handed ", stored, " of the ", columns,
                " states to store");
 }
@@ -328,7 +333,11 @@ TrainingResult runTraining(const Scene& scene, const RCP<const Comm>& comm, cons
     std::vector<RCP<const MultiVector>> held;
     Progress progress(o.progress && comm->getRank() == 0);
     for (size_t j = 0; j < count; ++j) {
-      held.push_back(integrate(scene.instantiate(comm, o.parameters[j], true), o));
+      try {  // all ranks integrate together, so all fail together: named as in the rounds below
+        held.push_back(integrate(scene.instantiate(comm, o.parameters[j], true), o));
+      } catch (const SolverError& e) {
+        throw SolverError(detail::concat("training parameter ", j + 1, " of ", count, ": the full model failed: ", e.what()));
+      }
       progress.done(j, count, j + 1, o.parameters[j], false);
     }
     res.snapshots = SnapshotSet(held);

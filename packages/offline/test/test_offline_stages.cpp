@@ -336,6 +336,26 @@ std::string readError(Read read) {
 // back on all ranks they match it. An entry changed in the file is refused by every read that
 // holds its column, naming parameter and column; a strided read that skips that column is not.
 // A parameter sealed without a fingerprint (an older gphr's) is trained again.
+// The training integrates through the one observed loop: a full model that fails is the training's
+// error, named as such with the step's reason, and nothing of it is kept as a snapshot.
+TEST(Training, AFullModelThatFailsIsTheTrainingsErrorWithItsReason) {
+  const SmallScene small;
+  const auto& [comm, dir, scene, cache] = small;
+  TrainingOptions o = smallTraining();
+  // The tightest tolerance allowed in one Newton iteration: a nonlinear step's first update from the
+  // previous state leaves a residual far above 1e-15.
+  o.integrator.set("newtonTolerance", 1e-15);
+  o.integrator.set("maxNewtonIterations", 1);
+  try {
+    runTraining(scene, comm, o);
+    ADD_FAILURE() << "a training whose full model failed returned";
+  } catch (const SolverError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("training parameter 1 of 3: the full model failed: Newton did not converge"), std::string::npos)
+        << what;
+  }
+}
+
 TEST(Training, AChangedSnapshotIsRefusedWhereItIsRead) {
   const SmallScene small;
   const auto& [comm, dir, scene, cache] = small;

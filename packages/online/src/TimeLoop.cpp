@@ -20,14 +20,6 @@ long wholeSteps(double T, double dt) {
   return steps;
 }
 
-bool allFinite(const DenseVector& z) {
-  for (int i = 0; i < z.length(); ++i)
-    if (!std::isfinite(z(i))) return false;
-  return true;
-}
-
-bool allFinite(const Vector& y) { return std::isfinite(y.norm2()); }
-
 SimulationStats simulate(DenseHamiltonian& model, const SimulationSettings& settings, DenseVector& z,
                          const StepHook& observe, const StepHook& adapt) {
   DenseModelIntegrator integ(model, settings.integrator, settings.polynomialDegree);

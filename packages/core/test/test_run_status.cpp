@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "gphr/online/RunStatus.hpp"
+#include "gphr/core/RunStatus.hpp"
 
 using gphr::firstUnboundedStep;
 using gphr::kUnboundedHamiltonian;

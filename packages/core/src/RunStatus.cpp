@@ -1,4 +1,4 @@
-#include "gphr/online/RunStatus.hpp"
+#include "gphr/core/RunStatus.hpp"
 
 #include <cmath>
 

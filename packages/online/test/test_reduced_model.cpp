@@ -11,7 +11,7 @@
 #include <hdf5.h>
 
 #include "HyperTestUtils.hpp"
-#include "gphr/driver/Config.hpp"
+#include "gphr/core/Provenance.hpp"
 #include "gphr/offline/ModelFileBuilder.hpp"
 #include "gphr/online/ReducedModel.hpp"
 
