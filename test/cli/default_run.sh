@@ -27,3 +27,6 @@ for f in report.md runs.csv deim_singular_values.csv adeim_updates.csv adeim_upd
 python3 "$here/check_summary.py" adeim-updates "$work/out/summary.json" "$work/out/adeim_updates.csv" --monitored
 grep -qx -- "- gp-adeim k=10 m=40: 2k w = 20 < m = 40 (window >= 2, initialWindow > 2)" "$work/out/report.md" || { echo "no window caution for m = 40"; exit 1; }
 if grep -q -- "^- gp-adeim k=10 m=[12]0:" "$work/out/report.md"; then echo "window caution for m <= 2k w"; exit 1; fi
+# GP-DEIM without a quadrature fit: the term-weights table has no fit-residual columns (always "-")
+grep -q "^## Term weights: GP-DEIM$" "$work/out/report.md" || { echo "no GP-DEIM term-weights table"; exit 1; }
+if grep -q "fit residual" "$work/out/report.md"; then echo "fit-residual columns without a quadrature fit"; exit 1; fi

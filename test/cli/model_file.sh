@@ -156,6 +156,14 @@ for m in summary["models"]:
 print("validation statistics agree with the hand computation for", len(summary["models"]), "models")
 PY
 grep -q "beyond" v/validation.md || fail "validation.md does not mark the extrapolated point"
+# Numbers a person reads: the grid's eps as written (0.9, not 0.90000000000000002) in the CSV; in
+# validation.md speed-ups as 1.23x, break-even as a whole number of queries, a level no model meets
+# with its reason.
+cut -d, -f2 v/validation.csv | grep -qx "0.9" || fail "validation.csv does not write eps = 0.9 as 0.9: $(cut -d, -f2 v/validation.csv | head -3)"
+grep -Eq "^\| gp-deim k=6 m=10 \|.*\| [0-9]+\.[0-9]{2}x \| ([0-9]+|never) \|$" v/validation.md \
+  || fail "validation.md's speed-up or break-even is not a person's number: $(grep -m1 '^| gp-deim' v/validation.md)"
+grep -Eq "^\| 1e-08 \| none: the best ROM \(k = [0-9]+\) reaches [0-9.]+e-[0-9]+; raise (k|m at that k) \|" v/validation.md \
+  || fail "validation.md's level 1e-08 row gives no reason: $(grep '1e-08' v/validation.md)"
 # A validation killed with SIGKILL after its first point resumes: the finished points and their
 # full-model runs are reused, and the statistics equal an uninterrupted run's.
 cat > vlong.yaml <<'YAML'

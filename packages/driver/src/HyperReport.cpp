@@ -167,22 +167,28 @@ std::string adeimWindowCaution(const RunContext& ctx, const RomStages& st) {
 // smallest eigenvalue of Hess H_hr(z0) beside the reduced model's and, for the quadrature fits,
 // the terms used and the fit residual (on the fitted rows and, when sketched, on the exact ones).
 std::string termWeightsTable(const RomStages& st) {
+  // The fit residuals exist for the quadrature fits only: their columns are shown where one ran.
+  const bool fits = std::any_of(st.runs.begin(), st.runs.end(),
+                                [](const ModelRun& r) { return r.available && r.info().quadratureFit(); });
   std::ostringstream md;
   for (const auto& r : st.runs) {
     const bool eqp = r.info().quadratureFit();
     if (r.info().reduction != Reduction::TermWeights || !r.available) continue;
     if (md.tellp() == 0)
-      md << "\n## Term weights: GP-DEIM and empirical quadrature\n\n"
-            "| method | k | m | status | E_L2 | terms | weight min | weight max | fit residual | exact rows | "
-            "lambda_min Hess H_hr(z0) | lambda_min rom | convexity lost |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+      md << "\n## Term weights: GP-DEIM" << (fits ? " and empirical quadrature" : "") << "\n\n"
+         << "| method | k | m | status | E_L2 | terms | weight min | weight max | "
+         << (fits ? "fit residual | exact rows | " : "") << "lambda_min Hess H_hr(z0) | lambda_min rom | convexity lost |\n"
+         << (fits ? "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n" : "|---|---|---|---|---|---|---|---|---|---|---|\n");
     const auto num = [&](Metric m) { return r.metrics.number(m); };
     md << "| " << r.method << " | " << r.k << " | " << r.m << " | " << r.statusText() << " | " << fmt(r.eL2) << " | "
        << (eqp ? fmt(num(Metric::EqpTerms), "%.0f") : std::to_string(r.m)) << " | "
        << fmt(num(eqp ? Metric::EqpWeightMin : Metric::DeimWeightMin)) << " | "
-       << fmt(num(eqp ? Metric::EqpWeightMax : Metric::DeimWeightMax)) << " | "
-       << (eqp ? fmt(num(Metric::EqpFitResidual)) : "-") << " | "
-       << (eqp ? fmt(num(Metric::EqpFitResidualExactRows)) : "-") << " | " << fmt(num(Metric::HessMinEigHr)) << " | "
-       << fmt(num(Metric::HessMinEigRom)) << " | " << (r.metrics.flag(Metric::ConvexityLost) ? "yes" : "no") << " |\n";
+       << fmt(num(eqp ? Metric::EqpWeightMax : Metric::DeimWeightMax)) << " | ";
+    if (fits)
+      md << (eqp ? fmt(num(Metric::EqpFitResidual)) : "-") << " | "
+         << (eqp ? fmt(num(Metric::EqpFitResidualExactRows)) : "-") << " | ";
+    md << fmt(num(Metric::HessMinEigHr)) << " | " << fmt(num(Metric::HessMinEigRom)) << " | "
+       << (r.metrics.flag(Metric::ConvexityLost) ? "yes" : "no") << " |\n";
   }
   return md.str();
 }

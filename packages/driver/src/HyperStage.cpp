@@ -84,7 +84,6 @@ void runGpDeim(const RunContext& ctx, const FomResult& fom, RomStages& st, const
     DeimWeights w;
     auto hr = buildGpDeimModel(*inst.system, A, *db.basis.U, m, indices, &w, &linear);
     const double tPair = clock.stop();
-    // The space-time comparison of fig:pcolor_n40_n60 uses m = 2k.
     ModelRun run = evaluateTermModel(ctx, fom, inst, A, *hr, method::kGpDeim, k, m, lminR);
     run.metrics.set(Metric::CondPtU, w.conditionNumber)
         .set(Metric::DeimWeightMin, *std::min_element(w.weights.begin(), w.weights.end()))

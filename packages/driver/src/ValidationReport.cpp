@@ -1,4 +1,3 @@
-#include "gphr/core/Provenance.hpp"
 #include "gphr/driver/ValidationReport.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
@@ -7,11 +6,14 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iomanip>
 #include <limits>
 #include <map>
 #include <sstream>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/core/Method.hpp"
+#include "gphr/core/Provenance.hpp"
 #include "gphr/core/Fnv1a.hpp"
 #include "gphr/driver/Gnuplot.hpp"
 #include "gphr/driver/OutputDirectory.hpp"
@@ -22,9 +24,33 @@ namespace gphr {
 
 namespace {
 
+// A double in a data file: the fewest digits that read back as the same number (0.9, not
+// 0.90000000000000002).
 std::string num(double x) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.17g", x);
+  std::ostringstream os;
+  os << detail::Shortest{x};
+  return os.str();
+}
+
+// Why no model of the file meets `level`: the Galerkin ROM of a k bounds what its hyper-reduced
+// models reach there (they approximate its nonlinear term), so where even the best ROM misses the
+// level a larger basis is needed, and where it meets it the DEIM sizes (or term budgets) are too small.
+std::string whyNone(const std::vector<ModelStatistics>& stats, double level) {
+  const ModelStatistics* rom = nullptr;  // the most accurate ROM
+  for (const auto& s : stats)
+    if (methodInfo(s.method).reduction == Reduction::Galerkin && (!rom || s.maxError < rom->maxError)) rom = &s;
+  if (!rom) return "raise k or m";
+  std::ostringstream os;
+  os << "the best ROM (k = " << rom->k << ") reaches " << std::scientific << std::setprecision(2) << rom->maxError;
+  os << (rom->maxError >= level ? "; raise k" : "; raise m at that k");
+  return os.str();
+}
+
+// A figure a person reads in validation.md: printf's format, "-" for NaN.
+std::string shown(double x, const char* format) {
+  if (std::isnan(x)) return "-";
+  char b[48];
+  std::snprintf(b, sizeof b, format, x);
   return b;
 }
 
@@ -154,7 +180,7 @@ std::vector<ModelStatistics> modelStatistics(const std::vector<ValidationRecord>
   for (const auto& r : records) {
     if (!by.count(r.label())) {
       out.emplace_back();
-      out.back().label = r.label(), out.back().k = r.k, out.back().m = r.m;
+      out.back().label = r.label(), out.back().method = r.method, out.back().k = r.k, out.back().m = r.m;
     }
     by[r.label()].push_back(&r);
   }
@@ -285,7 +311,7 @@ void writeValidationReport(const std::string& dir, const ReducedModel& model, co
   std::ostringstream md;
   md << "# Validation of " << model.path() << " over " << points.size() << " test points\n\n"
      << "Scene " << d.sceneName << "; built by gphr " << d.gphrVersion << " on " << d.created << " ("
-     << num(d.offlineSeconds) << " s offline on " << d.buildRanks << " rank(s)). Full model: " << sci(fomMean)
+     << shown(d.offlineSeconds, "%.1f") << " s offline on " << d.buildRanks << " rank(s)). Full model: " << shown(fomMean, "%.3g")
      << " s per query on average. E_L2 is eq:errNR over the saved steps; a point whose run did not finish counts as "
         "an infinite error. The 95th percentile interpolates linearly between order statistics. Break-even: the "
         "number of queries after which the offline cost is repaid, offline / (full - model) per query.\n\n"
@@ -296,8 +322,9 @@ void writeValidationReport(const std::string& dir, const ReducedModel& model, co
   for (const auto& s : stats) {
     const double speedup = fomMean / s.meanOnline, breakEven = d.offlineSeconds / (fomMean - s.meanOnline);
     md << "| " << s.label << " | " << s.ok << "/" << s.points << " | " << sci(s.maxError) << " | " << sci(s.meanError)
-       << " | " << sci(s.p95Error) << " | " << s.worstPoint << " | " << sci(s.meanOnline) << " | " << sci(speedup)
-       << " | " << (breakEven > 0 ? sci(std::ceil(breakEven)) : std::string("never")) << " |\n";
+       << " | " << sci(s.p95Error) << " | " << s.worstPoint << " | " << shown(s.meanOnline, "%.3g") << " | "
+       << shown(speedup, "%.2fx") << " | " << (breakEven > 0 ? shown(std::ceil(breakEven), "%.0f") : std::string("never"))
+       << " |\n";
     JsonObject j;
     j.set("model", s.label).set("k", s.k).set("m", s.m).set("points", s.points).set("ok", s.ok)
         .set("E_L2_max", s.maxError).set("E_L2_mean", s.meanError).set("E_L2_p95", s.p95Error)
@@ -315,8 +342,8 @@ void writeValidationReport(const std::string& dir, const ReducedModel& model, co
     const ModelStatistics* best = nullptr;
     for (const auto& s : stats)
       if (s.maxError < level && (!best || s.meanOnline < best->meanOnline)) best = &s;
-    md << "| " << sci(level) << " | " << (best ? best->label : "none") << " | " << (best ? sci(best->maxError) : "-")
-       << " | " << (best ? sci(best->meanOnline) : "-") << " |\n";
+    md << "| " << shown(level, "%.0e") << " | " << (best ? best->label : "none: " + whyNone(stats, level)) << " | "
+       << (best ? sci(best->maxError) : "-") << " | " << (best ? shown(best->meanOnline, "%.3g") : "-") << " |\n";
   }
   writeText(dir + "/validation.md", md.str());
   JsonObject summary;

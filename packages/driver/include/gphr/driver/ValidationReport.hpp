@@ -39,7 +39,8 @@ double percentile(std::vector<double> x, double p);
 
 /// Statistics of one model over the test points (a row of validation.md).
 struct ModelStatistics {
-  std::string label;  ///< The model's label (method, k, m).
+  std::string label;   ///< The model's label (method, k, m).
+  std::string method;  ///< its method (a registry name)
   /// Reduced size k and DEIM size m.
   /// @{
   int k = 0, m = 0;
