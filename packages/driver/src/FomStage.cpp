@@ -27,13 +27,10 @@ std::vector<std::string> fieldStateModels(const Teuchos::ParameterList& cfg) {
   return {};
 }
 
-FomResult fomResultOf(FullModelReference reference, const HamiltonianSystem& system, const EvaluationSettings& settings,
-                      int ranks, const std::vector<std::string>& fieldModels) {
+FomResult fomResultOf(FullModelReference reference, const EvaluationSettings& settings, int ranks,
+                      const std::vector<std::string>& fieldModels) {
   FomResult res;
   static_cast<FullModelReference&>(res) = std::move(reference);
-  res.n = system.space().n();
-  res.fullDim = system.space().fullDim();
-  res.numTerms = system.nonlinearTerm().numTerms();
   res.ranks = ranks, res.dt = settings.time.dt, res.steps = settings.time.steps;
   if (!fieldModels.empty()) res.fieldStates = std::make_shared<FieldStates>(fieldModels, res.trajectory->getNumVectors());
   return res;
@@ -41,9 +38,7 @@ FomResult fomResultOf(FullModelReference reference, const HamiltonianSystem& sys
 
 FomResult runFom(const EvaluationSettings& settings, const Scene& scene, const std::vector<double>& mu,
                  const RCP<const Comm>& comm, const std::vector<std::string>& fieldModels) {
-  FullModelReference ref = runFullModel(settings, scene, mu, comm);
-  const auto inst = scene.instantiate(comm, mu, settings.shift);
-  return fomResultOf(std::move(ref), *inst.system, settings, comm->getSize(), fieldModels);
+  return fomResultOf(runFullModel(settings, scene, mu, comm), settings, comm->getSize(), fieldModels);
 }
 
 JsonObject FomResult::json() const {

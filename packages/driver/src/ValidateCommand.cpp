@@ -39,6 +39,7 @@ EvaluationSettings pointSettings(const ReducedModel& rm, const Query& q) {
   s.time.integrator = rm.integrator();
   s.saveEvery = q.saveEvery;
   s.onlineRepeats = 1;
+  s.progressSeconds = 2.0;  // the full model's progress lines as gphr run's default (output.progressSeconds)
   s.shift = true;
   return s;
 }
@@ -62,10 +63,10 @@ std::string pointName(const Query& q, const ReducedModelData& d) {
 // The full model at the point, from DIR/fom/<point>.h5 where it holds it under the point's key
 // (the evaluation library's reference cache), else run and stored there.
 FomResult fullModel(const RunContext& ctx, const ReducedModel& rm, const Query& q, const EvaluationSettings& settings,
-                    const HamiltonianSystem& system, bool& cached) {
+                    bool& cached) {
   FullModelReference ref = cachedFullModel(ctx.outputDir + "/fom/" + q.name + ".h5", fomKey(q, rm.data()), settings,
                                            rm.scene(), q.mu, ctx.comm, &cached);
-  return fomResultOf(std::move(ref), system, settings, ctx.comm->getSize());
+  return fomResultOf(std::move(ref), settings, ctx.comm->getSize());
 }
 
 // The full models of the points whose results are not in DIR/points, over rank groups
@@ -87,9 +88,8 @@ void fullModelsOverGroups(const RunContext& ctx, const ReducedModel& rm, const s
   for (size_t i = group; i < points.size() && failure.text.empty(); i += groups) {
     if (reused[i]) continue;
     failure = failureOf(pointName(points[i], d), "the full model failed: ", [&] {
-      const auto inst = rm.scene().instantiate(sub.comm, points[i].mu, true);
       bool cached = false;
-      fullModel(sub, rm, points[i], pointSettings(rm, points[i]), *inst.system, cached);
+      fullModel(sub, rm, points[i], pointSettings(rm, points[i]), cached);
     });
   }
   agreeOnFailure(*ctx.comm, failure);
@@ -113,7 +113,7 @@ std::vector<ValidationRecord> evaluatePoint(RunContext& ctx, const ReducedModel&
   const auto inst = rm.scene().instantiate(ctx.comm, q.mu, true);
   FomResult fom;
   try {
-    fom = fullModel(ctx, rm, q, settings, *inst.system, cached);
+    fom = fullModel(ctx, rm, q, settings, cached);
   } catch (const SolverError& e) {  // worded as over rank groups (fullModelsOverGroups)
     throw SolverError(detail::concat("the full model failed: ", e.what()));
   }

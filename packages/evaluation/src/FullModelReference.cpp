@@ -36,6 +36,12 @@ class Progress {
 };
 }  // namespace
 
+void setSizes(const HamiltonianSystem& system, FullModelReference& ref) {
+  ref.n = system.space().n();
+  ref.fullDim = system.space().fullDim();
+  ref.numTerms = static_cast<long>(system.nonlinearTerm().numTerms());
+}
+
 double FullModelReference::maxStateNorm() const {
   std::vector<double> norms(trajectory->getNumVectors());
   trajectory->norm2(norms);
@@ -71,6 +77,7 @@ FullModelReference runFullModel(const EvaluationSettings& settings, const Scene&
   ref.stats = sim.run;
   ref.tOnline = sim.onlineSeconds;
   ref.driftBound = driftBound(settings.time, inst.system->nonlinearTerm().polynomialDegree(), sim.run);
+  setSizes(*inst.system, ref);
   return ref;
 }
 

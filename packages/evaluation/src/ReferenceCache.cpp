@@ -95,7 +95,10 @@ FullModelReference cachedFullModel(const std::string& path, const std::string& k
     ref = FullModelReference();
   }
   if (cached) *cached = held;
-  if (held) return ref;
+  if (held) {
+    setSizes(*inst.system, ref);
+    return ref;
+  }
   ref = runFullModel(settings, scene, mu, comm);
   writeReference(*cache, key, space, ref);
   return ref;

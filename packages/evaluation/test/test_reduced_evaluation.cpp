@@ -134,8 +134,12 @@ void expectSameReference(const FullModelReference& a, const FullModelReference& 
   }
   EXPECT_EQ(a.hamiltonian, b.hamiltonian);
   EXPECT_EQ(a.savedTimes, b.savedTimes);
-  if (test::comm()->getRank() == 0) EXPECT_EQ(a.tOnline, b.tOnline);  // the file holds rank 0's time
+  if (test::comm()->getRank() == 0) {  // the file holds rank 0's time
+    EXPECT_EQ(a.tOnline, b.tOnline);
+  }
   EXPECT_EQ(a.stats.newtonIterations, b.stats.newtonIterations);
+  EXPECT_EQ(a.fullDim, b.fullDim);
+  EXPECT_EQ(a.numTerms, b.numTerms);
 }
 
 TEST(ReferenceCache, ReadsBackWhatItStoredAndReplacesWhatItCannotTrust) {
@@ -148,6 +152,9 @@ TEST(ReferenceCache, ReadsBackWhatItStoredAndReplacesWhatItCannotTrust) {
   bool cached = true;
   const FullModelReference first = cachedFullModel(path, "key A", settings, scene, {1.0}, comm, &cached);
   EXPECT_FALSE(cached);
+  EXPECT_EQ(first.n, 16);  // Nls1d(16): 16 points, a state of 32, a term per point
+  EXPECT_EQ(first.fullDim, 32);
+  EXPECT_EQ(first.numTerms, 16);
   const FullModelReference again = cachedFullModel(path, "key A", settings, scene, {1.0}, comm, &cached);
   EXPECT_TRUE(cached);
   expectSameReference(first, again);

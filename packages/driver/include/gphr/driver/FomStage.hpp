@@ -17,10 +17,6 @@ class FieldStates;
 
 /// The full model's results at the test parameter (the reference) and its sizes.
 struct FomResult : FullModelReference {
-  /// The system's sizes: n, the phase-space dimension 2n (fullDim) and the nonlinear terms d.
-  /// @{
-  long n = 0, fullDim = 0, numTerms = 0;
-  /// @}
   int ranks = 1;    ///< MPI ranks of its run
   double dt = 0.0;  ///< its time step
   long steps = 0;   ///< its steps
@@ -35,10 +31,10 @@ EvaluationSettings evaluationSettingsFrom(const Teuchos::ParameterList& cfg);
 /// output.fieldModels where the run draws or writes fields (output.plots or output.xdmf), else none.
 std::vector<std::string> fieldStateModels(const Teuchos::ParameterList& cfg);
 
-/// A reference of the library with the sizes of `system` (its scene at the reference's parameter);
-/// fieldModels: the names whose field states it collects (none: no collector).
-FomResult fomResultOf(FullModelReference reference, const HamiltonianSystem& system, const EvaluationSettings& settings,
-                      int ranks, const std::vector<std::string>& fieldModels = {});
+/// A reference of the library as the run's result; fieldModels: the names whose field states it
+/// collects (none: no collector).
+FomResult fomResultOf(FullModelReference reference, const EvaluationSettings& settings, int ranks,
+                      const std::vector<std::string>& fieldModels = {});
 
 /// Integrates the scene's full model at parameter `mu` (runFullModel) into a FomResult.
 FomResult runFom(const EvaluationSettings& settings, const Scene& scene, const std::vector<double>& mu,

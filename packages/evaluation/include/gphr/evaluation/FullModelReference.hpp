@@ -19,8 +19,15 @@ struct FullModelReference {
   double tOnline = 0.0;             ///< wall seconds of the time loop (observer excluded)
   RunStats stats;                   ///< Newton and linear-solver statistics of the time loop
   double driftBound = 0.0;          ///< the bound on |H(y^j) - H(y^0)| (driftBound()); NaN where none
+  /// The system's sizes: n, the phase-space dimension 2n (fullDim) and the nonlinear terms d.
+  /// @{
+  long n = 0, fullDim = 0, numTerms = 0;
+  /// @}
   double maxStateNorm() const;      ///< max_j ||y^j|| over the saved states (the status rule's scale)
 };
+
+/// Sets the reference's sizes (n, fullDim, numTerms) from its system.
+void setSizes(const HamiltonianSystem& system, FullModelReference& ref);
 
 /// Integrates the scene's full model at parameter `mu` through the one observed time loop, with
 /// progress lines every settings.progressSeconds. The full model is the reference: a Newton failure

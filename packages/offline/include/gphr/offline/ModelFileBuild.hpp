@@ -33,7 +33,7 @@ struct ModelBuildOptions {
   BasisOptions basis;         ///< the symplectic basis; k: the largest of `ks` (0: by the energy tolerance)
   std::vector<int> ks;        ///< the reduced sizes stored (leading parts of the basis); empty: the basis's k
   std::vector<int> ms;        ///< DEIM sizes m (gp-deim, gp-adeim) and term budgets (gp-eqp)
-  std::vector<std::string> methods{"gp-deim"};  ///< the storable methods to store (online/Method.hpp)
+  std::vector<std::string> methods{"gp-deim"};  ///< the storable methods to store (core/Method.hpp)
   DeimBasisOptions deim;      ///< the DEIM basis (maxRank 0: the largest m + 32)
   QuadratureOptions eqp;      ///< the gp-eqp training system
   double eqpTolerance = 1e-8; ///< NNLS stopping tolerance (relative residual)
