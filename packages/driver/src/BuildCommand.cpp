@@ -14,49 +14,25 @@
 #include "gphr/driver/Config.hpp"
 #include "gphr/driver/OfflineStages.hpp"
 #include "gphr/driver/OutputLock.hpp"
-#include "gphr/offline/ModelFileBuilder.hpp"
+#include "gphr/offline/ModelFileBuild.hpp"
 #include "gphr/driver/StageTable.hpp"
-#include "gphr/models/SceneFactory.hpp"
 #include "gphr/core/Method.hpp"
 
 namespace gphr {
 
 namespace {
 
-// A section of the config as YAML with its own name at the top.
-std::string sectionYaml(const Teuchos::ParameterList& cfg, const std::string& name) {
-  Teuchos::ParameterList copy(cfg.sublist(name));
-  copy.setName(name);
-  return toYaml(copy);
-}
-
-ModelFileOptions fileOptions(const Teuchos::ParameterList& cfg) {
-  ModelFileOptions o = modelFileOptionsFrom(cfg.sublist("build"));
-  o.indices = cfg.sublist("hyper").get<std::string>("indices");
-  o.integratorConfig = sectionYaml(cfg, "integrator");
-  return o;
-}
-
 // The offline phase as the config sets it: the stored methods of pipeline.methods, k and m.
-ModelBuildOptions buildOptions(const RunContext& ctx, const std::vector<std::string>& stored) {
-  const auto& cfg = ctx.config;
+ModelBuildOptions buildOptions(const RunOptions& opt, const std::vector<std::string>& stored) {
   ModelBuildOptions o;
-  o.training = trainingOptionsOf(cfg, ctx.scene->parameterBox());
-  o.basis = basisOptionsFrom(cfg.sublist("reduction"), basisK(cfg));
-  o.ks = pipelineK(cfg);
-  for (int m : cfg.sublist("pipeline").get<Teuchos::Array<int>>("m")) o.ms.push_back(m);
+  static_cast<OfflineOptions&>(o) = opt.offline;
   o.methods = stored;
-  o.deim = deimBasisOptionsFrom(cfg.sublist("hyper"), o.ms.empty() ? 0 : *std::max_element(o.ms.begin(), o.ms.end()));
-  o.eqp = quadratureOptionsFrom(cfg.sublist("eqp"));
-  o.eqpTolerance = cfg.sublist("eqp").get<double>("tolerance");
-  o.adeim = cfg.sublist("adeim");
-  o.withBasis = cfg.sublist("build").get<bool>("withBasis");
-  o.file = fileOptions(cfg);
-  o.parameter = ctx.mu;
-  o.T = cfg.sublist("time").get<double>("T");
-  o.sceneConfig = sectionYaml(cfg, "scene");
-  o.config = toYaml(cfg);
-  o.keys = cacheKeys(cfg);
+  o.adeim = opt.adeim;
+  o.withBasis = opt.withBasis;
+  o.file = opt.file;
+  o.parameter = opt.mu;
+  o.T = opt.T;
+  o.config = opt.record.fullYaml;
   return o;
 }
 
@@ -107,23 +83,21 @@ int runBuild(const std::string& configPath, const std::string& modelPath, const 
   requireOutputsApart({{configPath, "the config file"}}, {{modelPath, "--model"}, {artifactsDir, "--output"}});
   StageClocks setup;
   auto setupClock = std::make_unique<StageClocks::Scope>(setup, "setup");
-  RunContext ctx;
-  ctx.config = loadConfig(configPath);
+  const RunOptions opt = runOptionsFrom(loadConfig(configPath));
   checkModelPath(modelPath, configPath, artifactsDir);
-  ctx.scene = makeScene(ctx.config.sublist("scene"));
-  ctx.mu = sceneParameters(*ctx.scene, ctx.config.sublist("parameters"));
+  RunContext ctx;
   ctx.comm = comm;
   ctx.outputDir = artifactsDir;
   std::vector<std::string> stored, skipped;
-  for (const auto& m : pipelineMethods(ctx.config)) (methodInfo(m).storable ? stored : skipped).push_back(m);
+  for (const auto& m : opt.pipeline.methods) (methodInfo(m).storable ? stored : skipped).push_back(m);
   GPHR_REQUIRE(!stored.empty(), InputError, "config file '", configPath,
                "': gphr build stores ", methodNames([](const MethodInfo& m) { return m.storable; }),
                " models; pipeline.methods must list one of them");
-  GPHR_REQUIRE(ctx.config.sublist("scene").get<bool>("shift"), InputError, "config file '", configPath,
+  GPHR_REQUIRE(opt.shift, InputError, "config file '", configPath,
                "': gphr build needs scene.shift: true (the stored models are of the shifted system)");
-  const ModelBuildOptions options = buildOptions(ctx, stored);
-  const auto inst = ctx.scene->instantiate(comm, ctx.mu, true);
-  checkModelBuildOptions(*ctx.scene, options, inst.system->space().fullDim());  // before any file is made
+  const ModelBuildOptions options = buildOptions(opt, stored);
+  const auto inst = opt.scene->instantiate(comm, opt.mu, true);
+  checkModelBuildOptions(*opt.scene, options, inst.system->space().fullDim());  // before any file is made
   requireWritableBeside(modelPath, "--model", comm);  // not found after the offline run
   prepareOutputDir(ctx, false);
   const OutputLock lock(artifactsDir, "build", comm);
@@ -136,9 +110,9 @@ int runBuild(const std::string& configPath, const std::string& modelPath, const 
     for (const auto& m : skipped)
       std::fprintf(stderr, "[gphr] build: %s is not stored (%s)\n", m.c_str(),
                    "its online model needs all d rows or is a baseline: run it with gphr run");
-  const ArtifactsCache cache = artifactsCache(ctx, inst.system->space().fullDim());
+  const ArtifactsCache cache = artifactsCache(ctx, opt, inst.system->space().fullDim());
   setupClock.reset();
-  const ModelBuildResult r = buildReducedModelFile(*ctx.scene, comm, options, modelPath, &cache);
+  const ModelBuildResult r = buildReducedModelFile(*opt.scene, comm, options, modelPath, &cache);
   std::vector<StageTime> stages = setup.stages();
   stages.insert(stages.end(), r.stages.begin(), r.stages.end());
   const StageTable table = gatherStages(comm, stages);

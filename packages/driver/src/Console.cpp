@@ -17,13 +17,12 @@ std::string cell(double x, const char* fmt) {
 }
 }  // namespace
 
-std::string runTable(const RunContext& ctx, const FomResult& fom, const RomStages* rom) {
+std::string runTable(const RunContext& ctx, const RunOptions& opt, const FomResult& fom, const RomStages* rom) {
   std::ostringstream os;
   char line[160];
-  const auto& time = ctx.config.sublist("time");
-  std::snprintf(line, sizeof line, "gphr run: %s, %d rank(s), T = %g, dt = %g, %s\n", ctx.scene->name().c_str(),
-                ctx.comm->getSize(), time.get<double>("T"), time.get<double>("dt"),
-                ctx.config.sublist("integrator").get<std::string>("scheme").c_str());
+  std::snprintf(line, sizeof line, "gphr run: %s, %d rank(s), T = %g, dt = %g, %s\n", opt.scene->name().c_str(),
+                ctx.comm->getSize(), opt.T, opt.evaluation.time.dt,
+                opt.scheme.c_str());
   os << line;
   std::snprintf(line, sizeof line, "%-9s %5s %5s  %-11s %10s %10s %9s\n", "method", "k", "m", "status", "E_L2",
                 "online s", "speed-up");

@@ -8,30 +8,6 @@
 
 namespace gphr {
 
-namespace {
-bool reduced(const MethodInfo& m) { return m.reduced(); }  // the full model is always shown
-}  // namespace
-
-std::vector<std::string> fieldModelNames(const Teuchos::ParameterList& cfg) {
-  std::vector<std::string> out;
-  for (const auto& name : cfg.sublist("output").get<Teuchos::Array<std::string>>("fieldModels")) {
-    GPHR_REQUIRE(name == "best" || (isMethod(name) && methodInfo(name).reduced()), InputError, "key 'output.fieldModels' has entry '",
-                 name, "'; allowed: best or one of ", methodNames(reduced));
-    if (std::find(out.begin(), out.end(), name) == out.end()) out.push_back(name);
-  }
-  return out;
-}
-
-std::vector<double> fieldTimes(const Teuchos::ParameterList& cfg) {
-  const double T = cfg.sublist("time").get<double>("T");
-  const auto& given = cfg.sublist("output").get<Teuchos::Array<double>>("fieldTimes");
-  if (given.empty()) return {0.0, 0.5 * T, T};
-  for (double t : given)
-    GPHR_REQUIRE(t >= 0.0 && t <= T, InputError, "key 'output.fieldTimes' has entry ", t, "; allowed: times in [0, ", T,
-                 "] (time.T)");
-  return {given.begin(), given.end()};
-}
-
 bool keepsFieldStates(const std::vector<std::string>& names, const std::string& method) {
   return std::any_of(names.begin(), names.end(), [&](const std::string& name) {
     // "best": the most accurate hyper-reduction (sdeim too, whose m is fixed)

@@ -7,12 +7,11 @@
 
 namespace gphr {
 
-FieldOutput fieldOutputOf(const RunContext& ctx, const FomResult& fom, const RomStages* rom) {
+FieldOutput fieldOutputOf(const RunOptions& opt, const FomResult& fom, const RomStages* rom) {
   FieldOutput out;
-  const auto& cfg = ctx.config.sublist("output");
-  if (!cfg.get<bool>("plots") && !cfg.get<bool>("xdmf")) return out;
+  if (!opt.output.plots && !opt.output.xdmf) return out;
   try {
-    out.grid = fieldGrid(*ctx.scene, static_cast<GO>(fom.trajectory->getGlobalLength()));
+    out.grid = fieldGrid(*opt.scene, static_cast<GO>(fom.trajectory->getGlobalLength()));
   } catch (const InputError& e) {
     out.notes.push_back(std::string("no fields.png, spacetime.png or fields.xdmf: ") + e.what());
     return out;

@@ -63,13 +63,13 @@ std::string timeText(double t) {
 
 // 2-D: a column per time of output.fieldTimes; a row for the full model, then per picked run a row
 // of its field and one of its difference.
-FieldPicture surfacePicture(const Teuchos::ParameterList& cfg, const FomResult& fom, const FieldOutput& out) {
+FieldPicture surfacePicture(const std::vector<double>& fieldTimes, const FomResult& fom, const FieldOutput& out) {
   const SceneGrid& g = *out.grid;
   FieldPicture p;
   p.file = "fields.png";
   p.cols = g.points[0], p.rows = g.points[1];
   p.x0 = g.origin[0], p.dx = g.spacing[0], p.y0 = g.origin[1], p.dy = g.spacing[1];
-  const auto steps = nearestSaved(fom.savedTimes, fieldTimes(cfg));
+  const auto steps = nearestSaved(fom.savedTimes, fieldTimes);
   p.layoutCols = static_cast<int>(steps.size());
   p.layoutRows = 1 + 2 * static_cast<int>(out.runs.size());
   p.panels.resize(static_cast<size_t>(p.layoutRows * p.layoutCols));
@@ -142,7 +142,7 @@ void colourRanges(const FieldPicture& p, double range[2], double& diffMax) {
 
 }  // namespace
 
-FieldPicture fieldPicture(const Teuchos::ParameterList& cfg, const FomResult& fom, const FieldOutput& out) {
+FieldPicture fieldPicture(const std::vector<double>& fieldTimes, const FomResult& fom, const FieldOutput& out) {
   if (!out.grid) return {};
   FieldPicture none;
   if (out.grid->points.size() > 2) none.note = "no field picture: fields.png draws 1-D and 2-D grids";
@@ -150,7 +150,7 @@ FieldPicture fieldPicture(const Teuchos::ParameterList& cfg, const FomResult& fo
     none.note = detail::concat("no fields.png: a grid of ", out.grid->numPoints(), " points is more than the ",
                                kMaxPicturePoints, " drawn (rank 0 gathers the states it draws); fields.xdmf shows it");
   if (!none.note.empty()) return none;
-  FieldPicture p = out.grid->points.size() == 2 ? surfacePicture(cfg, fom, out) : spaceTimePicture(fom, out);
+  FieldPicture p = out.grid->points.size() == 2 ? surfacePicture(fieldTimes, fom, out) : spaceTimePicture(fom, out);
   // a complex field is named by its first component's name after "re_" (re_u: u)
   const std::string& first = out.grid->components[0];
   p.modulus = out.grid->complexField;

@@ -3,29 +3,10 @@
 #include <cmath>
 
 #include "gphr/core/Method.hpp"
-#include "gphr/driver/Config.hpp"
 #include "gphr/driver/FieldModels.hpp"
 #include "gphr/driver/RunMetrics.hpp"
 
 namespace gphr {
-
-EvaluationSettings evaluationSettingsFrom(const Teuchos::ParameterList& cfg) {
-  EvaluationSettings s;
-  s.time.dt = cfg.sublist("time").get<double>("dt");
-  s.time.steps = numSteps(cfg);
-  s.time.integrator = cfg.sublist("integrator");
-  s.saveEvery = cfg.sublist("output").get<int>("saveEvery");
-  s.progressSeconds = cfg.sublist("output").get<double>("progressSeconds");
-  s.onlineRepeats = cfg.sublist("pipeline").get<int>("onlineRepeats");
-  s.onlineRepeatSeconds = cfg.sublist("pipeline").get<double>("onlineRepeatSeconds");
-  s.shift = cfg.sublist("scene").get<bool>("shift");
-  return s;
-}
-
-std::vector<std::string> fieldStateModels(const Teuchos::ParameterList& cfg) {
-  if (cfg.sublist("output").get<bool>("plots") || cfg.sublist("output").get<bool>("xdmf")) return fieldModelNames(cfg);
-  return {};
-}
 
 FomResult fomResultOf(FullModelReference reference, const EvaluationSettings& settings, int ranks,
                       const std::vector<std::string>& fieldModels) {

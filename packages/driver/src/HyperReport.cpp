@@ -136,11 +136,11 @@ void writeAdeimUpdates(const FomResult& fom, const std::vector<ModelRun>& runs, 
 // (the default job has one), but the SWE at 2k = 80 diverged with m = 150, w = 1 and reached the
 // ROM's error with w = 2 and every row sampled (doc/design.md, 'GP-ADEIM', window), so the report
 // says so. Runs never evaluated (unavailable) are not listed.
-std::string adeimWindowCaution(const RunContext& ctx, const RomStages& st) {
+std::string adeimWindowCaution(const RunOptions& opt, const RomStages& st) {
   std::ostringstream md;
   for (const auto& r : st.runs) {
     if (!r.info().adaptive() || !r.available) continue;
-    const AdeimOptions o = adeimOptionsFrom(ctx.config.sublist("adeim"), r.m);
+    const AdeimOptions o = adeimOptionsFor(opt.adeim, r.m);
     const int wbar = 2 * r.k * o.window;
     if (wbar >= r.m) continue;
     if (md.tellp() == 0)
@@ -153,10 +153,10 @@ std::string adeimWindowCaution(const RunContext& ctx, const RomStages& st) {
   }
   // A run whose first update would come after its last step never adapted: say so, since its
   // status is ok and its error is then the fixed pair's (U_0, P_0).
-  const long steps = numSteps(ctx.config);
+  const long steps = opt.evaluation.time.steps;
   for (const auto& r : st.runs) {
     if (!r.info().adaptive() || !r.ok || !r.adeimUpdates.empty()) continue;
-    const AdeimOptions o = adeimOptionsFrom(ctx.config.sublist("adeim"), r.m);
+    const AdeimOptions o = adeimOptionsFor(opt.adeim, r.m);
     md << "\nNo update ran in " << r.label() << ": adeim.initialWindow = " << o.initialWindow << " exceeds the "
        << steps << " steps of the run, so it is the non-adaptive model of its initial pair (U_0, P_0).\n";
   }
@@ -193,12 +193,12 @@ std::string termWeightsTable(const RomStages& st) {
   return md.str();
 }
 
-std::string reportMd(const RunContext& ctx, const FomResult& fom, const RomStages& st) {
+std::string reportMd(const RunContext& ctx, const RunOptions& opt, const FomResult& fom, const RomStages& st) {
   std::ostringstream md;
   const double fomOnline = fom.tOnline;
-  md << "# GPHR report: " << ctx.scene->name() << "\n\n";
-  md << "Integrator " << ctx.config.sublist("integrator").get<std::string>("scheme") << ", " << numSteps(ctx.config)
-     << " steps of dt = " << ctx.config.sublist("time").get<double>("dt") << ", " << ctx.comm->getSize()
+  md << "# GPHR report: " << opt.scene->name() << "\n\n";
+  md << "Integrator " << opt.scheme << ", " << opt.evaluation.time.steps
+     << " steps of dt = " << opt.evaluation.time.dt << ", " << ctx.comm->getSize()
      << " MPI rank(s). Times are measured in this run, side by side; errors are eq:errNR against the full model.\n\n";
   md << "Full model online: " << fmt(fomOnline, "%.3f") << " s.\n\n";
   md << "| method | k | m | status | E_L2 | E_L2 / E_L2(rom) | online s | speed-up vs rom | speed-up vs fom |\n";
@@ -245,7 +245,7 @@ std::string reportMd(const RunContext& ctx, const FomResult& fom, const RomStage
     }
     md << "\nPer update (rank, m_s, residuals, the terms of eq:Hambound): adeim_updates.csv and adeim_updates.png; "
           "error vs total time: error_vs_total_time.png.\n";
-    md << adeimWindowCaution(ctx, st);
+    md << adeimWindowCaution(opt, st);
   }
   md << termWeightsTable(st);
   md << "\nDiagnostics of each GP-DEIM run (cond(P^T U), the smallest eigenvalue of Hess H_hr(z0) next to "
@@ -368,11 +368,11 @@ bool plotErrorVsTotalTime(const RomStages& st, const std::string& runs, const st
 }
 
 // The data files and report.md; the names written go to `written`.
-void writeHyperData(const RunContext& ctx, const FomResult& fom, const RomStages& st, const ModelRun* terms,
+void writeHyperData(const RunContext& ctx, const RunOptions& opt, const FomResult& fom, const RomStages& st, const ModelRun* terms,
                     const std::map<std::string, std::string>& p, std::vector<std::string>& written) {
   writeRunsCsv(st, fom.tOnline, p.at("runs.csv"));
   written.push_back("runs.csv");
-  writeTextFile(p.at("report.md"), reportMd(ctx, fom, st));
+  writeTextFile(p.at("report.md"), reportMd(ctx, opt, fom, st));
   written.push_back("report.md");
   if (!st.deimSingularValues.empty()) {
     std::ofstream os(p.at("deim_singular_values.csv"));
@@ -383,7 +383,7 @@ void writeHyperData(const RunContext& ctx, const FomResult& fom, const RomStages
     finishText(os, p.at("deim_singular_values.csv"));
     written.push_back("deim_singular_values.csv");
   }
-  const double dt = ctx.config.sublist("time").get<double>("dt");
+  const double dt = opt.evaluation.time.dt;
   if (terms) {
     writeHamiltonianTerms(fom, *terms, dt, p.at("hamiltonian_terms.csv"));
     written.push_back("hamiltonian_terms.csv");
@@ -396,13 +396,13 @@ void writeHyperData(const RunContext& ctx, const FomResult& fom, const RomStages
 
 }  // namespace
 
-std::vector<std::string> writeHyperReport(const RunContext& ctx, const FomResult& fom, const RomStages& st,
+std::vector<std::string> writeHyperReport(const RunContext& ctx, const RunOptions& opt, const FomResult& fom, const RomStages& st,
                                           const std::map<std::string, std::string>& p, bool plots) {
   const ModelRun* terms = nullptr;  // the GP-DEIM run with the largest k, then m
   for (const auto& r : st.runs)
     if (r.info().fit == TermWeightFit::Deim && r.ok && (!terms || r.k > terms->k || (r.k == terms->k && r.m > terms->m))) terms = &r;
   std::vector<std::string> written;
-  writeHyperData(ctx, fom, st, terms, p, written);
+  writeHyperData(ctx, opt, fom, st, terms, p, written);
   if (!plots || !haveGnuplot()) return written;
   const std::string runs = p.at("runs.csv");
   const auto plotted = [&](bool ok, const char* name) {

@@ -7,7 +7,6 @@
 #include <map>
 
 #include "gphr/core/Error.hpp"
-#include "gphr/driver/Config.hpp"
 #include "gphr/driver/ModelEvaluation.hpp"
 #include "gphr/hyper/DeimBasis.hpp"
 #include "gphr/hyper/EmpiricalQuadrature.hpp"
@@ -25,12 +24,6 @@ namespace {
 
 bool wants(const std::vector<std::string>& methods, const char* m) {
   return std::find(methods.begin(), methods.end(), m) != methods.end();
-}
-
-std::vector<int> mList(const Teuchos::ParameterList& cfg) {
-  std::vector<int> ms;
-  for (int m : cfg.sublist("pipeline").get<Teuchos::Array<int>>("m")) ms.push_back(m);
-  return ms;
 }
 
 ModelRun unavailable(const std::string& method, int k, int m, const std::string& why) {
@@ -53,12 +46,12 @@ double romHessianMinEig(const SceneInstance& inst, const MultiVector& A, int k) 
 // A term-weighted model (GpDeimModel on a sample mesh: DEIM or quadrature weights) evaluated like
 // the reduced model, with the diagnostics they share: Hess H_hr(z0)'s smallest eigenvalue beside
 // the reduced model's, whether convexity was lost, and the online size.
-ModelRun evaluateTermModel(const RunContext& ctx, const FomResult& fom, const SceneInstance& inst, const MultiVector& A,
+ModelRun evaluateTermModel(const RunOptions& opt, const FomResult& fom, const SceneInstance& inst, const MultiVector& A,
                            GpDeimModel& model, const std::string& method, int k, int m, double lminR) {
   DenseMatrix Hhr(2 * k, 2 * k);
   model.addHessian(DenseVector(2 * k), 1.0, Hhr);
   const double lminHr = smallestEigenvalue(Hhr);
-  ModelRun run = evaluateRun(evaluationSettingsFrom(ctx.config), fom, *inst.system, A, model, {method, k, m, {}});
+  ModelRun run = evaluateRun(opt.evaluation, fom, *inst.system, A, model, {method, k, m, {}});
   run.metrics.set(Metric::HessMinEigHr, lminHr)
       .set(Metric::HessMinEigRom, lminR)
       .set(Metric::ConvexityLost, lminHr < 0.0 && lminR >= 0.0)
@@ -67,13 +60,12 @@ ModelRun evaluateTermModel(const RunContext& ctx, const FomResult& fom, const Sc
   return run;
 }
 
-void runGpDeim(const RunContext& ctx, const FomResult& fom, RomStages& st, const SceneInstance& inst,
+void runGpDeim(const RunOptions& opt, const FomResult& fom, RomStages& st, const SceneInstance& inst,
                const MultiVector& A, int k, const ReducedLinearPart& linear) {
-  const CachedDeimBasis db = deimBasisFor(ctx, st, A, *inst.system);
-  if (k == stageK(ctx.config, st.basis).back()) st.deimSingularValues = db.basis.singularValues;
+  const CachedDeimBasis& db = st.offline->deimBasis(k);
+  if (k == st.offline->sizes().back()) st.deimSingularValues = db.basis.singularValues;
   const double lminR = romHessianMinEig(inst, A, k);
-  const std::string indices = ctx.config.sublist("hyper").get<std::string>("indices");
-  for (int m : mList(ctx.config)) {
+  for (int m : opt.pipeline.ms) {
     if (m > static_cast<int>(db.basis.U->getNumVectors())) {
       st.runs.push_back(unavailable(method::kGpDeim, k, m, "the DEIM basis has " + std::to_string(db.basis.U->getNumVectors()) +
                                                          " vectors (numerical rank of the snapshots or hyper.maxRank)"));
@@ -82,9 +74,9 @@ void runGpDeim(const RunContext& ctx, const FomResult& fom, RomStages& st, const
     Teuchos::Time clock("deim pair");
     clock.start();
     DeimWeights w;
-    auto hr = buildGpDeimModel(*inst.system, A, *db.basis.U, m, indices, &w, &linear);
+    auto hr = buildGpDeimModel(*inst.system, A, *db.basis.U, m, opt.indices, &w, &linear);
     const double tPair = clock.stop();
-    ModelRun run = evaluateTermModel(ctx, fom, inst, A, *hr, method::kGpDeim, k, m, lminR);
+    ModelRun run = evaluateTermModel(opt, fom, inst, A, *hr, method::kGpDeim, k, m, lminR);
     run.metrics.set(Metric::CondPtU, w.conditionNumber)
         .set(Metric::DeimWeightMin, *std::min_element(w.weights.begin(), w.weights.end()))
         .set(Metric::DeimWeightMax, *std::max_element(w.weights.begin(), w.weights.end()))
@@ -99,36 +91,18 @@ void runGpDeim(const RunContext& ctx, const FomResult& fom, RomStages& st, const
         .set(Metric::TDeimBasisComputeS, db.computeSeconds)
         .set(Metric::THyperOfflineS, db.computeSeconds + tPair)
         .set(Metric::TTotalS, db.computeSeconds + tPair + run.tOnline);
-    setBasisKeys(ctx, st, run.metrics);
+    setBasisKeys(opt, st, run.metrics);
     st.runs.push_back(std::move(run));
   }
 }
 
-// The term-weight fits of the basis A (sections eqp and, for the refit's terms, hyper) through
-// the artifacts cache.
-TermWeightFits termWeightFits(const RunContext& ctx, const RomStages& st, const MultiVector& A,
-                              const HamiltonianSystem& test) {
-  const ModelBuildKeys keys = cacheKeys(ctx.config);
-  const ArtifactsCache cache = artifactsCache(ctx, test.space().fullDim());
-  const std::string indices = ctx.config.sublist("hyper").get<std::string>("indices");
-  auto deimTerms = [&ctx, &st, &A, &test, indices](int m) {
-    const CachedDeimBasis db = deimBasisFor(ctx, st, A, test);
-    GPHR_REQUIRE(m <= static_cast<int>(db.basis.U->getNumVectors()), InputError, "the DEIM basis has ",
-                 db.basis.U->getNumVectors(), " vectors, m = ", m);
-    return selectDeimIndices(*db.basis.U, m, indices);
-  };
-  return TermWeightFits(*ctx.scene, ctx.comm, st.training, A, quadratureOptionsFrom(ctx.config.sublist("eqp")),
-                        ctx.config.sublist("eqp").get<double>("tolerance"), mList(ctx.config), deimTerms,
-                        &cache, keys.nnls, keys.refit);
-}
-
 // gp-eqp (NNLS terms and weights, pipeline.m the term budget) or gp-eqp-refit (GP-DEIM's terms,
 // least-squares weights) for every m: the fit, then GpDeimModel on its sample mesh.
-void runGpEqp(const RunContext& ctx, const FomResult& fom, RomStages& st, const SceneInstance& inst,
+void runGpEqp(const RunOptions& opt, const FomResult& fom, RomStages& st, const SceneInstance& inst,
               const MultiVector& A, int k, const ReducedLinearPart& linear, const std::string& method) {
-  TermWeightFits fits = termWeightFits(ctx, st, A, *inst.system);
+  TermWeightFits& fits = st.offline->termWeightFits(k, opt.indices);
   const double lminR = romHessianMinEig(inst, A, k);
-  for (int m : mList(ctx.config)) {
+  for (int m : opt.pipeline.ms) {
     CachedFit c;
     try {
       c = fits.get(method, m);
@@ -140,7 +114,7 @@ void runGpEqp(const RunContext& ctx, const FomResult& fom, RomStages& st, const 
     clock.start();
     auto hr = buildQuadratureModel(*inst.system, A, c.fit, linear);
     const double tMesh = clock.stop();
-    ModelRun run = evaluateTermModel(ctx, fom, inst, A, *hr, method, k, m, lminR);
+    ModelRun run = evaluateTermModel(opt, fom, inst, A, *hr, method, k, m, lminR);
     const auto [wmin, wmax] = std::minmax_element(c.fit.weights.begin(), c.fit.weights.end());
     const double offline = c.trainingSeconds + c.fitSeconds + tMesh;
     run.metrics.set(Metric::EqpTerms, static_cast<long>(c.fit.terms.size()))
@@ -157,7 +131,7 @@ void runGpEqp(const RunContext& ctx, const FomResult& fom, RomStages& st, const 
         .set(Metric::TOfflineS, st.training.seconds + st.basisSeconds + offline)
         .set(Metric::THyperOfflineS, offline)
         .set(Metric::TTotalS, offline + run.tOnline);
-    setBasisKeys(ctx, st, run.metrics);
+    setBasisKeys(opt, st, run.metrics);
     st.runs.push_back(std::move(run));
   }
 }
@@ -201,23 +175,23 @@ void setAdeimSummary(ModelRun& run, const AdeimOptions& o, double tInitial, doub
 // GP-ADEIM (alg:SP-ADEIM) for every m: (U_0, P_0) from the first delta0 full-model steps at the
 // test parameter (or the training DEIM basis), then the adaptive model evaluated like the others,
 // its update records kept for adeim_updates.csv.
-void runGpAdeim(const RunContext& ctx, const FomResult& fom, RomStages& st, const SceneInstance& inst,
+void runGpAdeim(const RunOptions& opt, const FomResult& fom, RomStages& st, const SceneInstance& inst,
                 const RCP<const MultiVector>& A, int k, const ReducedLinearPart& linear) {
-  const double dt = ctx.config.sublist("time").get<double>("dt");
-  for (int m : mList(ctx.config)) {
-    const AdeimOptions o = adeimOptionsFrom(ctx.config.sublist("adeim"), m);
+  const SimulationSettings& time = opt.evaluation.time;
+  for (int m : opt.pipeline.ms) {
+    const AdeimOptions o = adeimOptionsFor(opt.adeim, m);
     Teuchos::Time clock("adeim offline");
     clock.start();
     RCP<const MultiVector> U0;
     if (o.initialBasis == "fom") {
       try {  // too few directions in the first delta0 steps for this m: that run is unavailable
-        U0 = initialAdeimBasis(inst.system, *inst.y0, *A, ctx.config.sublist("integrator"), dt, o.initialWindow, m);
+        U0 = initialAdeimBasis(inst.system, *inst.y0, *A, time.integrator, time.dt, o.initialWindow, m);
       } catch (const InputError& e) {
         st.runs.push_back(unavailable(method::kGpAdeim, k, m, e.what()));
         continue;
       }
     } else {
-      U0 = deimBasisFor(ctx, st, *A, *inst.system).basis.U;
+      U0 = st.offline->deimBasis(k).basis.U;
       if (m > static_cast<int>(U0->getNumVectors())) {
         st.runs.push_back(unavailable(method::kGpAdeim, k, m, "the training DEIM basis has " +
                                                             std::to_string(U0->getNumVectors()) + " vectors"));
@@ -232,7 +206,7 @@ void runGpAdeim(const RunContext& ctx, const FomResult& fom, RomStages& st, cons
     // Jacobian approximation like any lagged one, and the lag rule refactors when Newton slows
     // (resetting it at every update cost 600 LU factorisations instead of 143 on the NLS benchmark).
     const StepHook hook = adeimUpdateHook(model);
-    ModelRun run = evaluateRun(evaluationSettingsFrom(ctx.config), fom, *inst.system, *A, model, {method::kGpAdeim, k, m, hook});
+    ModelRun run = evaluateRun(opt.evaluation, fom, *inst.system, *A, model, {method::kGpAdeim, k, m, hook});
     run.adeimUpdates = model.updates();
     setAdeimSummary(run, o, tInitial, tPair);
     st.runs.push_back(std::move(run));
@@ -240,11 +214,11 @@ void runGpAdeim(const RunContext& ctx, const FomResult& fom, RomStages& st, cons
 }
 
 // Classic DEIM (U_g from grad N snapshots) for every m, and SDEIM (U_g = A, m = 2k).
-void runGradientDeim(const RunContext& ctx, const FomResult& fom, RomStages& st, const SceneInstance& inst,
+void runGradientDeim(const RunOptions& opt, const FomResult& fom, RomStages& st, const SceneInstance& inst,
                      const MultiVector& A, int k, const ReducedLinearPart& linear, bool classic, bool sdeim) {
-  const auto ms = mList(ctx.config);
-  const std::string snapshots = ctx.config.sublist("hyper").get<std::string>("deimSnapshots");
-  const GradientSnapshots kind = snapshots == "full" ? GradientSnapshots::Full : GradientSnapshots::Projected;
+  const auto& ms = opt.pipeline.ms;
+  const GradientSnapshots kind = opt.deimSnapshots;
+  const std::string snapshots = kind == GradientSnapshots::Full ? "full" : "projected";
   auto evaluate = [&](const std::string& method, const MultiVector& Ug, int m, double tBasis) {
     Teuchos::Time clock("pair");
     clock.start();
@@ -255,7 +229,7 @@ void runGradientDeim(const RunContext& ctx, const FomResult& fom, RomStages& st,
     if (basis == GradientBasis::Snapshots && kind == GradientSnapshots::Full) pair = withReferenceGradient(std::move(pair), *inst.system, A);
     GradientDeimModel model(*inst.system, A, pair, linear);
     const double tPair = clock.stop();
-    ModelRun run = evaluateRun(evaluationSettingsFrom(ctx.config), fom, *inst.system, A, model, {method, k, m, {}});
+    ModelRun run = evaluateRun(opt.evaluation, fom, *inst.system, A, model, {method, k, m, {}});
     run.metrics.set(Metric::KernelRowsPerEvaluation, static_cast<long>(model.kernelRowsPerEvaluation()))
         .set(Metric::TDeimBasisS, tBasis)
         .set(Metric::TDeimPairS, tPair)
@@ -267,9 +241,10 @@ void runGradientDeim(const RunContext& ctx, const FomResult& fom, RomStages& st,
   if (classic) {
     Teuchos::Time clock("gradient pod");
     clock.start();
-    const int maxRank = *std::max_element(ms.begin(), ms.end()) + 32;
-    auto Ug = gradientDeimBasis(trainingSystems(*ctx.scene, ctx.comm, st.training), st.training.snapshots, A, maxRank,
-                                ctx.config.sublist("hyper").get<int>("snapshotEvery"), kind);
+    // the largest m with the DEIM basis's margin (hyper.maxRank is the reduced-Jacobian POD's)
+    const int maxRank = *std::max_element(ms.begin(), ms.end()) + kDeimRankMargin;
+    auto Ug = gradientDeimBasis(trainingSystems(*opt.scene, st.offline->comm(), st.training), st.training.snapshots, A,
+                                maxRank, opt.offline.deim.snapshotEvery, kind);
     const double t = clock.stop();
     for (int m : ms) {
       if (m > static_cast<int>(Ug->getNumVectors())) {
@@ -285,20 +260,20 @@ void runGradientDeim(const RunContext& ctx, const FomResult& fom, RomStages& st,
 
 }  // namespace
 
-void runHyperReduction(const RunContext& ctx, const FomResult& fom, RomStages& st) {
-  const auto methods = pipelineMethods(ctx.config);
+void runHyperReduction(const RunOptions& opt, const FomResult& fom, RomStages& st) {
+  const auto& methods = opt.pipeline.methods;
   const bool gp = wants(methods, method::kGpDeim), classic = wants(methods, method::kDeim), sd = wants(methods, method::kSdeim),
              adaptive = wants(methods, method::kGpAdeim), eqp = wants(methods, method::kGpEqp), refit = wants(methods, method::kGpEqpRefit);
   if (!gp && !classic && !sd && !adaptive && !eqp && !refit) return;
-  auto inst = ctx.scene->instantiate(ctx.comm, ctx.mu, true);
-  for (int k : stageK(ctx.config, st.basis)) {
-    auto A = leadingBasis(st.basis, k);
+  const SceneInstance& inst = st.offline->instance();
+  for (int k : st.offline->sizes()) {
+    const auto A = st.offline->reducedBasis(k);
     const ReducedLinearPart linear = reduceLinearPart(*inst.system, *A);
-    if (gp) runGpDeim(ctx, fom, st, inst, *A, k, linear);
-    if (eqp) runGpEqp(ctx, fom, st, inst, *A, k, linear, method::kGpEqp);
-    if (refit) runGpEqp(ctx, fom, st, inst, *A, k, linear, method::kGpEqpRefit);
-    if (adaptive) runGpAdeim(ctx, fom, st, inst, A, k, linear);
-    if (classic || sd) runGradientDeim(ctx, fom, st, inst, *A, k, linear, classic, sd);
+    if (gp) runGpDeim(opt, fom, st, inst, *A, k, linear);
+    if (eqp) runGpEqp(opt, fom, st, inst, *A, k, linear, method::kGpEqp);
+    if (refit) runGpEqp(opt, fom, st, inst, *A, k, linear, method::kGpEqpRefit);
+    if (adaptive) runGpAdeim(opt, fom, st, inst, A, k, linear);
+    if (classic || sd) runGradientDeim(opt, fom, st, inst, *A, k, linear, classic, sd);
   }
 }
 

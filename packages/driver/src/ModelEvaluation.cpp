@@ -4,14 +4,9 @@
 #include <cstdio>
 #include <limits>
 
-#include "gphr/driver/Config.hpp"
 #include "gphr/driver/FieldModels.hpp"
 
 namespace gphr {
-
-std::vector<int> stageK(const Teuchos::ParameterList& cfg, const ReducedBasis& basis) {
-  return basisSizes(pipelineK(cfg), basis);
-}
 
 ModelRun evaluateRun(const EvaluationSettings& settings, const FomResult& fom, const HamiltonianSystem& system,
                      const MultiVector& A, DenseHamiltonian& model, const RunSpec& spec) {

@@ -42,83 +42,19 @@ JsonObject machineInfo(const RCP<const Comm>& comm) {
 namespace {
 
 
-// A validated ParameterList as JSON: sublists nested, arrays of numbers as arrays, others by value.
-JsonObject configJson(const Teuchos::ParameterList& pl) {
-  JsonObject j;
-  for (auto it = pl.begin(); it != pl.end(); ++it) {
-    const std::string& key = pl.name(it);
-    if (pl.isSublist(key)) j.set(key, configJson(pl.sublist(key)));
-    else if (pl.isType<bool>(key)) j.set(key, pl.get<bool>(key));
-    else if (pl.isType<int>(key)) j.set(key, static_cast<long>(pl.get<int>(key)));
-    else if (pl.isType<double>(key)) j.set(key, pl.get<double>(key));
-    else if (pl.isType<std::string>(key)) j.set(key, pl.get<std::string>(key));
-    else if (pl.isType<Teuchos::Array<int>>(key)) {
-      const auto& a = pl.get<Teuchos::Array<int>>(key);
-      j.set(key, std::vector<double>(a.begin(), a.end()));
-    } else if (pl.isType<Teuchos::Array<double>>(key)) {
-      const auto& a = pl.get<Teuchos::Array<double>>(key);
-      j.set(key, std::vector<double>(a.begin(), a.end()));
-    } else if (pl.isType<Teuchos::Array<std::string>>(key)) {
-      std::string joined;  // the writer has no array of strings: comma-separated
-      for (const auto& x : pl.get<Teuchos::Array<std::string>>(key)) joined += (joined.empty() ? "" : ",") + x;
-      j.set(key, joined);
-    } else {
-      std::ostringstream os;
-      os << pl.entry(it).getAny(false);
-      j.set(key, os.str());
-    }
-  }
-  return j;
-}
-
-// The config as run, re-readable by gphr: Teuchos' YAML reader refuses the empty arrays its writer
-// emits, and an empty array is every such key's default, so they are left out.
-std::string configYaml(const Teuchos::ParameterList& cfg) {
-  std::function<void(Teuchos::ParameterList&)> prune = [&](Teuchos::ParameterList& pl) {
-    std::vector<std::string> empty;
-    for (auto it = pl.begin(); it != pl.end(); ++it) {
-      const std::string& key = pl.name(it);
-      if (pl.isSublist(key)) prune(pl.sublist(key));
-      else if ((pl.isType<Teuchos::Array<int>>(key) && pl.get<Teuchos::Array<int>>(key).empty()) ||
-               (pl.isType<Teuchos::Array<double>>(key) && pl.get<Teuchos::Array<double>>(key).empty()) ||
-               (pl.isType<Teuchos::Array<std::string>>(key) && pl.get<Teuchos::Array<std::string>>(key).empty()))
-        empty.push_back(key);
-    }
-    for (const auto& key : empty) pl.remove(key);
-  };
-  Teuchos::ParameterList copy(cfg);
-  copy.setName("gphr");
-  prune(copy);
-  return toYaml(copy);
-}
-
-JsonObject provenance(const Teuchos::ParameterList& cfg) {
-  const auto& integ = cfg.sublist("integrator");
-  const auto& ls = integ.sublist("linearSolver");
-  JsonObject solvers, build;
-  solvers.set("newton", integ.get<std::string>("newtonSolver"))
-      .set("linear", ls.get<std::string>("method") + " + " + ls.get<std::string>("preconditioner"))
-      .set("deim_indices", cfg.sublist("hyper").get<std::string>("indices"))
-      .set("deim_svd", cfg.sublist("hyper").get<std::string>("svd"));
-  build.set("gphr_version", gphrVersion()).set("build_type", gphrBuildType()).set("cxx_flags", gphrCxxFlags());
-  JsonObject p;
-  p.set("solvers", solvers).set("build", build).set("config", configJson(cfg));
-  return p;
-}
-
 JsonObject parametersJson(const Scene& scene, const std::vector<double>& mu) {
   JsonObject p;
   for (size_t i = 0; i < mu.size(); ++i) p.set(scene.parameterBox().names[i], mu[i]);
   return p;
 }
 
-void writeArtifacts(const RunContext& ctx, const FomResult& fom, const RomStages* rom, const FieldOutput* fields,
+void writeArtifacts(const RunContext& ctx, const RunOptions& opt, const FomResult& fom, const RomStages* rom, const FieldOutput* fields,
                     Hdf5File& f) {
   PhaseSpace ps(fom.trajectory->getGlobalLength() / 2, ctx.comm);
-  f.setAttribute("/", "scene", ctx.scene->name());
-  f.setAttribute("/", "integrator", ctx.config.sublist("integrator").get<std::string>("scheme"));
-  f.setAttribute("/", "parameters", ctx.mu);
-  f.setAttribute("/", "config", toYaml(ctx.config));
+  f.setAttribute("/", "scene", opt.scene->name());
+  f.setAttribute("/", "integrator", opt.scheme);
+  f.setAttribute("/", "parameters", opt.mu);
+  f.setAttribute("/", "config", opt.record.fullYaml);
   for (const char* g : {"/fom", "/rom", "/runs"}) f.remove(g);
   f.createGroup("/fom");
   f.writeStates("/fom/trajectory", *fom.trajectory, ps);
@@ -218,17 +154,17 @@ const ModelRun* firstRomRun(const RomStages* rom) {
   return nullptr;
 }
 
-JsonObject summaryOf(const RunContext& ctx, const FomResult& fom, const RomStages* rom) {
+JsonObject summaryOf(const RunContext& ctx, const RunOptions& opt, const FomResult& fom, const RomStages* rom) {
   std::vector<JsonObject> runs{fom.json()};
   if (rom)
     for (const auto& r : rom->runs) runs.push_back(r.json());
   JsonObject summary;
-  summary.set("scene", ctx.scene->name())
-      .set("integrator", ctx.config.sublist("integrator").get<std::string>("scheme"))
-      .set("parameters", parametersJson(*ctx.scene, ctx.mu))
+  summary.set("scene", opt.scene->name())
+      .set("integrator", opt.scheme)
+      .set("parameters", parametersJson(*opt.scene, opt.mu))
       .set("machine", machineInfo(ctx.comm))
       .set("gphr_version", gphrVersion())
-      .set("provenance", provenance(ctx.config))
+      .set("provenance", opt.record.provenance)
       .set("runs", runs);
   return summary;
 }
@@ -264,18 +200,17 @@ struct ReportWritten {
 
 // Rank 0's part: the histories, the speed-accuracy report, the plots, summary.json, config.yaml
 // and the field outputs, all under their temporary names.
-ReportWritten writeOnRoot(const RunContext& ctx, const FomResult& fom, const RomStages* rom, ReportFiles& files,
+ReportWritten writeOnRoot(const RunContext& ctx, const RunOptions& opt, const FomResult& fom, const RomStages* rom, ReportFiles& files,
                           const std::string& summary, const FieldOutput& fields, const FieldPicture& picture,
                           bool xdmf) {
   ReportWritten w;
-  const auto& out = ctx.config.sublist("output");
-  const bool plots = out.get<bool>("plots");
-  const double dt = ctx.config.sublist("time").get<double>("dt"), H0 = fom.hamiltonian.front();
-  const long saveEvery = out.get<int>("saveEvery");
+  const bool plots = opt.output.plots;
+  const double dt = opt.evaluation.time.dt, H0 = fom.hamiltonian.front();
+  const long saveEvery = opt.output.saveEvery;
   const ModelRun* firstRom = firstRomRun(rom);
   writeHistoryCsv(fom.hamiltonian, H0, nullptr, saveEvery, dt, files.csv.tempPath());
   if (firstRom) writeHistoryCsv(firstRom->hamiltonian, H0, &firstRom->errors, saveEvery, dt, files.romCsv.tempPath());
-  if (rom) w.hyperFiles = writeHyperReport(ctx, fom, *rom, files.hyperPaths, plots);
+  if (rom) w.hyperFiles = writeHyperReport(ctx, opt, fom, *rom, files.hyperPaths, plots);
   const bool deimSv = std::find(w.hyperFiles.begin(), w.hyperFiles.end(), "deim_singular_values.csv") != w.hyperFiles.end();
   if (rom)
     writeSingularValues(rom->basis.singularValues, files.svCsv.tempPath(), files.svPng.tempPath(), plots,
@@ -285,7 +220,7 @@ ReportWritten writeOnRoot(const RunContext& ctx, const FomResult& fom, const Rom
                                          files.png.tempPath(), why);
   if (!w.plotted && !why.empty()) std::fprintf(stderr, "[gphr] no plots: %s\n", why.c_str());
   writeTextFile(files.json.tempPath(), summary + "\n");
-  writeTextFile(files.configFile.tempPath(), configYaml(ctx.config));
+  writeTextFile(files.configFile.tempPath(), opt.record.yaml);
   for (const auto& note : fields.notes) std::fprintf(stderr, "[gphr] %s\n", note.c_str());
   if (xdmf) writeTextFile(files.xdmf.tempPath(), fieldsXdmf(fom, fields));
   if (!picture.note.empty()) std::fprintf(stderr, "[gphr] %s\n", picture.note.c_str());
@@ -328,27 +263,27 @@ void commitReport(const RunContext& ctx, const RomStages* rom, ReportFiles& file
 
 }  // namespace
 
-std::string writeReport(const RunContext& ctx, const FomResult& fom, const RomStages* rom) {
+std::string writeReport(const RunContext& ctx, const RunOptions& opt, const FomResult& fom, const RomStages* rom) {
   ReportFiles files(ctx);
   // artifacts.h5: written in place when it already holds the training cache, else written to a
   // temporary name and renamed.
   const bool inPlace = std::filesystem::exists(ctx.artifactsPath());
-  const FieldOutput fields = fieldOutputOf(ctx, fom, rom);
-  const bool xdmf = ctx.config.sublist("output").get<bool>("xdmf") && fields.grid;
+  const FieldOutput fields = fieldOutputOf(opt, fom, rom);
+  const bool xdmf = opt.output.xdmf && fields.grid;
   ctx.comm->barrier();
   RenameOnCommit h5(ctx.artifactsPath(), ctx.comm);
   {
     Hdf5File f(inPlace ? ctx.artifactsPath() : h5.tempPath(), ctx.comm,
                inPlace ? Hdf5File::Mode::ReadWrite : Hdf5File::Mode::Create);
-    writeArtifacts(ctx, fom, rom, xdmf ? &fields : nullptr, f);
+    writeArtifacts(ctx, opt, fom, rom, xdmf ? &fields : nullptr, f);
   }
-  const std::string summary = summaryOf(ctx, fom, rom).str();
-  const FieldPicture picture = ctx.config.sublist("output").get<bool>("plots") ? fieldPicture(ctx.config, fom, fields)
+  const std::string summary = summaryOf(ctx, opt, fom, rom).str();
+  const FieldPicture picture = opt.output.plots ? fieldPicture(opt.output.fieldTimes, fom, fields)
                                                                                : FieldPicture{};
   ReportWritten written;
   // rank 0 writes the report; its failure (a full disk, say) ends every rank
   onRootAgreed(ctx.comm, "gphr run: the report",
-               [&] { written = writeOnRoot(ctx, fom, rom, files, summary, fields, picture, xdmf); });
+               [&] { written = writeOnRoot(ctx, opt, fom, rom, files, summary, fields, picture, xdmf); });
   if (!inPlace) h5.commit();
   commitReport(ctx, rom, files, written, picture, xdmf);
   return summary;

@@ -6,19 +6,19 @@
 
 namespace gphr {
 
-void runRom(const RunContext& ctx, const FomResult& fom, RomStages& st) {
-  auto inst = ctx.scene->instantiate(ctx.comm, ctx.mu, true);
-  for (int k : stageK(ctx.config, st.basis)) {
-    auto A = leadingBasis(st.basis, k);
+void runRom(const RunOptions& opt, const FomResult& fom, RomStages& st) {
+  const SceneInstance& inst = st.offline->instance();
+  for (int k : st.offline->sizes()) {
+    auto A = leadingBasis(st.basis, k);  // a copy: the ROM owns its basis
     GalerkinRom rom(inst.system, A);
-    ModelRun run = evaluateRun(evaluationSettingsFrom(ctx.config), fom, *inst.system, *A, rom, {method::kRom, k, 0, {}});
+    ModelRun run = evaluateRun(opt.evaluation, fom, *inst.system, *A, rom, {method::kRom, k, 0, {}});
     run.metrics.set(Metric::Basis, st.basis.method)
         .set(Metric::EnergyCaptured, st.basis.energyCaptured)
         .set(Metric::TrainingParameters, static_cast<long>(st.training.parameters.size()))
         .set(Metric::TrainingReused, st.training.reused)
         .set(Metric::BasisCached, st.basisCached)
         .set(Metric::TOfflineS, st.training.seconds + st.basisSeconds);
-    setBasisKeys(ctx, st, run.metrics);
+    setBasisKeys(opt, st, run.metrics);
     st.runs.push_back(std::move(run));
   }
 }

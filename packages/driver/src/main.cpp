@@ -129,26 +129,24 @@ int runMain(const Args& args, const gphr::RCP<const gphr::Comm>& comm) {
   using namespace gphr;
   const bool root = comm->getRank() == 0;
   if (!args.config.empty()) requireOutputsApart({{args.config, "the config file"}}, {{args.output, "--output"}});
+  const RunOptions opt = runOptionsFrom(args.config.empty() ? defaultConfig() : loadConfig(args.config));
   RunContext ctx;
-  ctx.config = args.config.empty() ? defaultConfig() : loadConfig(args.config);
-  ctx.scene = makeScene(ctx.config.sublist("scene"));
-  ctx.mu = sceneParameters(*ctx.scene, ctx.config.sublist("parameters"));
   ctx.comm = comm;
   ctx.outputDir = args.output;
   makeDirectory(ctx.outputDir, comm);
   const OutputLock lock(ctx.outputDir, "run", comm);  // before an earlier run's files are touched
   prepareOutputDir(ctx, true);
   if (root)
-    std::fprintf(stderr, "[gphr] scene %s, %d rank(s), output in %s\n", ctx.scene->name().c_str(),
+    std::fprintf(stderr, "[gphr] scene %s, %d rank(s), output in %s\n", opt.scene->name().c_str(),
                  comm->getSize(), ctx.outputDir.c_str());
   std::unique_ptr<RomStages> rom;
-  const auto methods = pipelineMethods(ctx.config);
-  if (!methods.empty()) rom = std::make_unique<RomStages>(runOfflineStages(ctx));
-  const FomResult fom = runFom(evaluationSettingsFrom(ctx.config), *ctx.scene, ctx.mu, comm, fieldStateModels(ctx.config));
-  if (rom && std::find(methods.begin(), methods.end(), method::kRom) != methods.end()) runRom(ctx, fom, *rom);
-  if (rom) runHyperReduction(ctx, fom, *rom);
-  writeReport(ctx, fom, rom.get());
-  if (root) std::cout << runTable(ctx, fom, rom.get());
+  const auto& methods = opt.pipeline.methods;
+  if (!methods.empty()) rom = std::make_unique<RomStages>(runOfflineStages(ctx, opt));
+  const FomResult fom = runFom(opt.evaluation, *opt.scene, opt.mu, comm, opt.output.fieldStateModels());
+  if (rom && std::find(methods.begin(), methods.end(), method::kRom) != methods.end()) runRom(opt, fom, *rom);
+  if (rom) runHyperReduction(opt, fom, *rom);
+  writeReport(ctx, opt, fom, rom.get());
+  if (root) std::cout << runTable(ctx, opt, fom, rom.get());
   if (args.verbosity == Args::Verbose) Teuchos::TimeMonitor::summarize(comm.ptr(), std::cout);
   return 0;
 }

@@ -85,11 +85,11 @@ TEST(FieldModels, ASceneWithoutAGridIsToldSo) {
 TEST(FieldPictures, LargeAndThreeDimensionalGridsAreNotDrawn) {
   FieldOutput out;
   out.grid = SceneGrid{{513, 512}, {0.0, 0.0}, {1.0, 1.0}, {"h", "p"}, false};
-  const FieldPicture big = fieldPicture(Teuchos::ParameterList(), FomResult(), out);
+  const FieldPicture big = fieldPicture({}, FomResult(), out);
   EXPECT_TRUE(big.file.empty());
   EXPECT_NE(big.note.find("a grid of 262656 points is more than the 262144 drawn"), std::string::npos) << big.note;
   out.grid = SceneGrid{{4, 4, 4}, {0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, {"h", "p"}, false};
-  const FieldPicture cube = fieldPicture(Teuchos::ParameterList(), FomResult(), out);
+  const FieldPicture cube = fieldPicture({}, FomResult(), out);
   EXPECT_TRUE(cube.file.empty());
   EXPECT_NE(cube.note.find("1-D and 2-D grids"), std::string::npos) << cube.note;
 }

@@ -8,6 +8,7 @@
 #include <limits>
 #include <random>
 
+#include "gphr/core/CacheKey.hpp"
 #include "gphr/core/Error.hpp"
 #include "gphr/core/ParameterValidation.hpp"
 #include "gphr/hyper/JacobianSnapshots.hpp"
@@ -406,6 +407,21 @@ Teuchos::ParameterList deimBasisValidParameters() {
                      "grad N(y0) back), projected = grad N(y0 + A A^T (y - y0)) at the training states projected on "
                      "the reduced basis, unshifted");
   return hyp;
+}
+
+std::string deimBasisCacheKey(const DeimBasisOptions& o) {
+  return CacheKey("deim basis", 3)
+      .add("maxRank", deimMaxRank(o, std::numeric_limits<GO>::max()))
+      .add("snapshotEvery", o.snapshotEvery)
+      .add("blockSnapshots", o.blockSnapshots)
+      .add("chunkSnapshots", o.chunkSnapshots)
+      .add("svd", o.svd)
+      .add("podRoute", o.podRoute)
+      .add("oversampling", o.oversampling)
+      .add("powerIterations", o.powerIterations)
+      .add("gramProjection", o.gramProjection)
+      .add("seed", o.seed)
+      .str();
 }
 
 DeimBasisOptions deimBasisOptionsFrom(const Teuchos::ParameterList& hyp, int largestM) {

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 
+#include "gphr/core/CacheKey.hpp"
 #include "gphr/core/Error.hpp"
 #include "gphr/core/ParameterValidation.hpp"
 #include "gphr/core/IndexHash.hpp"
@@ -397,6 +398,17 @@ Teuchos::ParameterList quadratureValidParameters() {
                      "never moves in training would get an unbounded weight; doc/eqp.md measures 1e-6 against 1e-3)");
   setIntParameter(eq, "seed", 20261124, 0, 2147483647, "sketchRows > 0: the sketch's hash seed");
   return eq;
+}
+
+std::string quadratureCacheKey(const QuadratureOptions& o, double tolerance) {
+  return CacheKey("term-weight fits", 1)
+      .add("tolerance", tolerance)
+      .add("snapshotEvery", o.snapshotEvery)
+      .add("energyWeight", o.energyWeight)
+      .add("sketchRows", o.sketchRows)
+      .add("columnFloor", o.columnFloor)
+      .add("seed", o.seed)
+      .str();
 }
 
 QuadratureOptions quadratureOptionsFrom(const Teuchos::ParameterList& eq) {

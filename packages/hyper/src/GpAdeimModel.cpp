@@ -56,7 +56,7 @@ Teuchos::ParameterList adeimValidParameters() {
   return pl;
 }
 
-AdeimOptions adeimOptionsFrom(Teuchos::ParameterList pl, int m) {
+AdeimOptions adeimOptionsFrom(Teuchos::ParameterList pl) {
   validateParameters(pl, adeimValidParameters(), "adeim");
   AdeimOptions o;
   o.initialWindow = pl.get<int>("initialWindow");
@@ -68,7 +68,7 @@ AdeimOptions adeimOptionsFrom(Teuchos::ParameterList pl, int m) {
   o.update.coefficientTol = pl.get<double>("coefficientTol");
   o.numSamples = pl.get<int>("numSamples");
   o.sampleTol = pl.get<double>("sampleTol");
-  o.maxSamples = pl.get<int>("maxSamples") > 0 ? pl.get<int>("maxSamples") : 4 * m;
+  o.maxSamples = pl.get<int>("maxSamples");
   o.sampling = pl.get<std::string>("sampling");
   o.indices = pl.get<std::string>("indices");
   o.pointUpdates = pl.get<int>("pointUpdates");
@@ -80,14 +80,32 @@ AdeimOptions adeimOptionsFrom(Teuchos::ParameterList pl, int m) {
                o.initialWindow, " (the window of the first update lies in the first delta0 steps)");
   GPHR_REQUIRE(o.resampleEvery % o.updateEvery == 0, InputError, "adeim.resampleEvery = ", o.resampleEvery,
                " must be a multiple of adeim.updateEvery = ", o.updateEvery, " (sampling rows change at updates)");
+  GPHR_REQUIRE(o.sampling != "random" || o.numSamples > 0, InputError,
+               "adeim.sampling = random needs adeim.numSamples > 0 (sampleTol ranks rows by their residual)");
+  return o;
+}
+
+AdeimOptions adeimOptionsFor(AdeimOptions o, int m) {
+  if (o.maxSamples == 0) o.maxSamples = 4 * m;
   GPHR_REQUIRE(o.numSamples == 0 || o.numSamples >= m, InputError, "adeim.numSamples = ", o.numSamples,
                " must be at least m = ", m, " (or 0 to choose it by sampleTol)");
   GPHR_REQUIRE(o.maxSamples >= m, InputError, "adeim.maxSamples = ", o.maxSamples, " must be at least m = ", m);
-  GPHR_REQUIRE(o.sampling != "random" || o.numSamples > 0, InputError,
-               "adeim.sampling = random needs adeim.numSamples > 0 (sampleTol ranks rows by their residual)");
   GPHR_REQUIRE(o.update.rank <= m, InputError, "adeim.updateRank = ", o.update.rank, " exceeds m = ", m);
   GPHR_REQUIRE(o.pointUpdates <= m, InputError, "adeim.pointUpdates = ", o.pointUpdates, " exceeds m = ", m);
   return o;
+}
+
+AdeimOptions adeimOptionsFrom(Teuchos::ParameterList pl, int m) { return adeimOptionsFor(adeimOptionsFrom(pl), m); }
+
+Teuchos::ParameterList adeimParameters(const AdeimOptions& o) {
+  Teuchos::ParameterList pl("adeim");
+  pl.set("initialWindow", o.initialWindow).set("updateEvery", o.updateEvery).set("window", o.window);
+  pl.set("resampleEvery", o.resampleEvery).set("updateRank", o.update.rank).set("rankTol", o.update.rankTol);
+  pl.set("coefficientTol", o.update.coefficientTol).set("numSamples", o.numSamples).set("sampleTol", o.sampleTol);
+  pl.set("maxSamples", o.maxSamples).set("sampling", o.sampling).set("indices", o.indices);
+  pl.set("pointUpdates", o.pointUpdates).set("initialBasis", o.initialBasis).set("orthonormalize", o.orthonormalize);
+  pl.set("monitorResidual", o.monitorResidual).set("seed", static_cast<int>(o.seed));
+  return pl;
 }
 
 namespace {

@@ -12,6 +12,7 @@
 
 #include "AdeimTestUtils.hpp"
 #include "gphr/core/Error.hpp"
+#include "gphr/core/Provenance.hpp"
 #include "gphr/core/ReplicatedGather.hpp"
 #include "gphr/hyper/AdeimSampling.hpp"
 #include "gphr/hyper/SampleMesh.hpp"
@@ -386,6 +387,11 @@ TEST(GpAdeimParts, OptionsAreRead) {
   EXPECT_NE(d.update.rankTol, o.update.rankTol);
   EXPECT_NE(d.seed, o.seed);
   EXPECT_TRUE(d.orthonormalize && d.monitorResidual);
+  // A model file stores the options as adeimParameters writes them: they read back the same,
+  // every key (the non-default values above make a key left out of the writer fail here).
+  const AdeimOptions back = adeimOptionsFrom(adeimParameters(adeimOptionsFrom(pl)), 10);
+  EXPECT_EQ(toYaml(adeimParameters(back)), toYaml(adeimParameters(o)));
+  EXPECT_EQ(adeimParameters(o).numParams(), adeimValidParameters().numParams());
 }
 
 // Random rows: distinct, outside the excluded rows, in range, the same for the same (seed,

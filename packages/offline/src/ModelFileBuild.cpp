@@ -9,8 +9,6 @@
 #include "gphr/core/Error.hpp"
 #include "gphr/core/Provenance.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
-#include "gphr/offline/DeimBasisStage.hpp"
-#include "gphr/offline/TermWeightFits.hpp"
 #include "gphr/core/Method.hpp"
 #include "gphr/reduction/Deim.hpp"
 
@@ -18,86 +16,55 @@ namespace gphr {
 
 namespace {
 
-// What the stages of one k share.
-struct BuildState {
-  const Scene& scene;
-  const RCP<const Comm>& comm;
-  const ModelBuildOptions& options;
-  const ArtifactsCache* cache;
-  const TrainingResult& training;
-  const SceneInstance& instance;
-  StageClocks& clocks;
-};
-
 std::string ofK(const char* stage, int k) { return std::string(stage) + " k=" + std::to_string(k); }
-
-int largest(const std::vector<int>& ms) { return ms.empty() ? 0 : *std::max_element(ms.begin(), ms.end()); }
 
 // Why gp-adeim cannot be stored with these options ("": it can).
 std::string whyNoAdeim(const ModelBuildOptions& o) {
   if (!o.withBasis) return "its queries need the basis (build.withBasis: true)";
-  if (o.adeim.isParameter("initialBasis") && o.adeim.get<std::string>("initialBasis") != "fom")
+  if (o.adeim.initialBasis != "fom")
     return "adeim.initialBasis 'training' needs the training DEIM basis online, which the file does not hold";
   return "";
 }
 
 // gp-adeim is stored as its options: its queries build the full system and sample its residual
 // online (alg:SP-ADEIM), from the basis in the file and the first delta0 full-model steps.
-void addAdeimModels(const BuildState& b, int k, std::vector<StoredHyperModel>& out) {
-  const auto& o = b.options;
+void addAdeimModels(const ModelBuildOptions& o, const RCP<const Comm>& comm, int k, std::vector<StoredHyperModel>& out) {
   const std::string why = whyNoAdeim(o);
   if (!why.empty()) {
-    if (b.comm->getRank() == 0) std::fprintf(stderr, "[gphr] build: gp-adeim not stored: %s\n", why.c_str());
+    if (comm->getRank() == 0) std::fprintf(stderr, "[gphr] build: gp-adeim not stored: %s\n", why.c_str());
     return;
   }
-  Teuchos::ParameterList section(o.adeim);
-  section.setName("adeim");
   for (int m : o.ms) {
     StoredHyperModel sm;
     sm.method = method::kGpAdeim, sm.k = k, sm.m = m;
-    adeimOptionsFrom(section, m);  // the constraints that involve m, checked now
-    sm.adeimConfig = toYaml(section);
+    adeimOptionsFor(o.adeim, m);  // the constraints that involve m, checked now
+    sm.adeimConfig = toYaml(adeimParameters(o.adeim));
     out.push_back(sm);
   }
 }
 
-// Timed from outside: the DEIM basis stage's internals are its own.
-RCP<const MultiVector> deimBasisOf(const BuildState& b, const MultiVector& A, int k) {
-  const StageClocks::Scope clock(b.clocks, ofK("deim basis", k));
-  DeimBasisOptions opt = b.options.deim;
-  if (opt.largestM == 0) opt.largestM = largest(b.options.ms);  // what maxRank 0 keeps room for (deimMaxRank)
-  return runDeimBasisStage(b.scene, b.comm, b.training, A, *b.instance.system, opt, b.cache, b.options.keys.deim).basis.U;
-}
-
 // The stored models of reduced size k: gp-deim from the DEIM basis, gp-adeim as its options,
 // gp-eqp / gp-eqp-refit from their fits (a budget the training cannot support is left out, with a note).
-std::vector<StoredHyperModel> modelsOfK(const BuildState& b, const MultiVector& A, int k) {
-  const auto& o = b.options;
+std::vector<StoredHyperModel> modelsOfK(OfflineSequence& seq, const ModelBuildOptions& o, int k) {
   std::vector<StoredHyperModel> out;
-  RCP<const MultiVector> U;  // the DEIM basis, computed on first need
-  auto deimBasis = [&] { return U.is_null() ? (U = deimBasisOf(b, A, k)) : U; };
-  std::unique_ptr<TermWeightFits> fits;  // both term-weight methods' fits share its training system
+  const auto A = seq.reducedBasis(k);
+  const SceneInstance& inst = seq.instance();
   for (const auto& method : o.methods) {
     const MethodInfo& info = methodInfo(method);
     if (info.adaptive()) {
-      addAdeimModels(b, k, out);
+      addAdeimModels(o, seq.comm(), k, out);
     } else if (info.fit == TermWeightFit::Deim) {
-      const auto& basis = *deimBasis();
-      const StageClocks::Scope clock(b.clocks, ofK("gp-deim", k));
-      auto deim = gpDeimModels(b.instance, A, k, basis, o.ms, o.file.indices);
+      const auto& basis = *seq.deimBasis(k).basis.U;
+      const StageClocks::Scope clock(seq.clocks(), ofK("gp-deim", k));
+      auto deim = gpDeimModels(inst, *A, k, basis, o.ms, o.file.indices);
       std::move(deim.begin(), deim.end(), std::back_inserter(out));
     } else {
       // A DEIM basis the fits ask for inside is a stage of its own (nested scopes exclude it).
-      const StageClocks::Scope clock(b.clocks, ofK("fits", k));
-      if (!fits)
-        fits = std::make_unique<TermWeightFits>(
-            b.scene, b.comm, b.training, A, o.eqp, o.eqpTolerance, o.ms,
-            [&](int m) { return selectDeimIndices(*deimBasis(), m, o.file.indices); }, b.cache, o.keys.nnls,
-            o.keys.refit);
+      const StageClocks::Scope clock(seq.clocks(), ofK("fits", k));
       std::map<int, std::string> skipped;
-      for (const auto& [m, fit] : fits->all(method, o.ms, skipped))
-        out.push_back(termModel(b.instance, A, method, k, m, fit.terms, fit.weights));
-      if (b.comm->getRank() == 0)
+      for (const auto& [m, fit] : seq.termWeightFits(k, o.file.indices).all(method, o.ms, skipped))
+        out.push_back(termModel(inst, *A, method, k, m, fit.terms, fit.weights));
+      if (seq.comm()->getRank() == 0)
         for (const auto& [m, why] : skipped)
           std::fprintf(stderr, "[gphr] build: %s k = %d, m = %d not stored: %s\n", method.c_str(), k, m, why.c_str());
     }
@@ -128,65 +95,44 @@ void checkModelBuildOptions(const Scene& scene, const ModelBuildOptions& o, GO f
   checkBasisSizeBeforeTraining(o.training, o.basis, std::max(o.basis.k, largestK), fullDim);  // before the training
 }
 
-namespace {
-
-std::vector<double> boxCentre(const ParameterBox& box) {
-  std::vector<double> c;
-  for (const auto& [lo, hi] : box.bounds) c.push_back(0.5 * (lo + hi));
-  return c;
-}
-
-}  // namespace
-
 ModelBuildResult buildReducedModelFile(const Scene& scene, const RCP<const Comm>& comm,
                                        const ModelBuildOptions& options, const std::string& path,
-                                       const ArtifactsCache* cache) {
+                                       const ArtifactsCache* cache, const OfflineSequence::StageHook& hook) {
   checkModelBuildOptions(scene, options);
   Teuchos::Time clock("build");
   clock.start();
+  OfflineSequence seq(scene, comm, options, options.parameter, cache);
+  seq.setStageHook(hook);
   ModelBuildResult r;
-  StageClocks clocks;
-  using Scope = StageClocks::Scope;
-  {
-    const Scope stage(clocks, "training");
-    r.training = runTraining(scene, comm, options.training, cache, options.keys.training);
-  }
-  const auto mu = options.parameter.empty() ? boxCentre(scene.parameterBox()) : options.parameter;
-  const auto inst = [&] {
-    const Scope stage(clocks, "instance");
-    return scene.instantiate(comm, mu, true);
-  }();
-  {
-    const Scope stage(clocks, "basis");
-    r.basis = runBasisStage(r.training, inst.system->space(), options.basis, scene.name(), cache, options.keys.basis);
-  }
+  r.training = seq.training();
+  const SceneInstance& inst = seq.instance();
+  r.basis = seq.basis();
   ReducedModelData& data = r.data;
   {
-    const Scope stage(clocks, "header");
+    const StageClocks::Scope stage(seq.clocks(), "header");
     data = modelFileHeader(scene, inst, options.file);
   }
   data.sceneConfig = options.sceneConfig;
   data.config = options.config;
   data.dt = options.training.dt;
   data.T = options.T > 0.0 ? options.T : options.training.dt * options.training.steps;
-  const BuildState state{scene, comm, options, cache, r.training, inst, clocks};
   std::vector<RCP<const MultiVector>> bases;
-  for (int k : basisSizes(options.ks.empty() ? std::vector<int>{0} : options.ks, r.basis.basis)) {
-    const auto A = leadingBasis(r.basis.basis, k);
-    auto models = modelsOfK(state, *A, k);
+  for (int k : seq.sizes()) {
+    auto models = modelsOfK(seq, options, k);
+    const auto A = seq.reducedBasis(k);
     {
-      const Scope stage(clocks, ofK("interpolation", k));
+      const StageClocks::Scope stage(seq.clocks(), ofK("interpolation", k));
       addReducedBasis(data, scene, inst, *A, k, std::move(models), options.file);
     }
-    bases.push_back(options.withBasis ? RCP<const MultiVector>(A) : Teuchos::null);
+    bases.push_back(options.withBasis ? A : Teuchos::null);
   }
   data.offlineSeconds = clock.totalElapsedTime(true);
   {
-    const Scope stage(clocks, "write");
+    const StageClocks::Scope stage(seq.clocks(), "write");
     writeReducedModelFile(path, comm, data, bases, &inst.system->space());
   }
   r.seconds = clock.stop();
-  r.stages = clocks.stages();
+  r.stages = seq.clocks().stages();
   return r;
 }
 

@@ -8,7 +8,9 @@
 #include <sstream>
 
 #include "gphr/core/ColumnFingerprint.hpp"
+#include "gphr/core/CacheKey.hpp"
 #include "gphr/core/Error.hpp"
+#include "gphr/core/Provenance.hpp"
 #include "gphr/core/ParameterValidation.hpp"
 #include "gphr/core/RankGroups.hpp"
 #include "gphr/online/TimeLoop.hpp"
@@ -62,6 +64,20 @@ TrainingOptions trainingOptionsFrom(const Teuchos::ParameterList& tr, const Para
   o.snapshotEvery = tr.get<int>("snapshotEvery");
   if (tr.isParameter("groupSize")) o.groupSize = tr.get<int>("groupSize");
   return o;
+}
+
+std::string trainingCacheKey(const std::string& sceneConfig, const TrainingOptions& o) {
+  std::vector<double> flat;
+  for (const auto& mu : o.parameters) flat.insert(flat.end(), mu.begin(), mu.end());
+  return CacheKey("training", 1)
+      .add("scene", sceneConfig)
+      .add("parameters", flat)
+      .add("parameterCount", static_cast<long>(o.parameters.size()))
+      .add("dt", o.dt)
+      .add("steps", o.steps)
+      .add("snapshotEvery", o.snapshotEvery)
+      .add("integrator", toYaml(o.integrator))
+      .str();
 }
 
 Teuchos::ParameterList trainingValidParameters(size_t parameters) {

@@ -20,6 +20,7 @@
 #include "gphr/hyper/DeimBasis.hpp"
 #include "gphr/offline/DeimBasisStage.hpp"
 #include "gphr/offline/ModelFileBuild.hpp"
+#include "gphr/offline/OfflineSequence.hpp"
 #include "gphr/offline/PodCheckpoint.hpp"
 #include "gphr/reduction/SymplecticBasis.hpp"
 #include "gphr/online/ReducedModel.hpp"
@@ -618,6 +619,90 @@ TEST(Training, HoldsOneBlockOfStatesHoweverLongTheTrajectory) {
   std::printf("peak heap growth of the training: %.0f B (400 steps), %.0f B (1600 steps)\n", growth[0], growth[1]);
   EXPECT_LE(growth[1], 1.2 * growth[0]) << "peak heap growth " << growth[0] << " B (400 steps), " << growth[1]
                                         << " B (1600 steps)";
+}
+
+// Each stage's cache key holds what changes its results and follows the keys of the stages it
+// depends on: a changed option changes its stage's key and those after it, nothing before; the
+// group sizes and progress (who computes what, what is printed) change none.
+TEST(OfflineSequence, EachStageKeysWhatChangesItsResults) {
+  const Nls1d scene(32);
+  OfflineOptions o;
+  o.training = smallTraining();
+  o.basis.k = 4;
+  o.ms = {6};
+  o.sceneConfig = "scene:\n  name: nls1d\n  n: 32\n";
+  const OfflineKeys base = offlineKeys(scene, o);
+  // which of training, basis, deim, nnls changed
+  auto changed = [&](const OfflineOptions& x) {
+    const OfflineKeys k = offlineKeys(scene, x);
+    return std::vector<bool>{k.training != base.training, k.basis != base.basis, k.deim != base.deim, k.nnls != base.nnls};
+  };
+  using V = std::vector<bool>;
+  OfflineOptions x = o;
+  x.training.groupSize = 2, x.training.progress = true, x.deim.groupSize = 3;
+  EXPECT_EQ(changed(x), (V{false, false, false, false}));
+  x = o, x.training.dt = 0.02;
+  EXPECT_EQ(changed(x), (V{true, true, true, true}));
+  x = o, x.training.parameters.back() = {1.2};
+  EXPECT_EQ(changed(x), (V{true, true, true, true}));
+  x = o, x.sceneConfig = "scene:\n  name: nls1d\n  n: 64\n";
+  EXPECT_EQ(changed(x), (V{true, true, true, true}));
+  x = o, x.training.integrator.set("scheme", "imr");
+  EXPECT_EQ(changed(x), (V{true, true, true, true}));
+  x = o, x.basis.blockColumns = 64;
+  EXPECT_EQ(changed(x), (V{false, true, true, true}));
+  x = o, x.basis.podRoute = "tree";  // auto stays out of the key; another route is another basis
+  EXPECT_EQ(changed(x), (V{false, true, true, true}));
+  x = o, x.deim.svd = "randomized";
+  EXPECT_EQ(changed(x), (V{false, false, true, false}));
+  x = o, x.ms = {12};  // maxRank 0 keeps 12 + 32 triplets instead of 6 + 32
+  EXPECT_EQ(changed(x), (V{false, false, true, false}));
+  x = o, x.deim.maxRank = 50;
+  const std::string fixed = offlineKeys(scene, x).deim;
+  x.ms = {12};  // with maxRank given, the largest m no longer matters
+  EXPECT_EQ(offlineKeys(scene, x).deim, fixed);
+  x = o, x.eqp.seed = 7;
+  EXPECT_EQ(changed(x), (V{false, false, false, true}));
+  x = o, x.eqpTolerance = 1e-4;
+  EXPECT_EQ(changed(x), (V{false, false, false, true}));
+}
+
+// The stages run in their one order whatever is asked first, each once; a second sequence on the
+// same artifacts file takes them from it, bit for bit.
+TEST(OfflineSequence, StagesInOrderOnceThenFromTheCache) {
+  auto comm = Tpetra::getDefaultComm();
+  TempDir dir;
+  const Nls1d scene(32);
+  OfflineOptions o;
+  o.training = smallTraining();
+  o.basis.k = 4;
+  o.ms = {6};
+  const ArtifactsCache cache(dir.file("a.h5"), comm, "nls1d", 64);
+  auto run = [&](std::vector<OfflineStageEnd>& ends) {
+    OfflineSequence seq(scene, comm, o, {1.0}, &cache);
+    seq.setStageHook([&](const OfflineStageEnd& e) { ends.push_back(e); });
+    auto U = rcp(new MultiVector(*seq.deimBasis(4).basis.U, Teuchos::Copy));  // asks for the stages before it
+    seq.deimBasis(4);                                                          // held: no stage
+    EXPECT_EQ(seq.sizes(), std::vector<int>{4});
+    std::vector<std::string> clocks;
+    for (const auto& s : seq.clocks().stages()) clocks.push_back(s.name);
+    EXPECT_EQ(clocks, (std::vector<std::string>{"training", "instance", "basis", "deim basis k=4"}));
+    return U;
+  };
+  std::vector<OfflineStageEnd> first, second;
+  const auto U1 = run(first), U2 = run(second);
+  ASSERT_EQ(first.size(), 4u);
+  ASSERT_EQ(second.size(), 4u);
+  for (size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(first[i].name, second[i].name);
+    EXPECT_FALSE(first[i].cached) << first[i].name;
+    EXPECT_EQ(second[i].cached, first[i].name != "instance") << second[i].name;
+  }
+  ASSERT_EQ(U1->getNumVectors(), U2->getNumVectors());
+  for (size_t j = 0; j < U1->getNumVectors(); ++j) {
+    const auto a = U1->getData(j), b = U2->getData(j);
+    for (Teuchos::ArrayRCP<const double>::size_type i = 0; i < a.size(); ++i) ASSERT_EQ(a[i], b[i]);
+  }
 }
 
 TEST(ModelFileBuild, TheFileTheOnlineLibraryLoads) {

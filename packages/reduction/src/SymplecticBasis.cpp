@@ -5,6 +5,7 @@
 #include <cmath>
 #include <complex>
 
+#include "gphr/core/CacheKey.hpp"
 #include "gphr/core/Error.hpp"
 #include "gphr/core/ParameterValidation.hpp"
 #include "gphr/reduction/StreamingPod.hpp"
@@ -251,6 +252,14 @@ Teuchos::ParameterList basisValidParameters() {
                      "a rank's rows grows with log2 of the ranks, not with the ranks), replicated (each step's matrix "
                      "gathered on every rank, one LAPACK SVD: any rank count, no parallel speed-up)");
   return red;
+}
+
+std::string basisCacheKey(const BasisOptions& o) {
+  CacheKey key("basis", 1);
+  key.add("method", o.method).add("k", o.k).add("energyTolerance", o.energyTolerance);
+  key.add("blockColumns", o.blockColumns).add("maxRank", o.maxRank);
+  if (o.podRoute != "auto") key.add("podRoute", o.podRoute);
+  return key.str();
 }
 
 BasisOptions basisOptionsFrom(const Teuchos::ParameterList& red, int k) {

@@ -11,6 +11,6 @@
 namespace gphr {
 
 /// The default stdout of `gphr run`: the table of runs (the file's description) and where the report is.
-std::string runTable(const RunContext& ctx, const FomResult& fom, const RomStages* rom);
+std::string runTable(const RunContext& ctx, const RunOptions& options, const FomResult& fom, const RomStages* rom);
 
 }  // namespace gphr

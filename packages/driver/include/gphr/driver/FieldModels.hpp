@@ -3,7 +3,6 @@
 /// Which evaluated models the field outputs of `gphr run` show beside the full model
 /// (output.fieldModels), their lifted states while the runs are evaluated, and at which times
 /// fields.png shows them (output.fieldTimes).
-#include <Teuchos_ParameterList.hpp>
 #include <memory>
 #include <string>
 #include <vector>
@@ -12,10 +11,6 @@
 
 namespace gphr {
 
-/// output.fieldModels, checked: each entry a method of the registry or `best`.
-std::vector<std::string> fieldModelNames(const Teuchos::ParameterList& cfg);
-/// output.fieldTimes, checked against [0, time.T]; empty: the start, the middle and the end.
-std::vector<double> fieldTimes(const Teuchos::ParameterList& cfg);
 /// Whether a run of `method` can be picked by one of `names` (`best`: every method but rom).
 bool keepsFieldStates(const std::vector<std::string>& names, const std::string& method);
 

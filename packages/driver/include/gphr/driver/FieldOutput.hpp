@@ -31,7 +31,7 @@ struct FieldOutput {
 };
 
 /// The field output of a finished run: empty unless output.plots or output.xdmf asks for fields.
-FieldOutput fieldOutputOf(const RunContext& ctx, const FomResult& fom, const RomStages* rom);
+FieldOutput fieldOutputOf(const RunOptions& options, const FomResult& fom, const RomStages* rom);
 
 /// Collective: each picked run's states as /runs/i/states and their difference to the full model
 /// as /runs/i/difference, (saved steps, 2n) like /fom/trajectory, one run at a time.

@@ -44,8 +44,8 @@ struct FieldPicture {
   bool modulus = false;      ///< the values are |field| and the differences |field - field_fom|
 };
 
-/// Collective: the picture's panels, gathered onto rank 0 (the other ranks get the layout only).
-FieldPicture fieldPicture(const Teuchos::ParameterList& cfg, const FomResult& fom, const FieldOutput& out);
+/// Collective: the picture's panels (a 2-D grid's columns at the saved states nearest `fieldTimes`, output.fieldTimes), gathered onto rank 0 (the other ranks get the layout only).
+FieldPicture fieldPicture(const std::vector<double>& fieldTimes, const FomResult& fom, const FieldOutput& out);
 
 /// Rank 0: draws the picture into `png` with gnuplot; false when gnuplot fails.
 bool drawFieldPicture(const FieldPicture& picture, const std::string& png);

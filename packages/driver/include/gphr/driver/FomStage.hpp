@@ -3,7 +3,6 @@
 /// The full-order-model stage of `gphr run` and `gphr validate`: the evaluation library's
 /// reference (FullModelReference) with what summary.json reports of it and, where the run shows
 /// fields, the collector of the reduced runs' field states.
-#include <Teuchos_ParameterList.hpp>
 #include <memory>
 #include <string>
 #include <vector>
@@ -26,10 +25,6 @@ struct FomResult : FullModelReference {
   JsonObject json() const;  ///< its "runs" entry of summary.json
 };
 
-/// The evaluation settings of a validated `gphr run` configuration.
-EvaluationSettings evaluationSettingsFrom(const Teuchos::ParameterList& cfg);
-/// output.fieldModels where the run draws or writes fields (output.plots or output.xdmf), else none.
-std::vector<std::string> fieldStateModels(const Teuchos::ParameterList& cfg);
 
 /// A reference of the library as the run's result; fieldModels: the names whose field states it
 /// collects (none: no collector).

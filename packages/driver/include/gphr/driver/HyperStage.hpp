@@ -10,6 +10,6 @@
 namespace gphr {
 
 /// The hyper-reduced models of pipeline.methods for every k and m; appended to stages.runs.
-void runHyperReduction(const RunContext& ctx, const FomResult& fom, RomStages& stages);
+void runHyperReduction(const RunOptions& options, const FomResult& fom, RomStages& stages);
 
 }  // namespace gphr

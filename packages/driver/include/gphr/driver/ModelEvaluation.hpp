@@ -9,9 +9,6 @@
 
 namespace gphr {
 
-/// The k values of the reduced stages: pipeline.k (or reduction.k; 0 means the basis' own k).
-std::vector<int> stageK(const Teuchos::ParameterList& cfg, const ReducedBasis& basis);
-
 /// Which run: its method (the registry says whether it has a Hamiltonian to observe), its sizes and
 /// GP-ADEIM's update as the adaptive hook.
 struct RunSpec {

@@ -1,22 +1,22 @@
 #pragma once
 /// @file
-/// The offline stages as `gphr run` and `gphr build` configure them (the stages themselves are
-/// packages/offline): their options and artifacts-cache keys from the configuration, and the
-/// results of `gphr run`'s training and basis stages with the reduced models evaluated after them.
+/// `gphr run`'s offline stages: the library's OfflineSequence (packages/offline, the same one
+/// `gphr build` and a user's code run) on DIR/artifacts.h5, with the run's progress line of the
+/// basis, and the reduced models evaluated after them.
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "gphr/driver/ModelRun.hpp"
 #include "gphr/driver/RunContext.hpp"
-#include "gphr/offline/BasisStage.hpp"
-#include "gphr/offline/DeimBasisStage.hpp"
-#include "gphr/offline/ModelFileBuild.hpp"
-#include "gphr/offline/Training.hpp"
+#include "gphr/driver/RunOptions.hpp"
+#include "gphr/offline/OfflineSequence.hpp"
 
 namespace gphr {
 
 /// The offline stages of `gphr run` and the reduced models they produced.
 struct RomStages {
+  std::shared_ptr<OfflineSequence> offline;  ///< the stages; the DEIM bases and fits are asked of it per k
   TrainingResult training;  ///< The training stage.
   ReducedBasis basis;  ///< The symplectic basis A.
   bool basisCached = false;  ///< Whether the basis was read from artifacts.h5.
@@ -26,22 +26,13 @@ struct RomStages {
   std::vector<double> deimSingularValues; ///< of the reduced-Jacobian snapshots (largest k)
 };
 
-/// The k the basis is built for: the largest of reduction.k and pipeline.k.
-int basisK(const Teuchos::ParameterList& cfg);
-/// The artifacts-cache keys of a configuration: the config text each stage depends on.
-ModelBuildKeys cacheKeys(const Teuchos::ParameterList& cfg);
 /// DIR/artifacts.h5 of the run's scene and state size 2n = fullDim. Collective.
-ArtifactsCache artifactsCache(const RunContext& ctx, long fullDim);
+ArtifactsCache artifactsCache(const RunContext& ctx, const RunOptions& options, long fullDim);
 /// The training and basis stages of the configuration, through the artifacts cache, with the
 /// basis stage's progress line. Collective.
-RomStages runOfflineStages(const RunContext& ctx);
-/// The reduced-Jacobian DEIM basis of size k for the basis A (section hyper), from the cache in
-/// artifacts.h5 `/deim/k<k>` when its key matches, else computed from the training snapshots and
-/// cached. `test` supplies the row map of G. Collective.
-CachedDeimBasis deimBasisFor(const RunContext& ctx, const RomStages& st, const MultiVector& A,
-                             const HamiltonianSystem& test);
+RomStages runOfflineStages(const RunContext& ctx, const RunOptions& options);
 /// The training and basis keys of a rom / gp-deim entry: t_training_s, t_basis_s, t_basis_cpu_s,
 /// pod_route and the basis's POD steps by route.
-void setBasisKeys(const RunContext& ctx, const RomStages& stages, RunMetrics& run);
+void setBasisKeys(const RunOptions& options, const RomStages& stages, RunMetrics& run);
 
 }  // namespace gphr

@@ -8,6 +8,6 @@
 namespace gphr {
 
 /// Galerkin ROM at the test parameter for every k; its runs are appended to stages.runs.
-void runRom(const RunContext& ctx, const FomResult& fom, RomStages& stages);
+void runRom(const RunOptions& options, const FomResult& fom, RomStages& stages);
 
 }  // namespace gphr

@@ -1,21 +1,16 @@
 #pragma once
 /// @file
-/// The context every stage of `gphr run` shares (RunContext).
-#include <Teuchos_ParameterList.hpp>
-#include <memory>
+/// Where a command of `gphr` runs (RunContext): its communicator and output directory. What it
+/// computes is its typed options (RunOptions.hpp), handed down beside it.
 #include <string>
-#include <vector>
 
-#include "gphr/models/Scene.hpp"
+#include "gphr/core/Types.hpp"
 
 namespace gphr {
 
-/// What every stage of `gphr run` needs: the validated config, the scene, the test parameter.
+/// The communicator and paths of a command.
 struct RunContext {
   std::string outputDir;  ///< Output directory DIR of the run.
-  Teuchos::ParameterList config;  ///< validated
-  std::shared_ptr<Scene> scene;  ///< The scene of the config.
-  std::vector<double> mu;  ///< test parameter
   RCP<const Comm> comm;  ///< The communicator of the run.
   /// outputDir held an earlier gphr run's summary.json (removed at start): the report's files this
   /// run does not write are that run's and are removed when it commits. Never set for a directory

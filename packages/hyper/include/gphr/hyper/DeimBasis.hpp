@@ -46,6 +46,11 @@ struct DeimBasisOptions {
 /// The options of a `hyper` configuration section (validated: every key present); largestM: the
 /// largest DEIM size wanted (DeimBasisOptions::largestM: what maxRank 0 keeps, deimMaxRank()).
 DeimBasisOptions deimBasisOptionsFrom(const Teuchos::ParameterList& hyper, int largestM);
+/// The DEIM basis stage's cache key (core/CacheKey.hpp): every option that changes the basis, with
+/// maxRank as asked for (deimMaxRank before its cap at d, which the scene fixes) and the algorithm's revision (3: the exact route's
+/// POD is hierarchical, over chunks of the snapshots; 2: the range finder draws random signs).
+/// groupSize (who POD's which chunk, the same basis to round-off) is left out.
+std::string deimBasisCacheKey(const DeimBasisOptions& options);
 /// The keys of a `hyper` section with their defaults, ranges and documentation: the DEIM basis
 /// (deimBasisOptionsFrom), its interpolation indices and the classic DEIM baseline's snapshots.
 Teuchos::ParameterList deimBasisValidParameters();

@@ -37,6 +37,9 @@ struct QuadratureOptions {
 
 /// The options of an `eqp` configuration section (validated: every key present).
 QuadratureOptions quadratureOptionsFrom(const Teuchos::ParameterList& eqp);
+/// The term-weight fits' cache key (core/CacheKey.hpp) for these training-system options and the
+/// NNLS stopping tolerance; maxNumbersPerRank (a memory guard) is left out.
+std::string quadratureCacheKey(const QuadratureOptions& options, double tolerance);
 /// The keys of an `eqp` section with their defaults, ranges and documentation (quadratureOptionsFrom
 /// reads them; `tolerance`, the fit's stopping residual, is the term-weight fits').
 Teuchos::ParameterList quadratureValidParameters();

@@ -42,8 +42,18 @@ struct AdeimOptions {
 
 /// The `adeim` section: keys, defaults, ranges, documentation.
 Teuchos::ParameterList adeimValidParameters();
-/// Validated options for DEIM size m (w < delta0, m_s >= m, gamma a multiple of delta, ...).
+/// The options of an `adeim` section, validated against adeimValidParameters() and checked where no
+/// m is involved (w < delta0, gamma a multiple of delta, random sampling with m_s); maxSamples as
+/// given (0: 4 m, resolved by adeimOptionsFor).
+AdeimOptions adeimOptionsFrom(Teuchos::ParameterList pl);
+/// `options` for DEIM size m: maxSamples 0 resolved to 4 m and the constraints that involve m
+/// checked (m_s >= m, r <= m, ...). InputError naming the key.
+AdeimOptions adeimOptionsFor(AdeimOptions options, int m);
+/// adeimOptionsFor(adeimOptionsFrom(pl), m).
 AdeimOptions adeimOptionsFrom(Teuchos::ParameterList pl, int m);
+/// The `adeim` section that adeimOptionsFrom reads back as `options` (maxSamples as held): how a
+/// model file stores gp-adeim's options.
+Teuchos::ParameterList adeimParameters(const AdeimOptions& options);
 
 /// One adaptation (one row of the report's adeim_updates.csv).
 struct AdeimUpdateRecord {

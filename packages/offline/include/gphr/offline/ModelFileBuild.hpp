@@ -4,47 +4,25 @@
 /// a Hamiltonian of its own calls (examples/embedding): training, the symplectic basis, per
 /// reduced size k the DEIM basis and the term-weight fits of the stored methods, then the
 /// reduced-model file (doc/model-file.md) that ReducedModel (packages/online) loads.
-#include <Teuchos_ParameterList.hpp>
 #include <string>
 #include <vector>
 
 #include "gphr/core/StageClock.hpp"
-#include "gphr/hyper/DeimBasis.hpp"
-#include "gphr/hyper/EmpiricalQuadrature.hpp"
-#include "gphr/offline/BasisStage.hpp"
+#include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/offline/ModelFileBuilder.hpp"
-#include "gphr/offline/Training.hpp"
+#include "gphr/offline/OfflineSequence.hpp"
 
 namespace gphr {
 
-/// The artifacts cache's keys: what each stage's results depend on. deim, nnls and refit are
-/// completed with k (and m) by their stage. Unused without a cache.
-struct ModelBuildKeys {
-  std::string training;  ///< of the training snapshots
-  std::string basis;     ///< of the basis
-  std::string deim;      ///< of the DEIM bases (prefix)
-  std::string nnls;      ///< of the gp-eqp fits (prefix)
-  std::string refit;     ///< of the gp-eqp-refit fits (prefix)
-};
-
-/// What the offline phase computes and stores.
-struct ModelBuildOptions {
-  TrainingOptions training;   ///< the training set and its time integration
-  BasisOptions basis;         ///< the symplectic basis; k: the largest of `ks` (0: by the energy tolerance)
-  std::vector<int> ks;        ///< the reduced sizes stored (leading parts of the basis); empty: the basis's k
-  std::vector<int> ms;        ///< DEIM sizes m (gp-deim, gp-adeim) and term budgets (gp-eqp)
+/// What the offline phase computes and stores: the stages' options (OfflineSequence.hpp) and the file's.
+struct ModelBuildOptions : OfflineOptions {
   std::vector<std::string> methods{"gp-deim"};  ///< the storable methods to store (core/Method.hpp)
-  DeimBasisOptions deim;      ///< the DEIM basis (maxRank 0: the largest m + 32)
-  QuadratureOptions eqp;      ///< the gp-eqp training system
-  double eqpTolerance = 1e-8; ///< NNLS stopping tolerance (relative residual)
-  Teuchos::ParameterList adeim{"adeim"};  ///< gp-adeim's options, stored as they are (its section)
+  AdeimOptions adeim;         ///< gp-adeim's options, stored with each of its models
   bool withBasis = true;      ///< store A (gp-adeim queries and the exact set-up route need it)
   ModelFileOptions file;      ///< probes, interpolation nodes, DEIM indices, the integrator section
   std::vector<double> parameter;  ///< the instance that supplies the stored sample meshes (empty: the box's centre)
   double T = 0.0;             ///< the file's default horizon (0: the training's steps x dt)
-  std::string sceneConfig;    ///< provenance: the scene's configuration as YAML
   std::string config;         ///< provenance: the whole configuration as YAML
-  ModelBuildKeys keys;        ///< cache keys (with a cache)
 };
 
 /// What the offline phase produced.
@@ -66,9 +44,12 @@ struct ModelBuildResult {
 void checkModelBuildOptions(const Scene& scene, const ModelBuildOptions& options, GO fullDim = 0);
 
 /// Runs the offline phase for `scene` and writes the reduced-model file at `path` (write-then-
-/// rename). With `cache`, every stage reuses what it holds for its key. Collective over `comm`.
+/// rename): the stages of an OfflineSequence, then per k the stored models, the parameter
+/// interpolants and the file. With `cache`, every stage reuses what it holds for its key.
+/// `hook`: called as each stage of the sequence ends. Collective over `comm`.
 ModelBuildResult buildReducedModelFile(const Scene& scene, const RCP<const Comm>& comm,
                                        const ModelBuildOptions& options, const std::string& path,
-                                       const ArtifactsCache* cache = nullptr);
+                                       const ArtifactsCache* cache = nullptr,
+                                       const OfflineSequence::StageHook& hook = {});
 
 }  // namespace gphr

@@ -41,6 +41,11 @@ constexpr long kMaxTrainingRowsPerRank = 1L << 18;  ///< The most state rows per
 /// The options a `training` section sets (values or points, snapshotEvery, groupSize), the
 /// parameters checked against `box`; the time step, steps and integrator are the caller's.
 TrainingOptions trainingOptionsFrom(const Teuchos::ParameterList& training, const ParameterBox& box);
+/// The training stage's cache key (core/CacheKey.hpp): the scene (`sceneConfig`, its configuration
+/// as text: the scene's identity, which only the caller knows), the parameters, time step, steps,
+/// snapshotEvery and integrator. groupSize and progress (who integrates what, and what is printed)
+/// are left out: the snapshots are the same to round-off.
+std::string trainingCacheKey(const std::string& sceneConfig, const TrainingOptions& options);
 /// The keys of a `training` section with their defaults, ranges and documentation, for a box of
 /// `parameters` parameters (the default grid: 3 points each).
 Teuchos::ParameterList trainingValidParameters(size_t parameters);

@@ -71,6 +71,10 @@ RCP<const Map> basisPodMap(const PhaseSpace& space, const BasisOptions& options)
 /// The options of a `reduction` configuration section (validated: every key present) for a basis
 /// of half-size k (0: chosen by the energy tolerance).
 BasisOptions basisOptionsFrom(const Teuchos::ParameterList& reduction, int k);
+/// The basis stage's cache key (core/CacheKey.hpp). podRoute auto stays out of it: every basis
+/// cached before the route was an option was computed so (the routes are exact SVDs, equal to
+/// round-off); another route is another key.
+std::string basisCacheKey(const BasisOptions& options);
 /// The keys of a `reduction` section with their defaults, ranges and documentation: what
 /// basisOptionsFrom() reads (and `k`, the reduced size of `gphr run`).
 Teuchos::ParameterList basisValidParameters();
