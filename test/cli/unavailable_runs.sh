@@ -8,6 +8,8 @@
 # unavailable m = 64, which did not run; the tables call m = 64 unavailable, not diverged, with
 # no error or time (nan in runs.csv, '-' in report.md). A run with adeim.initialWindow beyond its
 # steps never adapts, and the report says so.
+# `gphr build` of the same config stores what it can (m = 4 and 9) and names what it left out
+# (m = 64) on stderr, as run marks it unavailable, instead of stopping without a file.
 # usage: unavailable_runs.sh GPHR
 set -u
 gphr=$1
@@ -29,6 +31,11 @@ printf 'gphr:\n  scene: {name: nls1d, n: 32}\n  time: {T: 0.2, dt: 0.01}\n  trai
 "$gphr" run "$work/late.yaml" --output "$work/late" > /dev/null 2> "$work/err" || { echo "FAIL: exit $?"; cat "$work/err"; exit 1; }
 grep -q "^No update ran in gp-adeim k=4 m=4: adeim.initialWindow = 30 exceeds the 20 steps" "$work/late/report.md" || { echo "FAIL: no 'no update ran' note"; exit 1; }
 if grep -q "^No update ran" "$work/out1/report.md"; then echo "FAIL: 'no update ran' for runs that adapted"; exit 1; fi
+"$gphr" build "$work/c1.yaml" --model "$work/m.h5" --output "$work/out1" > "$work/built" 2> "$work/err" ||
+  { echo "FAIL: build exit $?"; cat "$work/err"; exit 1; }
+grep -q "not stored: gp-deim k = 4, m = 64: the DEIM basis has [0-9]* vectors" "$work/err" ||
+  { echo "FAIL: build does not name the skipped m = 64"; cat "$work/err"; exit 1; }
+grep -q "gp-deim k=4 m=4, gp-deim k=4 m=9;" "$work/built" || { echo "FAIL: build did not store m = 4 and 9"; cat "$work/built"; exit 1; }
 python3 - "$work/out1/summary.json" <<'PY'
 import json, sys
 runs = {(r["method"], r.get("m")): r for r in json.load(open(sys.argv[1]))["runs"]}
@@ -40,5 +47,5 @@ for method in ("gp-deim", "gp-adeim"):
     # gp-deim: its DEIM basis has fewer vectors than m; gp-adeim: m exceeds G's d rows, named
     expected = "vectors" if method == "gp-deim" else "G has d = 32 rows"
     assert big["status"] == "unavailable" and expected in why, (method, big)
-print("ok: m = 4 and 9 ran, m = 64 unavailable with a reason, for gp-deim and gp-adeim; window caution for m = 9 at w = 1 only")
+print("ok: m = 4 and 9 ran, m = 64 unavailable with a reason, for gp-deim and gp-adeim; window caution for m = 9 at w = 1 only; build stored m = 4 and 9 and named m = 64")
 PY

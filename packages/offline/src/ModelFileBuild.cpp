@@ -43,9 +43,27 @@ void addAdeimModels(const ModelBuildOptions& o, const RCP<const Comm>& comm, int
   }
 }
 
+// gp-deim's models of size k: those of the m the DEIM basis holds; a larger m is left out and
+// said in `skipped`, as `gphr run` marks it unavailable.
+std::vector<StoredHyperModel> gpDeimModelsOfK(OfflineSequence& seq, const ModelBuildOptions& o, int k,
+                                              std::vector<std::string>& skipped) {
+  const auto& basis = *seq.deimBasis(k).basis.U;
+  const int vectors = static_cast<int>(basis.getNumVectors());
+  std::vector<int> ms;
+  for (int m : o.ms)
+    if (m <= vectors) ms.push_back(m);
+    else
+      skipped.push_back(detail::concat("gp-deim k = ", k, ", m = ", m, ": the DEIM basis has ", vectors,
+                                       " vectors (numerical rank of the snapshots or hyper.maxRank)"));
+  const StageClocks::Scope clock(seq.clocks(), ofK("gp-deim", k));
+  return gpDeimModels(seq.instance(), *seq.reducedBasis(k), k, basis, ms, o.file.indices);
+}
+
 // The stored models of reduced size k: gp-deim from the DEIM basis, gp-adeim as its options,
-// gp-eqp / gp-eqp-refit from their fits (a budget the training cannot support is left out, with a note).
-std::vector<StoredHyperModel> modelsOfK(OfflineSequence& seq, const ModelBuildOptions& o, int k) {
+// gp-eqp / gp-eqp-refit from their fits. What cannot be built (an m past the DEIM basis, a budget
+// the training cannot support) is left out and said in `skipped`.
+std::vector<StoredHyperModel> modelsOfK(OfflineSequence& seq, const ModelBuildOptions& o, int k,
+                                        std::vector<std::string>& skipped) {
   std::vector<StoredHyperModel> out;
   const auto A = seq.reducedBasis(k);
   const SceneInstance& inst = seq.instance();
@@ -54,19 +72,15 @@ std::vector<StoredHyperModel> modelsOfK(OfflineSequence& seq, const ModelBuildOp
     if (info.adaptive()) {
       addAdeimModels(o, seq.comm(), k, out);
     } else if (info.fit == TermWeightFit::Deim) {
-      const auto& basis = *seq.deimBasis(k).basis.U;
-      const StageClocks::Scope clock(seq.clocks(), ofK("gp-deim", k));
-      auto deim = gpDeimModels(inst, *A, k, basis, o.ms, o.file.indices);
+      auto deim = gpDeimModelsOfK(seq, o, k, skipped);
       std::move(deim.begin(), deim.end(), std::back_inserter(out));
     } else {
       // A DEIM basis the fits ask for inside is a stage of its own (nested scopes exclude it).
       const StageClocks::Scope clock(seq.clocks(), ofK("fits", k));
-      std::map<int, std::string> skipped;
-      for (const auto& [m, fit] : seq.termWeightFits(k, o.file.indices).all(method, o.ms, skipped))
+      std::map<int, std::string> unfit;
+      for (const auto& [m, fit] : seq.termWeightFits(k, o.file.indices).all(method, o.ms, unfit))
         out.push_back(termModel(inst, *A, method, k, m, fit.terms, fit.weights));
-      if (seq.comm()->getRank() == 0)
-        for (const auto& [m, why] : skipped)
-          std::fprintf(stderr, "[gphr] build: %s k = %d, m = %d not stored: %s\n", method.c_str(), k, m, why.c_str());
+      for (const auto& [m, why] : unfit) skipped.push_back(detail::concat(method, " k = ", k, ", m = ", m, ": ", why));
     }
   }
   return out;
@@ -118,7 +132,13 @@ ModelBuildResult buildReducedModelFile(const Scene& scene, const RCP<const Comm>
   data.T = options.T > 0.0 ? options.T : options.training.dt * options.training.steps;
   std::vector<RCP<const MultiVector>> bases;
   for (int k : seq.sizes()) {
-    auto models = modelsOfK(seq, options, k);
+    const size_t before = r.skipped.size();
+    auto models = modelsOfK(seq, options, k, r.skipped);
+    if (models.empty()) r.skipped.push_back(detail::concat("k = ", k, ": no model of this size (its basis is not stored)"));
+    if (comm->getRank() == 0)
+      for (size_t i = before; i < r.skipped.size(); ++i)
+        std::fprintf(stderr, "[gphr] build: not stored: %s\n", r.skipped[i].c_str());
+    if (models.empty()) continue;
     const auto A = seq.reducedBasis(k);
     {
       const StageClocks::Scope stage(seq.clocks(), ofK("interpolation", k));
@@ -126,6 +146,8 @@ ModelBuildResult buildReducedModelFile(const Scene& scene, const RCP<const Comm>
     }
     bases.push_back(options.withBasis ? A : Teuchos::null);
   }
+  GPHR_REQUIRE(!data.bases.empty(), InputError, "reduced-model file '", path, "': no model could be built (",
+               r.skipped.size(), " left out, said above); allowed: m the DEIM basis holds, budgets the training supports");
   data.offlineSeconds = clock.totalElapsedTime(true);
   {
     const StageClocks::Scope stage(seq.clocks(), "write");

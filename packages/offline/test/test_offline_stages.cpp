@@ -712,7 +712,7 @@ TEST(ModelFileBuild, TheFileTheOnlineLibraryLoads) {
   ModelBuildOptions o;
   o.training = smallTraining();
   o.basis.k = 4;
-  o.ms = {6, 8};
+  o.ms = {6, 8, 200};  // m = 200: past the DEIM basis (at most d = 32 vectors); gp-eqp stops at fewer terms
   o.methods = {"gp-deim", "gp-eqp"};
   o.file.probes = {3};
   o.file.interpolationNodes = 3;
@@ -723,7 +723,10 @@ TEST(ModelFileBuild, TheFileTheOnlineLibraryLoads) {
   EXPECT_EQ(file.data().sceneName, "nls1d");
   std::vector<std::string> held;
   for (const auto& m : file.data().models) held.push_back(m.method + " " + std::to_string(m.k) + " " + std::to_string(m.m));
-  EXPECT_EQ(held, (std::vector<std::string>{"gp-deim 4 6", "gp-deim 4 8", "gp-eqp 4 6", "gp-eqp 4 8"}));
+  EXPECT_EQ(held, (std::vector<std::string>{"gp-deim 4 6", "gp-deim 4 8", "gp-eqp 4 6", "gp-eqp 4 8", "gp-eqp 4 200"}));
+  // what could not be built is left out and named, the rest written (as gphr run marks it unavailable)
+  ASSERT_EQ(r.skipped.size(), 1u);
+  EXPECT_EQ(r.skipped[0].rfind("gp-deim k = 4, m = 200: the DEIM basis has ", 0), 0u) << r.skipped[0];
   // AVF conserves the model's H_hr to the Newton tolerance (1e-10 relative by default; 1e-8 leaves
   // room for 20 steps of it).
   auto online = file.instantiate("gp-deim", 4, 8, {1.0});
@@ -736,6 +739,9 @@ TEST(ModelFileBuild, TheFileTheOnlineLibraryLoads) {
   EXPECT_LE(drift, 1e-8 * std::abs(H0));
   ModelBuildOptions bad = o;
   bad.methods = {"deim"};  // a baseline: not storable
+  EXPECT_THROW(buildReducedModelFile(*scene, comm, bad, dir.file("bad.h5")), InputError);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("bad.h5")));
+  bad = o, bad.ms = {200}, bad.methods = {"gp-deim"};  // nothing to store: an error, no file
   EXPECT_THROW(buildReducedModelFile(*scene, comm, bad, dir.file("bad.h5")), InputError);
   EXPECT_FALSE(std::filesystem::exists(dir.file("bad.h5")));
 }

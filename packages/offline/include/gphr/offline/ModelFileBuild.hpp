@@ -36,6 +36,10 @@ struct ModelBuildResult {
   /// (term-weight fits, gp-eqp), "interpolation k=K" (the parameter interpolants of the basis
   /// data), then "write" (the model file). Stages not run are absent; they add up to the phase.
   std::vector<StageTime> stages;
+  /// What could not be built and is not in the file, one line each ("gp-deim k = 10, m = 120: the
+  /// DEIM basis has 91 vectors ..."; a k with no model at all is left out too), as `gphr run`
+  /// marks such a run unavailable; also said on stderr by rank 0 as it happens.
+  std::vector<std::string> skipped;
 };
 
 /// Checks `options` for `scene` before any work: the methods, sizes and parameter, gp-adeim alone
@@ -45,7 +49,8 @@ void checkModelBuildOptions(const Scene& scene, const ModelBuildOptions& options
 
 /// Runs the offline phase for `scene` and writes the reduced-model file at `path` (write-then-
 /// rename): the stages of an OfflineSequence, then per k the stored models, the parameter
-/// interpolants and the file. With `cache`, every stage reuses what it holds for its key.
+/// interpolants and the file. A model that cannot be built is left out and named
+/// (ModelBuildResult::skipped); InputError when none can. With `cache`, every stage reuses what it holds for its key.
 /// `hook`: called as each stage of the sequence ends. Collective over `comm`.
 ModelBuildResult buildReducedModelFile(const Scene& scene, const RCP<const Comm>& comm,
                                        const ModelBuildOptions& options, const std::string& path,
