@@ -24,6 +24,7 @@ JsonObject ModelRun::json() const {
   e.set(Metric::Steps, steps)
       .set(Metric::EL2, eL2)
       .set(Metric::EFin, eFinal)
+      .set(Metric::EL2Estimate, errorEstimate)
       .set(Metric::HErrMax, hamiltonianErrorMax)
       .set(Metric::HErrFinal, hamiltonianErrorFinal)
       .set(Metric::HErrMaxRel, hamiltonianErrorMaxRelative)

@@ -29,6 +29,7 @@ const MetricInfo kMetrics[] = {
     {"ranks", Integer},
     {"E_L2", Number},
     {"E_fin", Number},
+    {"E_L2_estimate", Number},
     {"H0", Number},
     {"H_err_max", Number},
     {"H_err_final", Number},

@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "gphr/online/Lift.hpp"
+#include "gphr/timeint/SchemeResidual.hpp"
 
 namespace gphr {
 
@@ -19,15 +21,17 @@ namespace {
 // with n; and a GEMM lifts faster than B GEMVs. B keeps the lifted batch under ~64 MB.
 class DeferredLift {
  public:
+  /// residual: the full scheme of the error indicator, or null; dt its step.
   DeferredLift(const MultiVector& A, const HamiltonianSystem& sys, const FullModelReference& ref, long steps,
-               long saveEvery, bool keepStates, ReducedEvaluation& run)
+               long saveEvery, bool keepStates, ReducedEvaluation& run, SchemeResidual* residual, double dt)
       : A_(A), sys_(sys), ref_(ref), steps_(steps), saveEvery_(saveEvery), keepStates_(keepStates), run_(run),
-        r_(static_cast<int>(A.getNumVectors())) {
+        r_(static_cast<int>(A.getNumVectors())), residual_(residual), dt_(dt) {
     const size_t d = std::max<size_t>(1, A.getGlobalLength()), budget = size_t(8) << 20;  // doubles
     batch_ = static_cast<int>(std::clamp<size_t>(budget / d, 1, 256));
     maxStored_ = std::max<size_t>(batch_, budget / std::max(1, r_));
     Z_ = liftWorkspace(A, batch_);
     Y_ = rcp(new MultiVector(A.getMap(), batch_));
+    if (residual_) previous_ = rcp(new Vector(A.getMap())), error_ = rcp(new Vector(A.getMap()));
   }
   void add(long step, const DenseVector& z) {
     stored_.insert(stored_.end(), z.values(), z.values() + r_);
@@ -40,6 +44,10 @@ class DeferredLift {
     storedSteps_.clear();
   }
   double relativeL2() const { return std::sqrt(num_ / den_); }  // eq:errNR
+  // eq:errNR with the estimated errors over the lift's norms.
+  double estimatedRelativeL2() const {
+    return indicatorFailed_ ? std::numeric_limits<double>::quiet_NaN() : std::sqrt(estimateNum_ / estimateDen_);
+  }
   double finalError() const { return final_; }
 
  private:
@@ -50,9 +58,14 @@ class DeferredLift {
     for (int c = 0; c < count; ++c) {
       const RCP<Vector> y = Y_->getVectorNonConst(c);
       run_.hamiltonian.push_back(sys_.hamiltonian(*y));  // H_s(A z) = H(y0 + A z)
+      if (residual_) indicate(storedSteps_[c0 + c], *y);
       if (!shiftBy.is_null()) y->update(1.0, *shiftBy, 1.0);  // physical state y0 + A z
       run_.stateNorms.push_back(y->norm2());
       if (!isSavedStep(storedSteps_[c0 + c], steps_, saveEvery_)) continue;
+      if (residual_) {
+        estimateNum_ += estimatedError_ * estimatedError_;
+        estimateDen_ += run_.stateNorms.back() * run_.stateNorms.back();
+      }
       if (keepStates_) run_.states.push_back(rcp(new Vector(*y, Teuchos::Copy)));
       const auto yf = ref_.trajectory->getVector(saved_++);
       y->update(-1.0, *yf, 1.0);
@@ -62,6 +75,24 @@ class DeferredLift {
       final_ = e / nf;
       run_.errors.push_back(e);
     }
+  }
+  // The error of the lift at step j (shifted states), carried from step j - 1 by the full scheme's
+  // linearised error equation with the scheme's residual at the lifted step as its source
+  // (SchemeResidual::propagateError, doc/error-estimate.md). Error 0 at step 0: the lift starts at y0.
+  // A lift far outside the full model's range (a run that blew up) can leave the error equation's
+  // linear solve unconverged: the run then has no estimate (NaN), never an error of its own. The
+  // solve's convergence is a global verdict, so every rank stops alike.
+  void indicate(long step, const Vector& y) {
+    if (step > 0 && !indicatorFailed_) {
+      try {
+        residual_->propagateError(*previous_, y, dt_, *error_);
+        run_.estimatedErrors.push_back(error_->norm2());
+        estimatedError_ = run_.estimatedErrors.back();
+      } catch (const SolverError&) {
+        indicatorFailed_ = true;
+      }
+    }
+    previous_->assign(y);
   }
   const MultiVector& A_;
   const HamiltonianSystem& sys_;
@@ -76,6 +107,11 @@ class DeferredLift {
   long saved_ = 0;
   double num_ = 0.0, den_ = 0.0, final_ = 0.0;
   RCP<MultiVector> Z_, Y_;
+  SchemeResidual* residual_;
+  double dt_;
+  RCP<Vector> previous_, error_;
+  double estimatedError_ = 0.0, estimateNum_ = 0.0, estimateDen_ = 0.0;
+  bool indicatorFailed_ = false;
 };
 
 // pipeline.onlineRepeats: the same online run again from z = 0, timed only (a model that changes
@@ -103,7 +139,10 @@ ReducedEvaluation evaluateReducedModel(const EvaluationSettings& settings, const
   SimulationSettings time = settings.time;
   time.polynomialDegree = system.nonlinearTerm().polynomialDegree();
   DenseVector z;
-  DeferredLift lift(A, system, reference, time.steps, settings.saveEvery, options.keepStates, run);
+  std::unique_ptr<SchemeResidual> residual;
+  if (settings.errorIndicator) residual = std::make_unique<SchemeResidual>(Teuchos::rcpFromRef(system), time.integrator);
+  DeferredLift lift(A, system, reference, time.steps, settings.saveEvery, options.keepStates, run, residual.get(),
+                    time.dt);
   const SimulationStats sim = simulate(model, time, z, [&](long j, double, const DenseVector& zj) {
     if (options.hasHamiltonian) run.modelHamiltonian.push_back(finiteHamiltonian(model.hamiltonian(zj), j));
     lift.add(j, zj);
@@ -119,6 +158,7 @@ ReducedEvaluation evaluateReducedModel(const EvaluationSettings& settings, const
   const double nan = std::numeric_limits<double>::quiet_NaN();
   run.eL2 = run.ok ? lift.relativeL2() : nan;
   run.eFinal = run.ok ? lift.finalError() : nan;
+  run.errorEstimate = run.ok && residual ? lift.estimatedRelativeL2() : nan;
   run.driftBound = run.ok ? driftBound(time, time.polynomialDegree, sim.run) : nan;
   const double H0 = reference.hamiltonian.front();
   run.hamiltonianErrorMax = run.ok ? maxDeviation(run.hamiltonian, H0) : nan;

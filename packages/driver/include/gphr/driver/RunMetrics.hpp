@@ -19,7 +19,7 @@ enum class Metric : int {
   // identity and size
   Method, N, FullDim, NumTerms, K, ReducedDim, M, Steps, Dt, Ranks,
   // accuracy and the time loop (every evaluated run)
-  EL2, EFin, H0, HErrMax, HErrFinal, HErrMaxRel, TOnlineS, TOnlineRunsS, NewtonItersAvg, NewtonMatrices, LinearItersAvg, LinearItersPerNewton, NewtonResidualMax,
+  EL2, EFin, EL2Estimate, H0, HErrMax, HErrFinal, HErrMaxRel, TOnlineS, TOnlineRunsS, NewtonItersAvg, NewtonMatrices, LinearItersAvg, LinearItersPerNewton, NewtonResidualMax,
   HDriftBound, ErrorsAt,
   // status
   UnboundedAtStep, UnboundedReason, Status, Reason, HModelErrMax, DivergedAtStep, DivergedReason,

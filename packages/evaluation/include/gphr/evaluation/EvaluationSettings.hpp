@@ -19,6 +19,9 @@ struct EvaluationSettings {
   double onlineRepeatSeconds = 60.0;  ///< their total time at most
   double progressSeconds = 0.0;       ///< between the full model's progress lines on stderr (0: none)
   bool shift = true;                  ///< integrate the shifted system (Scene::instantiate)
+  /// Estimate each reduced run's E_L2 from the full scheme's residual at its lift (ReducedEvaluation::
+  /// errorEstimate): one full-model residual per step, no solve.
+  bool errorIndicator = true;
 };
 
 /// The steps whose states are kept: every saveEvery-th and the last.

@@ -32,10 +32,20 @@ struct ReducedEvaluation {
   std::vector<double> errors;            ///< ||y^j - (y0 + A z^j)|| at the saved steps
   std::vector<double> stateNorms;        ///< ||y0 + A z^j|| per step
   std::vector<RCP<Vector>> states;       ///< the lifted states at the saved steps, where keepStates
+  /// ||e^j||, j = 1..N: the error of the lift estimated by the full scheme's linearised error
+  /// equation, driven by the scheme's residual at the lift (SchemeResidual::propagateError), where
+  /// EvaluationSettings::errorIndicator
+  std::vector<double> estimatedErrors;
   /// E_L2 (eq:errNR, over the saved steps) and the relative error at the last step; NaN unless it reached the end.
   /// @{
   double eL2 = kNotMeasured, eFinal = kNotMeasured;
   /// @}
+  /// The estimate of eL2 that needs no reference: eq:errNR with the errors at the saved steps
+  /// replaced by estimatedErrors and the reference's norms by the lift's (doc/error-estimate.md
+  /// says what it is and where it stops holding); NaN unless it reached the end with
+  /// EvaluationSettings::errorIndicator, and where the error equation's linear solve failed (a
+  /// lift far outside the full model's range).
+  double errorEstimate = kNotMeasured;
   /// The lift's Hamiltonian against the reference's: max_j |H(y0 + A z^j) - H(y^0)|, the same over
   /// |H(y^0)| (not divided where H(y^0) = 0) and |H(y^N) - H(y0 + A z^N)| at the last step; NaN
   /// unless it reached the end.
