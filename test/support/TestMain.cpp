@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <cstdlib>
+#include <string>
+
 #include <Tpetra_Core.hpp>
 
 int main(int argc, char** argv) {
@@ -10,7 +13,10 @@ int main(int argc, char** argv) {
   ::testing::InitGoogleTest(&argc, argv);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  if (rank != 0) {  // one rank prints; all run
+  // One rank prints; all run. GPHR_TEST_ALL_RANKS=1 in the environment: every rank prints (a
+  // failure only some rank sees is otherwise told by the exit code alone).
+  const char* all = std::getenv("GPHR_TEST_ALL_RANKS");
+  if (rank != 0 && !(all && std::string(all) == "1")) {
     auto& listeners = ::testing::UnitTest::GetInstance()->listeners();
     delete listeners.Release(listeners.default_result_printer());
   }

@@ -11,12 +11,9 @@
 #include <thread>
 #include <vector>
 
+#include "gphr/core/BlasThreads.hpp"
 #include "gphr/core/Error.hpp"
 #include "gphr/core/ThreadTimers.hpp"
-
-// OpenBLAS's thread count, where the BLAS is OpenBLAS (weak: absent with another BLAS).
-extern "C" void openblas_set_num_threads(int) __attribute__((weak));
-extern "C" int openblas_get_num_threads() __attribute__((weak));
 
 namespace gphr {
 
@@ -46,26 +43,8 @@ int defaultQueryThreads() {
   return std::max(1, allowed >= machine ? allowed / onNode : allowed);
 }
 
-namespace {
-// OpenBLAS on one thread while alive (restored after).
-class OneBlasThread {
- public:
-  OneBlasThread() : before_(openblas_get_num_threads ? openblas_get_num_threads() : 0) {
-    if (openblas_set_num_threads) openblas_set_num_threads(1);
-  }
-  ~OneBlasThread() {
-    if (openblas_set_num_threads && before_ > 0) openblas_set_num_threads(before_);
-  }
-  OneBlasThread(const OneBlasThread&) = delete;
-  OneBlasThread& operator=(const OneBlasThread&) = delete;
-
- private:
-  int before_;
-};
-}  // namespace
-
 void forEachOnThreads(size_t n, int threads, const std::function<void(size_t)>& fn) {
-  const OneBlasThread blas;
+  const SingleBlasThread blas;  // before the workers start: they never set it concurrently
   if (threads <= 1) {
     for (size_t i = 0; i < n; ++i) fn(i);
     return;

@@ -101,6 +101,7 @@ ValidationRecord recordOf(const ModelRun& run, const Query& q, double setupSecon
   ValidationRecord r;
   r.point = q.name, r.mu = q.mu, r.method = run.method, r.k = run.k, r.m = run.m;
   r.status = run.status(), r.eL2 = run.eL2, r.onlineSeconds = run.tOnline, r.setupSeconds = setupSeconds;
+  r.errorEstimate = run.errorEstimate;
   r.extrapolated = extrapolated;
   return r;
 }

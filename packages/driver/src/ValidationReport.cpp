@@ -220,14 +220,15 @@ std::string recordsChecksum(const std::string& body) {
 // One record line (writePointRecords' format); false where it does not parse whole.
 bool parseRecord(const std::string& line, ValidationRecord& r) {
   std::istringstream ls(line);
-  std::string status, eL2, online, setup, mu;
+  std::string status, eL2, estimate, online, setup, mu;
   int extrap = 0;
   std::getline(ls, r.point, '\t'), std::getline(ls, r.method, '\t');
-  ls >> r.k >> r.m >> status >> eL2 >> online >> setup >> extrap >> mu;
+  ls >> r.k >> r.m >> status >> eL2 >> estimate >> online >> setup >> extrap >> mu;
   if (!ls && !ls.eof()) return false;
   try {
     r.status = statusFromName(status);
     r.eL2 = std::stod(eL2), r.onlineSeconds = std::stod(online), r.setupSeconds = std::stod(setup);
+    r.errorEstimate = std::stod(estimate);
     std::istringstream ms(mu);
     for (std::string x; std::getline(ms, x, ',');) r.mu.push_back(std::stod(x));
   } catch (const std::exception&) {  // std::stod: not a number, or out of range; an unknown status
@@ -276,7 +277,7 @@ void writePointRecords(const std::string& path, const std::string& key, const st
     os << "key\t" << key << "\nfom_s\t" << num(fomSeconds) << "\n";
     for (const auto& r : recs)
       os << r.point << "\t" << r.method << "\t" << r.k << "\t" << r.m << "\t" << statusName(r.status) << "\t" << num(r.eL2) << "\t"
-         << num(r.onlineSeconds) << "\t" << num(r.setupSeconds) << "\t" << r.extrapolated << "\t" << muText(r.mu)
+         << num(r.errorEstimate) << "\t" << num(r.onlineSeconds) << "\t" << num(r.setupSeconds) << "\t" << r.extrapolated << "\t" << muText(r.mu)
          << "\n";
     writeText(path, os.str() + recordsChecksum(os.str()) + "\n");
   }
@@ -291,17 +292,82 @@ bool readPointRecords(const std::string& path, const std::string& key, const RCP
   return usable != 0;
 }
 
+namespace {
+
+// Ranks 1..N of x, ties given their mean rank.
+std::vector<double> ranks(const std::vector<double>& x) {
+  std::vector<size_t> order(x.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return x[a] < x[b]; });
+  std::vector<double> r(x.size());
+  for (size_t i = 0; i < order.size();) {
+    size_t j = i;
+    while (j + 1 < order.size() && x[order[j + 1]] == x[order[i]]) ++j;
+    for (size_t t = i; t <= j; ++t) r[order[t]] = 0.5 * (i + j) + 1.0;
+    i = j + 1;
+  }
+  return r;
+}
+
+// Spearman's rank correlation: Pearson's of the ranks (NaN below 3 pairs or for a constant sample).
+double rankCorrelation(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() < 3) return NAN;
+  const auto ra = ranks(a), rb = ranks(b);
+  const double mean = 0.5 * (a.size() + 1.0);
+  double sab = 0.0, saa = 0.0, sbb = 0.0;
+  for (size_t i = 0; i < ra.size(); ++i)
+    sab += (ra[i] - mean) * (rb[i] - mean), saa += (ra[i] - mean) * (ra[i] - mean), sbb += (rb[i] - mean) * (rb[i] - mean);
+  return saa > 0.0 && sbb > 0.0 ? sab / std::sqrt(saa * sbb) : NAN;
+}
+
+// validation.md's section on the error estimate (doc/error-estimate.md) against the error, over
+// the runs where both are known: per model the median and range of estimate / E_L2 and the share
+// of points within 3x; over all runs, the rank correlation (whether the estimate orders the runs
+// as the error does).
+std::string estimateSection(const std::vector<ValidationRecord>& records, JsonObject& out) {
+  std::vector<std::string> labels;
+  std::map<std::string, std::vector<double>> ratios;
+  std::vector<double> errors, estimates;
+  for (const auto& r : records) {
+    if (r.status != RunStatus::Ok || !(r.eL2 > 0.0) || !std::isfinite(r.errorEstimate)) continue;
+    if (!ratios.count(r.label())) labels.push_back(r.label());
+    ratios[r.label()].push_back(r.errorEstimate / r.eL2);
+    errors.push_back(r.eL2), estimates.push_back(r.errorEstimate);
+  }
+  std::ostringstream md;
+  md << "\n## The error estimate against the error\n\nE_L2_estimate (doc/error-estimate.md) needs no full-model "
+        "trajectory; here it is set against E_L2 at every point where both are known. Over all "
+     << errors.size() << " runs the rank correlation (Spearman) of estimate and error is "
+     << (std::isfinite(rankCorrelation(errors, estimates)) ? shown(rankCorrelation(errors, estimates), "%.3f") : "-")
+     << ".\n\n| model | points | estimate / E_L2, median | min | max | within 3x |\n| --- | --- | --- | --- | --- | --- |\n";
+  long within = 0;
+  for (const auto& label : labels) {
+    const auto& x = ratios[label];
+    const long in3 = std::count_if(x.begin(), x.end(), [](double q) { return q <= 3.0 && q >= 1.0 / 3.0; });
+    within += in3;
+    md << "| " << label << " | " << x.size() << " | " << shown(percentile(x, 0.5), "%.2f") << " | "
+       << shown(*std::min_element(x.begin(), x.end()), "%.2f") << " | " << shown(*std::max_element(x.begin(), x.end()), "%.2f")
+       << " | " << in3 << "/" << x.size() << " |\n";
+  }
+  out.set("runs", static_cast<long>(errors.size()))
+      .set("rank_correlation", rankCorrelation(errors, estimates))
+      .set("within_3x", errors.empty() ? NAN : double(within) / errors.size());
+  return errors.empty() ? std::string() : md.str();
+}
+
+}  // namespace
+
 void writeValidationReport(const std::string& dir, const ReducedModel& model, const std::vector<Query>& points,
                            const std::vector<ValidationRecord>& records, const std::vector<double>& fomSeconds) {
   const auto& d = model.data();
   std::ostringstream csv;
   csv << "point";
   for (const auto& p : d.parameterNames) csv << "," << p;
-  csv << ",model,method,k,m,E_L2,status,extrapolated,online_s,setup_s\n";
+  csv << ",model,method,k,m,E_L2,E_L2_estimate,status,extrapolated,online_s,setup_s\n";
   for (const auto& r : records) {
     csv << r.point;
     for (double x : r.mu) csv << "," << num(x);
-    csv << "," << r.label() << "," << r.method << "," << r.k << "," << r.m << "," << num(r.eL2) << "," << statusName(r.status)
+    csv << "," << r.label() << "," << r.method << "," << r.k << "," << r.m << "," << num(r.eL2) << "," << num(r.errorEstimate) << "," << statusName(r.status)
         << "," << (r.extrapolated ? "yes" : "no") << "," << num(r.onlineSeconds) << "," << num(r.setupSeconds) << "\n";
   }
   writeText(dir + "/validation.csv", csv.str());
@@ -345,12 +411,15 @@ void writeValidationReport(const std::string& dir, const ReducedModel& model, co
     md << "| " << shown(level, "%.0e") << " | " << (best ? best->label : "none: " + whyNone(stats, level)) << " | "
        << (best ? sci(best->maxError) : "-") << " | " << (best ? shown(best->meanOnline, "%.3g") : "-") << " |\n";
   }
+  JsonObject estimate;
+  md << estimateSection(records, estimate);
   writeText(dir + "/validation.md", md.str());
   JsonObject summary;
   summary.set("model_file", model.path())
       .set("points", static_cast<long>(points.size()))
       .set("fom_online_s_mean", fomMean)
-      .set("offline_s", d.offlineSeconds).set("gphr_version", gphrVersion()).set("models", js);
+      .set("offline_s", d.offlineSeconds).set("gphr_version", gphrVersion()).set("models", js)
+      .set("error_estimate", estimate);
   writeText(dir + "/validation_summary.json", summary.str(2) + "\n");
   plotErrors(dir, d, stats, records);
   std::printf("%s", md.str().c_str());

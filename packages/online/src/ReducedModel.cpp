@@ -6,6 +6,7 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "gphr/core/BlasThreads.hpp"
 #include "gphr/core/Error.hpp"
 #include "gphr/core/ParameterValidation.hpp"
 #include "gphr/core/YamlText.hpp"
@@ -133,6 +134,7 @@ bool ReducedModel::checkParameter(const std::vector<double>& mu, bool allowExtra
 
 OnlineModel ReducedModel::instantiate(const std::string& method, int k, int m, const std::vector<double>& mu,
                                       bool allowExtrapolation, SetupRoute route) const {
+  const SingleBlasThread blas;  // the same bits whatever OPENBLAS_NUM_THREADS (core/BlasThreads.hpp)
   OnlineModel out;
   out.extrapolated_ = checkParameter(mu, allowExtrapolation);
   const StoredHyperModel& stored = data().model(method, k, m);
@@ -182,6 +184,7 @@ void OnlineModel::probeValues(const DenseVector& z, std::vector<double>& out) co
 }
 
 SimulationStats OnlineModel::simulate(double T, double dt, const QueryObserver& observer) {
+  const SingleBlasThread blas;  // the same bits whatever OPENBLAS_NUM_THREADS (core/BlasThreads.hpp)
   std::vector<double> probes;
   DenseVector z;
   const StepHook observe = [&](long j, double t, const DenseVector& zj) {
@@ -203,6 +206,7 @@ RCP<GpAdeimModel> ReducedModel::adaptiveModel(int k, int m, const SceneInstance&
 SimulationStats ReducedModel::simulateAdaptive(int k, int m, const std::vector<double>& mu, double T, double dt,
                                                const RCP<const Comm>& comm, const QueryObserver& observer,
                                                double* setupSeconds, bool allowExtrapolation) const {
+  const SingleBlasThread blas;  // the same bits whatever OPENBLAS_NUM_THREADS (core/BlasThreads.hpp)
   checkParameter(mu, allowExtrapolation);
   const StoredBasisData& basis = data().basis(k);
   GPHR_REQUIRE(basis.hasBasis, InputError, "gp-adeim k=", k, " needs the basis in the file (build.withBasis: true)");

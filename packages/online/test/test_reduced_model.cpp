@@ -11,6 +11,7 @@
 #include <hdf5.h>
 
 #include "HyperTestUtils.hpp"
+#include "gphr/core/BlasThreads.hpp"
 #include "gphr/core/Provenance.hpp"
 #include "gphr/offline/ModelFileBuilder.hpp"
 #include "gphr/online/ReducedModel.hpp"
@@ -92,6 +93,37 @@ TEST(ReducedModelFile, RoundTripReproducesTheInProcessModel) {
       EXPECT_NEAR(H[j], inRun->hamiltonian(got[j]), 1e-12 * (1 + std::abs(H[j])));
     EXPECT_FALSE(online.extrapolated());
   }
+  if (comm()->getRank() == 0) std::remove(path.c_str());
+}
+
+// A query runs OpenBLAS on one thread whatever the caller set (core/BlasThreads.hpp), and gives it
+// back after: so its bits do not depend on OPENBLAS_NUM_THREADS, as `gphr query`'s do not.
+TEST(ReducedModelFile, AQueryRunsOpenBlasOnOneThreadAndGivesItBack) {
+  if (blasThreads() == 0) GTEST_SKIP() << "the BLAS is not OpenBLAS";
+  auto scene = std::make_shared<Nls1d>(64, 5.0);
+  const auto hc = nlsCase(64, 4, comm());
+  const std::string path = sharedPath("blas");
+  writeFile(hc, *scene, 4, {8}, "avf", false, path, kDt * 10, kDt);
+  const ReducedModel rm(path, scene);
+  std::vector<std::vector<DenseVector>> runs;
+  for (int threads : {2, 1}) {
+    setBlasThreads(threads);
+    ASSERT_EQ(blasThreads(), threads);  // the setter took: the check below can fail
+    auto online = rm.instantiate("gp-deim", 4, 8, {1.0});
+    std::vector<int> inside;
+    std::vector<DenseVector> z;
+    online.simulate(kDt * 10, kDt, [&](const QueryStep& s) {
+      inside.push_back(blasThreads());
+      z.push_back(s.z);
+    });
+    EXPECT_EQ(inside, std::vector<int>(11, 1)) << "OpenBLAS threads during the query, set " << threads;
+    EXPECT_EQ(blasThreads(), threads);  // restored
+    runs.push_back(z);
+  }
+  ASSERT_EQ(runs[0].size(), runs[1].size());
+  for (size_t j = 0; j < runs[0].size(); ++j)
+    for (int i = 0; i < runs[0][j].length(); ++i) ASSERT_EQ(runs[0][j](i), runs[1][j](i)) << "step " << j;
+  comm()->barrier();  // the queries are not collective: no rank may still be reading the file
   if (comm()->getRank() == 0) std::remove(path.c_str());
 }
 

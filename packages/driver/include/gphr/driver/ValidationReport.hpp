@@ -29,6 +29,7 @@ struct ValidationRecord {
   /// @{
   double eL2 = NAN, onlineSeconds = NAN, setupSeconds = NAN;
   /// @}
+  double errorEstimate = NAN;  ///< E_L2 estimated without the full model (ReducedEvaluation::errorEstimate)
   bool extrapolated = false;  ///< Whether mu lies outside the box.
   std::string label() const;  ///< "gp-deim k=10 m=20", "rom k=10"
 };

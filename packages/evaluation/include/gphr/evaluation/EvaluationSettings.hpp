@@ -20,7 +20,8 @@ struct EvaluationSettings {
   double progressSeconds = 0.0;       ///< between the full model's progress lines on stderr (0: none)
   bool shift = true;                  ///< integrate the shifted system (Scene::instantiate)
   /// Estimate each reduced run's E_L2 from the full scheme's residual at its lift (ReducedEvaluation::
-  /// errorEstimate): one full-model residual per step, no solve.
+  /// errorEstimate): per step, one residual of the full scheme and one linear solve with its
+  /// Newton matrix, after the timed run.
   bool errorIndicator = true;
 };
 

@@ -17,6 +17,12 @@
 /// nothing of size n or d is allocated: the scene object only supplies its row kernel at mu, the file the sample
 /// mesh and the parameter interpolant. The exact route builds the full system at mu and projects
 /// it (O(n k), reported as setup time); it needs the basis in the file.
+///
+/// instantiate(), OnlineModel::simulate() and simulateAdaptive() run OpenBLAS on one thread while
+/// they work (SingleBlasThread, core/BlasThreads.hpp; the caller's count is restored after, and the
+/// observer runs under it too), so a query's bits do not depend on OPENBLAS_NUM_THREADS, as
+/// `gphr query`'s do not. A code that runs queries on threads of its own pins OpenBLAS once
+/// (a SingleBlasThread) before starting them, as `gphr query` does.
 #include <functional>
 #include <map>
 #include <memory>
