@@ -367,7 +367,9 @@ void writeValidationReport(const std::string& dir, const ReducedModel& model, co
   for (const auto& r : records) {
     csv << r.point;
     for (double x : r.mu) csv << "," << num(x);
-    csv << "," << r.label() << "," << r.method << "," << r.k << "," << r.m << "," << num(r.eL2) << "," << num(r.errorEstimate) << "," << statusName(r.status)
+    // a ROM has no m: the field is left empty, not 0 (which reads as a size)
+    csv << "," << r.label() << "," << r.method << "," << r.k << "," << (r.m > 0 ? std::to_string(r.m) : "") << ","
+        << num(r.eL2) << "," << num(r.errorEstimate) << "," << statusName(r.status)
         << "," << (r.extrapolated ? "yes" : "no") << "," << num(r.onlineSeconds) << "," << num(r.setupSeconds) << "\n";
   }
   writeText(dir + "/validation.csv", csv.str());
