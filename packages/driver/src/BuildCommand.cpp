@@ -93,7 +93,7 @@ int runBuild(const std::string& configPath, const std::string& modelPath, const 
   GPHR_REQUIRE(!stored.empty(), InputError, "config file '", configPath,
                "': gphr build stores ", methodNames([](const MethodInfo& m) { return m.storable; }),
                " models; pipeline.methods must list one of them");
-  GPHR_REQUIRE(opt.shift, InputError, "config file '", configPath,
+  GPHR_REQUIRE(opt.evaluation.shift, InputError, "config file '", configPath,
                "': gphr build needs scene.shift: true (the stored models are of the shifted system)");
   const ModelBuildOptions options = buildOptions(opt, stored);
   const auto inst = opt.scene->instantiate(comm, opt.mu, true);

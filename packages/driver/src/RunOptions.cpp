@@ -222,7 +222,6 @@ ConfigRecord configRecord(const Teuchos::ParameterList& cfg) {
   ConfigRecord r;
   r.yaml = configYaml(cfg);
   r.fullYaml = toYaml(cfg);
-  r.sceneYaml = sectionYaml(cfg, "scene");
   r.integratorYaml = sectionYaml(cfg, "integrator");
   r.provenance = provenanceOf(cfg);
   return r;
@@ -269,7 +268,6 @@ RunOptions runOptionsFrom(const Teuchos::ParameterList& cfg) {
   o.mu = sceneParameters(*o.scene, cfg.sublist("parameters"));
   o.T = cfg.sublist("time").get<double>("T");
   o.scheme = cfg.sublist("integrator").get<std::string>("scheme");
-  o.shift = cfg.sublist("scene").get<bool>("shift");
   o.pipeline = pipelineOptionsFrom(cfg.sublist("pipeline"), cfg.sublist("reduction").get<int>("k"));
   o.output = outputOptionsFrom(cfg.sublist("output"), o.T);
   o.evaluation = evaluationSettingsFrom(cfg, o.output);

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 
-#include "gphr/core/ParameterValidation.hpp"
 
 namespace gphr {
 
@@ -15,8 +14,7 @@ double maxDeviation(const std::vector<double>& H, double H0) {
 }
 
 double driftBound(const SimulationSettings& time, int degree, const RunStats& stats) {
-  Teuchos::ParameterList integrator = time.integrator;  // a user's section: its defaults filled in, as the integrators do
-  validateParameters(integrator, integratorValidParameters(), "integrator");
+  const Teuchos::ParameterList integrator = validatedIntegrator(time.integrator);  // its defaults, as the integrators read them
   return quadratureIsExact(integrator.get<std::string>("scheme"), integrator.get<int>("quadraturePoints"), degree)
              ? stats.driftBound
              : std::numeric_limits<double>::quiet_NaN();

@@ -4,18 +4,12 @@
 
 #include <optional>
 
-#include "gphr/core/ParameterValidation.hpp"
 #include "gphr/core/ThreadTimers.hpp"
 
 namespace gphr {
 
-Teuchos::ParameterList DenseModelIntegrator::validated(Teuchos::ParameterList pl) {
-  validateParameters(pl, integratorValidParameters(), "integrator");
-  return pl;
-}
-
 DenseModelIntegrator::DenseModelIntegrator(DenseHamiltonian& model, Teuchos::ParameterList pl, int degree)
-    : params_(validated(std::move(pl))),
+    : params_(validatedIntegrator(std::move(pl))),
       backend_(model),
       scheme_(backend_, quadratureFor(params_.get<std::string>("scheme"), params_.get<int>("quadraturePoints"), degree),
               newtonOptionsFrom(params_)) {}

@@ -2,17 +2,11 @@
 
 #include <Teuchos_TimeMonitor.hpp>
 
-#include "gphr/core/ParameterValidation.hpp"
 
 namespace gphr {
 
-Teuchos::ParameterList FullModelIntegrator::validated(Teuchos::ParameterList pl) {
-  validateParameters(pl, integratorValidParameters(), "integrator");
-  return pl;
-}
-
 FullModelIntegrator::FullModelIntegrator(RCP<const HamiltonianSystem> system, Teuchos::ParameterList pl)
-    : params_(validated(std::move(pl))),
+    : params_(validatedIntegrator(std::move(pl))),
       backend_(system, params_.sublist("linearSolver"), params_.get<std::string>("newtonSolver") == "gphr"),
       scheme_(backend_,
               quadratureFor(params_.get<std::string>("scheme"), params_.get<int>("quadraturePoints"),

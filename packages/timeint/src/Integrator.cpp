@@ -35,6 +35,11 @@ Teuchos::ParameterList integratorValidParameters() {
   return pl;
 }
 
+Teuchos::ParameterList validatedIntegrator(Teuchos::ParameterList integrator) {
+  validateParameters(integrator, integratorValidParameters(), "integrator");
+  return integrator;
+}
+
 Teuchos::ParameterList noxValidParameters() {
   Teuchos::ParameterList pl("nox");
   setChoiceParameter(pl, "Nonlinear Solver", "Line Search Based",

@@ -1,19 +1,11 @@
 #include "gphr/timeint/SchemeResidual.hpp"
 
-#include "gphr/core/ParameterValidation.hpp"
 #include "gphr/timeint/Integrator.hpp"
 
 namespace gphr {
 
-namespace {
-Teuchos::ParameterList validated(Teuchos::ParameterList pl) {
-  validateParameters(pl, integratorValidParameters(), "integrator");
-  return pl;
-}
-}  // namespace
-
 SchemeResidual::SchemeResidual(RCP<const HamiltonianSystem> system, Teuchos::ParameterList integrator)
-    : params_(validated(std::move(integrator))),
+    : params_(validatedIntegrator(std::move(integrator))),
       backend_(system, params_.sublist("linearSolver"), true),
       scheme_(backend_,
               quadratureFor(params_.get<std::string>("scheme"), params_.get<int>("quadraturePoints"),

@@ -53,7 +53,6 @@ OutputOptions outputOptionsFrom(const Teuchos::ParameterList& output, double T);
 struct ConfigRecord {
   std::string yaml;          ///< re-readable by gphr (config.yaml): empty arrays left out
   std::string fullYaml;      ///< every key as validated (artifacts.h5's "config" attribute)
-  std::string sceneYaml;     ///< the scene section (a model file's provenance, the cache keys' scene)
   std::string integratorYaml;///< the integrator section (a model file's)
   JsonObject provenance;     ///< summary.json's: solvers, build, the configuration as JSON
 };
@@ -69,7 +68,6 @@ struct RunOptions {
   std::vector<double> mu;        ///< the test parameter (section parameters)
   double T = 0.0;                ///< time.T
   std::string scheme;            ///< integrator.scheme
-  bool shift = true;             ///< scene.shift
   PipelineOptions pipeline;       ///< the models evaluated (stored), their k and m
   EvaluationSettings evaluation;  ///< time loop, saved steps, repeats, progress
   OfflineOptions offline;         ///< training, basis (k: the largest asked), DEIM basis, fits

@@ -19,7 +19,6 @@ class DenseModelIntegrator {
   const DenseBackend& backend() const { return backend_; }  ///< The dense backend (Newton matrix counts).
 
  private:
-  static Teuchos::ParameterList validated(Teuchos::ParameterList pl);
   Teuchos::ParameterList params_;
   DenseBackend backend_;
   AveragedGradientScheme<DenseBackend> scheme_;

@@ -30,7 +30,6 @@ class FullModelIntegrator {
   const NoxNewtonSolver* nox() const { return nox_.get(); }  ///< null under GPHR's loop
 
  private:
-  static Teuchos::ParameterList validated(Teuchos::ParameterList pl);
   Teuchos::ParameterList params_;
   FullModelBackend backend_;
   AveragedGradientScheme<FullModelBackend> scheme_;

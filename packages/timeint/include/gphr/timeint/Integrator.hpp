@@ -17,6 +17,9 @@ namespace gphr {
 /// newtonPredictor (0..3), newtonSolver (nox|gphr, full model only), and the sections
 /// linearSolver (FullModelBackend::validParameters()) and nox (noxValidParameters()).
 Teuchos::ParameterList integratorValidParameters();
+/// A user's `integrator` section validated against integratorValidParameters(), its defaults
+/// filled in: what every integrator (full, dense, the scheme residual) and driftBound read.
+Teuchos::ParameterList validatedIntegrator(Teuchos::ParameterList integrator);
 
 /// The `nox` section: top-level keys of NOX's parameter list; its sections (Direction, Line Search,
 /// Trust Region, Printing, Solver Options) are passed through to NOX unchecked.
