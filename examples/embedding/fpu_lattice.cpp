@@ -17,8 +17,9 @@
 // Exit code 0 iff AVF conserves H (full model) and H_hr (every query) to 1e-9 relative, every
 // query's lifted state at the probe entries stays within 2e-2 of the full model's (relative to
 // the pulse height; measured 7.1e-3 to 7.6e-3 on 1 and 2 ranks, printed per query), its E_L2
-// is at most 2e-2 and the evaluation library's estimate of it (no reference needed) within 3x
-// (both printed per query: measured equal to 3 digits).
+// is at most 2e-2, and both estimates of it within 3x: the evaluation library's (no reference
+// needed, n-sized work; measured equal to 3 digits) and the query's own error_estimate (no n-sized
+// work, calibrated by the build; all printed per query).
 #include <Tpetra_Core.hpp>
 #include <cmath>
 #include <cstdio>
@@ -184,15 +185,19 @@ int main(int argc, char** argv) {
                                                      online.model());
     // ... and its estimate without the reference (the full scheme's residual along the lift,
     // carried by the linearised error equation: doc/error-estimate.md), within 3x of it.
-    const bool estimated = e.errorEstimate <= 3.0 * e.eL2 && e.errorEstimate >= e.eL2 / 3.0;
+    const auto within3x = [&](double estimate) { return estimate <= 3.0 * e.eL2 && estimate >= e.eL2 / 3.0; };
+    // The query's own estimate (SimulationStats::errorEstimate: the residual on the file's
+    // indicator rows, calibrated by the build; no n-sized work), within 3x of E_L2 too.
+    const bool estimated = within3x(e.errorEstimate) && within3x(stats.errorEstimate);
     const bool queryOk =
         stats.ok() && drift <= 1e-9 * std::abs(H0) && err <= 2e-2 && e.bounded() && e.eL2 <= 2e-2 && estimated;
     ok = ok && queryOk;
     if (root)
       std::printf("GP-DEIM query at beta = %.2f (2k = %d, m = 24 of d = %lld rows): max |H_hr - H_hr0| / |H_hr0| = %.2e, "
-                  "max probe error / pulse height = %.2e, E_L2 = %.2e (%s), estimated %.2e -> %s\n", beta,
+                  "max probe error / pulse height = %.2e, E_L2 = %.2e (%s), estimated %.2e (full residual), "
+                  "%.2e (the query's error_estimate) -> %s\n", beta,
                   online.reducedDim(), static_cast<long long>(n), drift / std::abs(H0), err, e.eL2,
-                  statusName(e.status()), e.errorEstimate, queryOk ? "ok" : "FAILED");
+                  statusName(e.status()), e.errorEstimate, stats.errorEstimate, queryOk ? "ok" : "FAILED");
   }
   return ok ? 0 : 1;
 }

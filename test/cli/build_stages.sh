@@ -37,7 +37,7 @@ rows = list(csv.reader(open(sys.argv[1])))
 head = ["rank", "stage", "wall_s", "cpu_s", "mpi_wall_s", "mpi_cpu_s", "compute_s", "peak_rss_mb", "critical_s"]
 assert rows[0] == head, rows[0]
 want = ["setup", "training", "instance", "basis", "header", "deim basis k=6", "gp-deim k=6", "fits k=6",
-        "interpolation k=6", "write"]
+        "interpolation k=6", "calibration", "write"]
 body = rows[1:]
 assert len(body) == 2 * len(want), f"{len(body)} rows, want {2 * len(want)}"
 for r in (0, 1):

@@ -3,6 +3,8 @@
 #  1. gphr build on 2 ranks writes a model file without n-sized data when the basis is not asked for;
 #  2. gphr query gives bit-identical per-query results on 1, 2 and 3 ranks (each query runs on one
 #     rank alone; OpenBLAS single-threaded so that BLAS sums in one order);
+#     every query has an error estimate, the same on every rank count; a file's target error
+#     marks and counts the queries above it;
 #  3. gphr validate's max / mean / 95th percentile agree with a hand computation from validation.csv;
 #  4. bad queries and bad model files: exit 2, one line naming the problem, nothing written;
 #  5. a query run killed with SIGKILL resumes: finished queries are kept byte for byte and the
@@ -86,6 +88,26 @@ for f in q1/queries/*.h5; do
   done
 done
 grep -q '"queries_per_s"' q2/query_summary.json || fail "no throughput in query_summary.json"
+# Every query has an error estimate (doc/error-estimate.md): finite, the same on 1, 2 and 3 ranks,
+# in queries.csv and results.h5; a file with a target error marks and counts those above it.
+/usr/bin/python3 - <<'PY' || fail "error_estimate"
+import csv, math
+import h5py
+est = {np: {r["name"]: r["error_estimate"] for r in csv.DictReader(open(f"q{np}/queries.csv"))} for np in (1, 2, 3)}
+assert est[1] == est[2] == est[3], est
+assert all(math.isfinite(float(x)) and float(x) > 0 for x in est[1].values()), est[1]
+with h5py.File("q1/results.h5") as f:
+    for name, x in est[1].items():
+        assert float(f["/queries/" + name].attrs["error_estimate"][0]) == float(x), name
+PY
+grep -q "error estimate: 8 of 8 queries, largest " q1.out || fail "no estimate on the console: $(cat q1.out)"
+sed -e 's/probes: \[0, 5, 130\]}/probes: [0, 5, 130], targetError: 1.0e-9}/' build.yaml > build_target.yaml
+"$gphr" build build_target.yaml --model m/target.h5 --output art_t > target_build.out 2> /dev/null || fail "build with a target"
+grep -q "above the target error" target_build.out || fail "the build does not compare with its target: $(cat target_build.out)"
+"$gphr" query m/target.h5 q.yaml --output qt > qt.out 2> /dev/null || fail "query of a file with a target"
+grep -q "; 8 over the model's target error 1e-09" qt.out || fail "over-target queries not counted: $(cat qt.out)"
+[ "$(cut -d, -f12 qt/queries.csv | grep -c '^yes$')" -eq 8 ] || fail "over_target not marked: $(cat qt/queries.csv)"
+[ "$(cut -d, -f12 q1/queries.csv | sort -u)" = "$(printf '\nover_target')" ] || fail "over_target without a target"
 # Whole lifted states (states: true, the file with the basis): at the probe entries they equal the
 # probes (the same y0 + A z, summed in another order: 1e-13 relative).
 printf 'queries:\n  defaults: {T: 1.0, dt: 0.01, k: 6, m: 10, saveEvery: 25, states: true}\n  points:\n    s: {eps: 1.04}\n' > s.yaml

@@ -57,7 +57,7 @@ PY
 grep -q "(2 run, 0 reused, 2 ok)" out || fail "damaged results were reused: $(cat out)"
 grep -q "p1.h5 is unreadable or damaged (checksum mismatch): redone" err || fail "the changed value was not said: $(cat err)"
 grep -q "p2.h5 is unreadable or damaged (.*incorrect metadata checksum.*): redone" err || fail "the damaged header was not said: $(cat err)"
-cut -d, -f1-10,13-14 clean.csv > a.csv; cut -d, -f1-10,13-14 dir/queries.csv > b.csv  # all but the timings and `reused`
+cut -d, -f1-12,16-17 clean.csv > a.csv; cut -d, -f1-12,16-17 dir/queries.csv > b.csv  # all but the timings and `reused`
 cmp -s a.csv b.csv || fail "the redone queries differ: $(diff a.csv b.csv)"
 python3 - dir/query_summary.json <<'PY' || fail "query_summary.json"
 import json, sys

@@ -53,7 +53,7 @@ def items(path):
     return out
 def table(path):
     rows = list(csv.DictReader(open(path)))
-    return [{k: v for k, v in r.items() if k not in ("setup_s", "online_s", "reused")} for r in rows]
+    return [{k: v for k, v in r.items() if k not in ("setup_s", "online_s", "indicator_s", "reused")} for r in rows]
 ref, ref_csv = items(sys.argv[1] + "/results.h5"), table(sys.argv[1] + "/queries.csv")
 assert len(ref_csv) == 30 and sum(1 for k in ref if k.endswith("/states")) == 2, (len(ref_csv), sorted(ref)[:5])
 for other in sys.argv[2:]:

@@ -36,6 +36,31 @@ ModelBuildOptions buildOptions(const RunOptions& opt, const std::vector<std::str
   return o;
 }
 
+// Per model, its error indicator's calibration on the training parameters: the largest error
+// there, measured and estimated, against the target where one is set.
+void printCalibration(const ModelBuildResult& r) {
+  const double target = r.data.targetError;
+  for (const auto& x : r.data.models) {
+    const auto it = r.calibration.find(x.key());
+    if (it == r.calibration.end() || !x.calibration.calibrated()) {
+      std::printf("  %s: no error estimate (%s)\n", x.key().c_str(),
+                  it == r.calibration.end() ? "no indicator rows: build.indicatorDofs is 0"
+                                            : "no training parameter gave both an error and an indicator");
+      continue;
+    }
+    double measured = 0.0, estimated = 0.0;
+    for (const auto& p : it->second)
+      measured = std::max(measured, p.error), estimated = std::max(estimated, x.calibration.estimate(p.indicator));
+    std::printf("  %s: error estimate = %.3g eta^%.2f, fitted on %d training parameters (within %.2fx of E_L2 there); "
+                "largest E_L2 there %.2e, estimated %.2e%s\n", x.key().c_str(), x.calibration.scale,
+                x.calibration.exponent, x.calibration.points, x.calibration.worstFactor, measured, estimated,
+                target > 0.0 ? (estimated <= target ? ": meets the target error" : ": above the target error") : "");
+  }
+  if (target > 0.0)
+    std::printf("  target error %.2e (build.targetError): queries whose estimate exceeds it are marked over_target; the "
+                "build does not add training points to meet it\n", target);
+}
+
 void printBuild(const std::string& path, const ReducedModelData& data, double seconds, int ranks) {
   std::error_code ec;
   const auto bytes = std::filesystem::file_size(path, ec);
@@ -122,6 +147,7 @@ int runBuild(const std::string& configPath, const std::string& modelPath, const 
   });
   if (comm->getRank() == 0) {
     printBuild(modelPath, r.data, r.seconds, comm->getSize());
+    printCalibration(r);
     std::printf("%s", table.summary().c_str());
   }
   return 0;

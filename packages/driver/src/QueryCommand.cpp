@@ -68,8 +68,23 @@ struct QueryOutcome {
   RunStatus status = RunStatus::Ok;
   std::string reason;
   double setupSeconds = NAN, onlineSeconds = NAN, drift = NAN, newtonIterations = NAN;
+  /// the calibrated error estimate, the raw indicator and its seconds (NaN: none, ErrorIndicator.hpp)
+  double errorEstimate = NAN, errorIndicator = NAN, indicatorSeconds = NAN;
   bool extrapolated = false, reused = false;
 };
+
+// The numbers a query's file and the ranks' exchange carry, in this order.
+constexpr size_t kOutcomeNumbers = 8;
+std::vector<double> outcomeNumbers(const QueryOutcome& o) {
+  return {o.setupSeconds, o.onlineSeconds, o.drift, o.newtonIterations, o.extrapolated ? 1.0 : 0.0,
+          o.errorEstimate, o.errorIndicator, o.indicatorSeconds};
+}
+void setOutcomeNumbers(QueryOutcome& o, const std::vector<double>& v) {
+  GPHR_REQUIRE(v.size() == kOutcomeNumbers, InputError, v.size(), " outcome numbers; allowed: ", kOutcomeNumbers);
+  o.setupSeconds = v[0], o.onlineSeconds = v[1], o.drift = v[2], o.newtonIterations = v[3];
+  o.extrapolated = v[4] != 0.0;
+  o.errorEstimate = v[5], o.errorIndicator = v[6], o.indicatorSeconds = v[7];
+}
 
 // The outcome stored in a finished query's file if its key matches (resultKey: the query, the
 // model file's checksum, the gphr version); else the query is redone, and a file of another key
@@ -87,9 +102,7 @@ bool finished(const std::string& path, const std::string& key, QueryOutcome& out
     out.status = statusFromName(f.stringAttribute("/", "status"));
     out.known = true;
     out.reason = f.stringAttribute("/", "reason");
-    const auto v = f.doubleAttribute("/", "numbers");  // setup_s, online_s, drift, newton, extrapolated
-    out.setupSeconds = v.at(0), out.onlineSeconds = v.at(1), out.drift = v.at(2), out.newtonIterations = v.at(3);
-    out.extrapolated = v.at(4) != 0.0;
+    setOutcomeNumbers(out, f.doubleAttribute("/", "numbers"));
     // Read here what writeResults() will copy: a damaged dataset (its header's checksum, a
     // changed value) is then a query to redo, not an error or a wrong result after every query has run.
     GPHR_REQUIRE(f.hasAttribute("/", "checksum") && f.stringAttribute("/", "checksum") == resultChecksum(f),
@@ -158,6 +171,8 @@ QueryOutcome outcomeOf(const Query& q, const SimulationStats& stats, const Recor
   out.status = stats.status, out.reason = stats.reason;
   out.setupSeconds = setup, out.onlineSeconds = stats.onlineSeconds;
   out.extrapolated = outside;
+  out.errorEstimate = stats.errorEstimate, out.errorIndicator = stats.errorIndicator;
+  out.indicatorSeconds = stats.indicatorSeconds;
   out.newtonIterations = stats.ok() ? double(stats.run.newtonIterations) / wholeSteps(q.T, q.dt) : NAN;
   out.drift = 0.0;
   for (double h : rec.H) out.drift = std::max(out.drift, std::abs(h - rec.H.front()));
@@ -182,8 +197,8 @@ void writeQuery(const std::string& path, const ReducedModel& model, const Query&
     f.setAttribute("/", "parameter", q.mu);
     f.setAttribute("/", "status", std::string(statusName(out.status)));
     f.setAttribute("/", "reason", out.reason);
-    f.setAttribute("/", "numbers", std::vector<double>{out.setupSeconds, out.onlineSeconds, out.drift,
-                                                       out.newtonIterations, out.extrapolated ? 1.0 : 0.0});
+    f.setAttribute("/", "numbers", outcomeNumbers(out));
+    f.setAttribute("/", "error_estimate", std::vector<double>{out.errorEstimate});
     f.setAttribute("/", "checksum", resultChecksum(f));
     f.flush();
     f.setAttribute("/", "key", resultKey(q, model.data()));  // last: marks the file complete
@@ -229,25 +244,30 @@ QueryOutcome runAdaptive(const ReducedModel& model, const Query& q, const std::s
 // Each query's outcome on every rank (rank 0 writes the table): numbers summed over the ranks,
 // each query's from the rank that ran it; the status words travel as codes.
 void shareOutcomes(const RCP<const Comm>& comm, std::vector<QueryOutcome>& outs) {
-  const size_t n = outs.size();
-  std::vector<double> mine(n * 7, 0.0), all(n * 7, 0.0);
+  const size_t n = outs.size(), w = kOutcomeNumbers + 2;  // the status code, the numbers, reused
+  std::vector<double> mine(n * w, 0.0), all(n * w, 0.0);
   for (size_t i = 0; i < n; ++i) {
     if (!outs[i].known) continue;
-    const double code = 1.0 + static_cast<double>(outs[i].status);  // RunStatus as a number > 0
-    const double v[7] = {code, outs[i].setupSeconds, outs[i].onlineSeconds, outs[i].drift,
-                         outs[i].newtonIterations, outs[i].extrapolated ? 1.0 : 0.0, outs[i].reused ? 1.0 : 0.0};
-    std::copy(v, v + 7, mine.begin() + i * 7);
+    mine[i * w] = 1.0 + static_cast<double>(outs[i].status);  // RunStatus as a number > 0
+    const auto v = outcomeNumbers(outs[i]);
+    std::copy(v.begin(), v.end(), mine.begin() + i * w + 1);
+    mine[i * w + w - 1] = outs[i].reused ? 1.0 : 0.0;
   }
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, static_cast<int>(mine.size()), mine.data(), all.data());
   for (size_t i = 0; i < n; ++i) {
-    const double* v = all.data() + i * 7;
+    const double* v = all.data() + i * w;
     if (!outs[i].known) outs[i].status = static_cast<RunStatus>(static_cast<int>(v[0]) - 1), outs[i].known = true;
-    outs[i].setupSeconds = v[1], outs[i].onlineSeconds = v[2], outs[i].drift = v[3];
-    outs[i].newtonIterations = v[4], outs[i].extrapolated = v[5] != 0.0, outs[i].reused = v[6] != 0.0;
+    setOutcomeNumbers(outs[i], std::vector<double>(v + 1, v + w - 1));
+    outs[i].reused = v[w - 1] != 0.0;
   }
 }
 
 std::string number(double x) { return std::isfinite(x) ? detail::concat(x) : std::string("nan"); }
+
+// Whether a query's estimate exceeds the file's target error (none set: never).
+bool overTarget(const ReducedModelData& d, const QueryOutcome& o) {
+  return d.targetError > 0.0 && std::isfinite(o.errorEstimate) && o.errorEstimate > d.targetError;
+}
 
 void writeTable(const std::string& dir, const ReducedModelData& d, const std::vector<Query>& qs,
                 const std::vector<QueryOutcome>& outs) {
@@ -255,7 +275,8 @@ void writeTable(const std::string& dir, const ReducedModelData& d, const std::ve
   {
     csv << "name";
     for (const auto& p : d.parameterNames) csv << "," << p;
-    csv << ",method,k,m,T,dt,setup,status,extrapolated,setup_s,online_s,H_hr_drift_max,newton_iters_avg,reused\n";
+    csv << ",method,k,m,T,dt,setup,status,extrapolated,error_estimate,over_target,setup_s,online_s,indicator_s,"
+           "H_hr_drift_max,newton_iters_avg,reused\n";
     for (size_t i = 0; i < qs.size(); ++i) {
       const auto& q = qs[i];
       const auto& o = outs[i];
@@ -266,8 +287,9 @@ void writeTable(const std::string& dir, const ReducedModelData& d, const std::ve
               : q.setup == SetupRoute::Exact                        ? "exact"
                                                                     : "interpolated")
           << "," << statusName(o.status) << ","
-          << (o.extrapolated ? "yes" : "no") << "," << number(o.setupSeconds) << "," << number(o.onlineSeconds)
-          << "," << number(o.drift) << "," << number(o.newtonIterations) << "," << (o.reused ? "yes" : "no") << "\n";
+          << (o.extrapolated ? "yes" : "no") << "," << number(o.errorEstimate) << ","
+          << (d.targetError > 0.0 ? (overTarget(d, o) ? "yes" : "no") : "") << "," << number(o.setupSeconds) << ","
+          << number(o.onlineSeconds) << "," << number(o.indicatorSeconds) << "," << number(o.drift) << "," << number(o.newtonIterations) << "," << (o.reused ? "yes" : "no") << "\n";
     }
   }
   writeTextFile(dir + "/queries.csv", csv.str());
@@ -291,6 +313,7 @@ void writeResults(const std::string& dir, const std::vector<Query>& qs) {
       }
       out.setAttribute(g, "parameter", q.mu);
       out.setAttribute(g, "status", in.stringAttribute("/", "status"));
+      out.setAttribute(g, "error_estimate", in.doubleAttribute("/", "error_estimate"));
       out.setAttribute(g, "method", q.method);
       out.setAttribute(g, "k_m", std::vector<double>{double(q.k), double(q.m)});
     }
@@ -353,20 +376,31 @@ int runQuery(const std::string& modelPath, const std::string& queriesPath, const
   shareOutcomes(comm, outs);
   // rank 0 writes the tables; its failure (a full disk, say) ends every rank
   onRootAgreed(comm, "gphr query: the results", [&] {
-    long ran = 0, ok = 0;
-    for (const auto& o : outs) ran += !o.reused, ok += o.status == RunStatus::Ok;
+    long ran = 0, ok = 0, over = 0, estimated = 0;
+    double worst = NAN;
+    for (const auto& o : outs) {
+      ran += !o.reused, ok += o.status == RunStatus::Ok, over += overTarget(model.data(), o);
+      if (std::isfinite(o.errorEstimate)) ++estimated, worst = std::isfinite(worst) ? std::max(worst, o.errorEstimate) : o.errorEstimate;
+    }
     writeResults(outputDir, queries);
     writeTable(outputDir, model.data(), queries, outs);
     JsonObject s;
     s.set("model_file", modelPath).set("queries", static_cast<long>(queries.size())).set("queries_run", ran)
         .set("queries_reused", static_cast<long>(queries.size()) - ran).set("queries_ok", ok).set("ranks", size)
         .set("threads_per_rank", threads)
+        .set("queries_with_error_estimate", estimated).set("error_estimate_max", worst)
+        .set("target_error", model.data().targetError > 0.0 ? model.data().targetError : NAN)
+        .set("queries_over_target", over)
         .set("wall_s", slowest).set("queries_per_s", ran > 0 ? ran / slowest : NAN).set("gphr_version", gphrVersion());
     writeTextFile(outputDir + "/query_summary.json", s.str(2) + "\n");
     std::printf("gphr query: %zu queries (%ld run, %ld reused, %ld ok) on %d rank(s) x %d thread(s) in %.2f s: "
                 "%.1f queries/s; results in %s/results.h5, table %s/queries.csv\n", queries.size(), ran,
                 static_cast<long>(queries.size()) - ran, ok, size, threads, slowest, ran > 0 ? ran / slowest : 0.0,
                 outputDir.c_str(), outputDir.c_str());
+    std::printf("  error estimate: %ld of %zu queries, largest %s", estimated, queries.size(), number(worst).c_str());
+    if (model.data().targetError > 0.0)
+      std::printf("; %ld over the model's target error %g (over_target in queries.csv)", over, model.data().targetError);
+    std::printf("\n");
   });
   return 0;
 }

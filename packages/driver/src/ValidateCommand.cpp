@@ -134,11 +134,14 @@ std::vector<ValidationRecord> evaluatePoint(RunContext& ctx, const ReducedModel&
         const double setup = clock.stop();
         const ModelRun run = evaluateRun(settings, fom, *inst.system, *A, *hr, {sm.method, sm.k, sm.m, adeimUpdateHook(*hr)});
         out.push_back(recordOf(run, q, setup, outside));
+        out.back().queryEstimate =  // as gphr query reports it (collective, as this point's evaluation)
+            rm.simulateAdaptive(sm.k, sm.m, q.mu, q.T, q.dt, ctx.comm, {}, nullptr, true).errorEstimate;
         continue;
       }
       OnlineModel online = rm.instantiate(sm.method, sm.k, sm.m, q.mu, true, q.setup);
       const ModelRun run = evaluateRun(settings, fom, *inst.system, *A, online.model(), {sm.method, sm.k, sm.m, {}});
       out.push_back(recordOf(run, q, online.setupSeconds(), outside));
+      out.back().queryEstimate = online.simulate(q.T, q.dt).errorEstimate;  // as gphr query reports it
     }
   }
   return out;

@@ -220,15 +220,15 @@ std::string recordsChecksum(const std::string& body) {
 // One record line (writePointRecords' format); false where it does not parse whole.
 bool parseRecord(const std::string& line, ValidationRecord& r) {
   std::istringstream ls(line);
-  std::string status, eL2, estimate, online, setup, mu;
+  std::string status, eL2, estimate, queryEstimate, online, setup, mu;
   int extrap = 0;
   std::getline(ls, r.point, '\t'), std::getline(ls, r.method, '\t');
-  ls >> r.k >> r.m >> status >> eL2 >> estimate >> online >> setup >> extrap >> mu;
+  ls >> r.k >> r.m >> status >> eL2 >> estimate >> queryEstimate >> online >> setup >> extrap >> mu;
   if (!ls && !ls.eof()) return false;
   try {
     r.status = statusFromName(status);
     r.eL2 = std::stod(eL2), r.onlineSeconds = std::stod(online), r.setupSeconds = std::stod(setup);
-    r.errorEstimate = std::stod(estimate);
+    r.errorEstimate = std::stod(estimate), r.queryEstimate = std::stod(queryEstimate);
     std::istringstream ms(mu);
     for (std::string x; std::getline(ms, x, ',');) r.mu.push_back(std::stod(x));
   } catch (const std::exception&) {  // std::stod: not a number, or out of range; an unknown status
@@ -277,7 +277,7 @@ void writePointRecords(const std::string& path, const std::string& key, const st
     os << "key\t" << key << "\nfom_s\t" << num(fomSeconds) << "\n";
     for (const auto& r : recs)
       os << r.point << "\t" << r.method << "\t" << r.k << "\t" << r.m << "\t" << statusName(r.status) << "\t" << num(r.eL2) << "\t"
-         << num(r.errorEstimate) << "\t" << num(r.onlineSeconds) << "\t" << num(r.setupSeconds) << "\t" << r.extrapolated << "\t" << muText(r.mu)
+         << num(r.errorEstimate) << "\t" << num(r.queryEstimate) << "\t" << num(r.onlineSeconds) << "\t" << num(r.setupSeconds) << "\t" << r.extrapolated << "\t" << muText(r.mu)
          << "\n";
     writeText(path, os.str() + recordsChecksum(os.str()) + "\n");
   }
@@ -324,22 +324,25 @@ double rankCorrelation(const std::vector<double>& a, const std::vector<double>& 
 // the runs where both are known: per model the median and range of estimate / E_L2 and the share
 // of points within 3x; over all runs, the rank correlation (whether the estimate orders the runs
 // as the error does).
-std::string estimateSection(const std::vector<ValidationRecord>& records, JsonObject& out) {
+std::string estimateSection(const std::vector<ValidationRecord>& records, double ValidationRecord::*estimateOf,
+                            const std::string& title, const std::string& what, JsonObject& out) {
   std::vector<std::string> labels;
-  std::map<std::string, std::vector<double>> ratios;
+  std::map<std::string, std::vector<double>> ratios, modelErrors, modelEstimates;
   std::vector<double> errors, estimates;
   for (const auto& r : records) {
-    if (r.status != RunStatus::Ok || !(r.eL2 > 0.0) || !std::isfinite(r.errorEstimate)) continue;
+    const double e = r.*estimateOf;
+    if (r.status != RunStatus::Ok || !(r.eL2 > 0.0) || !std::isfinite(e)) continue;
     if (!ratios.count(r.label())) labels.push_back(r.label());
-    ratios[r.label()].push_back(r.errorEstimate / r.eL2);
-    errors.push_back(r.eL2), estimates.push_back(r.errorEstimate);
+    ratios[r.label()].push_back(e / r.eL2);
+    modelErrors[r.label()].push_back(r.eL2), modelEstimates[r.label()].push_back(e);
+    errors.push_back(r.eL2), estimates.push_back(e);
   }
   std::ostringstream md;
-  md << "\n## The error estimate against the error\n\nE_L2_estimate (doc/error-estimate.md) needs no full-model "
-        "trajectory; here it is set against E_L2 at every point where both are known. Over all "
+  md << "\n## " << title << "\n\n" << what << "; here it is set against E_L2 at every point where both are known. Over all "
      << errors.size() << " runs the rank correlation (Spearman) of estimate and error is "
      << (std::isfinite(rankCorrelation(errors, estimates)) ? shown(rankCorrelation(errors, estimates), "%.3f") : "-")
-     << ".\n\n| model | points | estimate / E_L2, median | min | max | within 3x |\n| --- | --- | --- | --- | --- | --- |\n";
+     << "; per model, over its points, in the last column.\n\n| model | points | estimate / E_L2, median | min | max | "
+        "within 3x | rank correlation |\n| --- | --- | --- | --- | --- | --- | --- |\n";
   long within = 0;
   for (const auto& label : labels) {
     const auto& x = ratios[label];
@@ -347,12 +350,49 @@ std::string estimateSection(const std::vector<ValidationRecord>& records, JsonOb
     within += in3;
     md << "| " << label << " | " << x.size() << " | " << shown(percentile(x, 0.5), "%.2f") << " | "
        << shown(*std::min_element(x.begin(), x.end()), "%.2f") << " | " << shown(*std::max_element(x.begin(), x.end()), "%.2f")
-       << " | " << in3 << "/" << x.size() << " |\n";
+       << " | " << in3 << "/" << x.size() << " | "
+       << shown(rankCorrelation(modelErrors[label], modelEstimates[label]), "%.3f") << " |\n";
   }
   out.set("runs", static_cast<long>(errors.size()))
       .set("rank_correlation", rankCorrelation(errors, estimates))
       .set("within_3x", errors.empty() ? NAN : double(within) / errors.size());
   return errors.empty() ? std::string() : md.str();
+}
+
+// validation_estimate.png: both estimates against E_L2 at every finished run, log-log, with the
+// lines estimate = E_L2 and a factor 3 either side. True when drawn.
+bool plotEstimates(const std::string& dir, const std::vector<ValidationRecord>& records) {
+  if (!haveGnuplot()) return false;
+  std::ostringstream dat;
+  size_t points = 0;
+  for (double ValidationRecord::*field : {&ValidationRecord::errorEstimate, &ValidationRecord::queryEstimate}) {
+    for (const auto& r : records)
+      if (r.status == RunStatus::Ok && r.eL2 > 0.0 && std::isfinite(r.*field) && r.*field > 0.0)
+        dat << num(r.eL2) << " " << num(r.*field) << "\n", ++points;
+    dat << "\n\n";
+  }
+  if (points == 0) return false;
+  const std::string base = dir + "/validation_estimate";
+  std::ostringstream gp;
+  gp << "set terminal pngcairo size 700,600 noenhanced\nset output " << gnuplotQuoted(base + ".png")
+     << "\nset logscale xy\nset format x '%.0e'\nset format y '%.0e'\nset grid\nset key top left\n"
+     << "set title 'Error estimates against the true error E_L2 (one point per run)'\n"
+     << "set xlabel 'E_L2 (against the full model)'\nset ylabel 'estimate'\nset size square\n"
+     << "plot x title 'estimate = E_L2' lw 2 lc 'black', 3*x title 'factor 3' dt 2 lc 'gray', x/3 notitle dt 2 lc 'gray', "
+     << gnuplotQuoted(base + ".dat") << " index 0 using 1:2 with points pt 7 ps 0.8 title 'E_L2_estimate (full residual)', "
+     << gnuplotQuoted(base + ".dat") << " index 1 using 1:2 with points pt 5 ps 0.8 title 'error_estimate (query)'\n";
+  bool drawn = false;
+  try {
+    writeTextFile(base + ".dat", dat.str());
+    writeTextFile(base + ".gp", gp.str());
+    drawn = runGnuplot(base + ".gp", {base + ".png"});
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "[gphr] validate: %s\n", e.what());
+  }
+  std::remove((base + ".dat").c_str());
+  std::remove((base + ".gp").c_str());
+  if (!drawn) std::fprintf(stderr, "[gphr] validate: '%s.png' not drawn\n", base.c_str());
+  return drawn;
 }
 
 }  // namespace
@@ -363,13 +403,13 @@ void writeValidationReport(const std::string& dir, const ReducedModel& model, co
   std::ostringstream csv;
   csv << "point";
   for (const auto& p : d.parameterNames) csv << "," << p;
-  csv << ",model,method,k,m,E_L2,E_L2_estimate,status,extrapolated,online_s,setup_s\n";
+  csv << ",model,method,k,m,E_L2,E_L2_estimate,error_estimate,status,extrapolated,online_s,setup_s\n";
   for (const auto& r : records) {
     csv << r.point;
     for (double x : r.mu) csv << "," << num(x);
     // a ROM has no m: the field is left empty, not 0 (which reads as a size)
     csv << "," << r.label() << "," << r.method << "," << r.k << "," << (r.m > 0 ? std::to_string(r.m) : "") << ","
-        << num(r.eL2) << "," << num(r.errorEstimate) << "," << statusName(r.status)
+        << num(r.eL2) << "," << num(r.errorEstimate) << "," << num(r.queryEstimate) << "," << statusName(r.status)
         << "," << (r.extrapolated ? "yes" : "no") << "," << num(r.onlineSeconds) << "," << num(r.setupSeconds) << "\n";
   }
   writeText(dir + "/validation.csv", csv.str());
@@ -414,14 +454,23 @@ void writeValidationReport(const std::string& dir, const ReducedModel& model, co
        << (best ? sci(best->maxError) : "-") << " | " << (best ? shown(best->meanOnline, "%.3g") : "-") << " |\n";
   }
   JsonObject estimate;
-  md << estimateSection(records, estimate);
+  md << estimateSection(records, &ValidationRecord::errorEstimate, "The error estimate against the error",
+                        "E_L2_estimate (doc/error-estimate.md) needs no full-model trajectory, only the full model's "
+                        "residual along the lift (n-sized work)",
+                        estimate);
+  JsonObject queryEstimate;
+  md << estimateSection(records, &ValidationRecord::queryEstimate, "The query's error estimate against the error",
+                        "error_estimate, what `gphr query` reports (doc/error-estimate.md), costs no n-sized work: the "
+                        "residual on the file's indicator rows, calibrated on the build's training points",
+                        queryEstimate);
+  if (plotEstimates(dir, records)) md << "\n![estimates against the error](validation_estimate.png)\n";
   writeText(dir + "/validation.md", md.str());
   JsonObject summary;
   summary.set("model_file", model.path())
       .set("points", static_cast<long>(points.size()))
       .set("fom_online_s_mean", fomMean)
       .set("offline_s", d.offlineSeconds).set("gphr_version", gphrVersion()).set("models", js)
-      .set("error_estimate", estimate);
+      .set("error_estimate", estimate).set("query_error_estimate", queryEstimate);
   writeText(dir + "/validation_summary.json", summary.str(2) + "\n");
   plotErrors(dir, d, stats, records);
   std::printf("%s", md.str().c_str());

@@ -1,11 +1,12 @@
 // The evaluation library against mathematics: the error eq:errNR of a model whose state never
 // moves is the reference's distance from y0, computed here from the reference alone; the Galerkin
 // ROM of a basis that spans the whole phase space (A = I) is the full model, to the Newton
-// tolerance; a model that fails is a status, not an error; and the reference cache reads back
+// tolerance; the build calibrates a query's error estimate on the errors this library measures; a model that fails is a status, not an error; and the reference cache reads back
 // bit for bit what it stored, and replaces a key it does not match and a file it cannot trust.
 #include <gtest/gtest.h>
 
 #include <Teuchos_CommHelpers.hpp>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -15,6 +16,8 @@
 #include "TestUtils.hpp"
 #include "gphr/evaluation/ReducedEvaluation.hpp"
 #include "gphr/evaluation/ReferenceCache.hpp"
+#include "gphr/offline/ModelFileBuild.hpp"
+#include "gphr/online/ReducedModel.hpp"
 #include "gphr/reduction/GalerkinRom.hpp"
 #include "gphr/reduction/SymplecticBasis.hpp"
 
@@ -178,6 +181,49 @@ TEST(ReducedEvaluation, TheErrorEstimateFollowsTheErrorOfTheBasis) {
     EXPECT_LT(estimates[i], 3.0 * errors[i]) << "k index " << i;
   }
   EXPECT_NEAR(estimates.back() / errors.back(), 1.0, 0.5);
+}
+
+// The build's calibration of the query's error indicator (offline/ErrorCalibration.hpp): at each
+// training parameter the error it fitted on is the E_L2 this library measures of the same stored
+// model against a full model of the training's settings (snapshots every 2nd step = saveEvery 2),
+// and a query of the file reports the calibrated estimate of its own indicator.
+TEST(ReducedEvaluation, TheBuildCalibratesTheQueryEstimateOnTheErrorsItMeasures) {
+  const auto scene = std::make_shared<Nls1d>(32, 5.0);
+  ModelBuildOptions o;
+  o.training.parameters = {{0.9}, {1.0}, {1.1}};
+  o.training.dt = 0.01, o.training.steps = 20, o.training.snapshotEvery = 2, o.training.progress = false;
+  o.basis.k = 4;
+  o.ms = {8};
+  long pid = getpid();
+  Teuchos::broadcast(*test::comm(), 0, Teuchos::outArg(pid));
+  const std::string path = "/tmp/gphr-test-calibration-" + std::to_string(pid) + ".h5";
+  const ModelBuildResult built = buildReducedModelFile(*scene, test::comm(), o, path);
+  const ReducedModel file(path, scene);
+  const StoredHyperModel& stored = file.data().model("gp-deim", 4, 8);
+  EXPECT_EQ(stored.calibration.points, 3);
+  ASSERT_TRUE(stored.calibration.calibrated());
+  const auto& points = built.calibration.at(stored.key());
+  ASSERT_EQ(points.size(), 3u);
+  EvaluationSettings settings;
+  settings.time.dt = 0.01, settings.time.steps = 20, settings.saveEvery = 2;
+  for (const auto& p : points) {
+    const FullModelReference ref = runFullModel(settings, *scene, p.parameter, test::comm());
+    const auto inst = scene->instantiate(test::comm(), p.parameter, true);
+    auto online = file.instantiate("gp-deim", 4, 8, p.parameter);
+    const ReducedEvaluation run =
+        evaluateReducedModel(settings, ref, *inst.system, *file.basis(4, inst.system->space()), online.model());
+    if (test::comm()->getRank() == 0)
+      std::printf("eps = %.2f: calibration point E_L2 %.6e, evaluation E_L2 %.6e, indicator %.3e\n",
+                  p.parameter[0], p.error, run.eL2, p.indicator);
+    // the same model and time loop, lifted and compared in another order: 1e-9 relative
+    EXPECT_NEAR(p.error, run.eL2, 1e-9 * run.eL2);
+    const SimulationStats q = online.simulate(0.2, 0.01);
+    EXPECT_DOUBLE_EQ(q.errorIndicator, p.indicator);  // a query runs what the calibration ran
+    EXPECT_DOUBLE_EQ(q.errorEstimate, stored.calibration.estimate(q.errorIndicator));
+    // fitted on these very points: within the factor the file records
+    EXPECT_LE(std::max(q.errorEstimate / run.eL2, run.eL2 / q.errorEstimate), stored.calibration.worstFactor * (1 + 1e-9));
+  }
+  if (test::comm()->getRank() == 0) std::remove(path.c_str());
 }
 
 TEST(ReducedEvaluation, AFailingModelIsDivergedWithItsStepNotAnError) {

@@ -106,27 +106,6 @@ RCP<MultiVector> gradientDeimBasis(const SystemSet& systems,
   return rcp(new MultiVector(pod.leftVectors(), Teuchos::Copy));
 }
 
-namespace {
-// Rows of G whose stencils hold one of `entries`: marked by their owners, summed over the ranks
-// (d integers, once, offline).
-std::vector<GO> rowsTouching(const NonlinearTerm& term, const std::vector<GO>& entries) {
-  std::vector<GO> sorted(entries);
-  std::sort(sorted.begin(), sorted.end());
-  const GO d = term.numTerms(), base = term.rowMap()->getMinAllGlobalIndex();
-  std::vector<int> mark(d, 0), all(d, 0);
-  const Stencil& st = term.stencil();
-  for (LO i = 0; i < st.numRows(); ++i)
-    for (size_t j = st.offsets[i]; j < st.offsets[i + 1]; ++j)
-      if (std::binary_search(sorted.begin(), sorted.end(), st.gids[j]))
-        mark[term.rowMap()->getGlobalElement(i) - base] = 1;
-  Teuchos::reduceAll(*term.rowMap()->getComm(), Teuchos::REDUCE_SUM, static_cast<int>(d), mark.data(), all.data());
-  std::vector<GO> rows;
-  for (GO i = 0; i < d; ++i)
-    if (all[i]) rows.push_back(base + i);
-  return rows;
-}
-}  // namespace
-
 GradientDeimModel::GradientDeimModel(const HamiltonianSystem& system, const MultiVector& A,
                                      const GradientDeimPair& pair, ReducedLinearPart linear)
     : linear_(std::move(linear)), B_(pair.B), offset_(pair.offset) {
@@ -134,7 +113,9 @@ GradientDeimModel::GradientDeimModel(const HamiltonianSystem& system, const Mult
                "gradient DEIM: an offset of ", offset_.length(), " entries for a reduced dimension of ",
                linear_.L.numRows());
   const NonlinearTerm& term = system.nonlinearTerm();
-  const auto rows = rowsTouching(term, pair.entries);
+  std::vector<GO> sorted(pair.entries);
+  std::sort(sorted.begin(), sorted.end());
+  const auto rows = rowsTouching(term, sorted);
   const auto v = gatherWeights(term, rows);
   SampleMesh mesh = buildSampleMesh(system, A, rows, v, ReducedLinearPart());
   for (GO gid : mesh.sample.stencil.gids) {

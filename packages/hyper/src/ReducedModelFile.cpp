@@ -124,6 +124,7 @@ void writeProvenance(Hdf5File& f, const ReducedModelData& d) {
   f.setAttribute("/", "offline_seconds", std::vector<double>{d.offlineSeconds});
   f.setAttribute("/", "time", std::vector<double>{d.T, d.dt});
   f.setAttribute("/", "polynomial_degree", std::vector<double>{double(d.polynomialDegree)});
+  f.setAttribute("/", "target_error", std::vector<double>{d.targetError});
   f.setAttribute("/", "parameter_names", joined(d.parameterNames));
   std::vector<double> lower, upper, enters;
   for (size_t p = 0; p < d.box.size(); ++p)
@@ -131,6 +132,30 @@ void writeProvenance(Hdf5File& f, const ReducedModelData& d) {
   f.setAttribute("/", "box_lower", lower);
   f.setAttribute("/", "box_upper", upper);
   f.setAttribute("/", "parameter_enters", enters);
+}
+
+// A row sample's datasets in group g (the reference is never stored: it is interpolated).
+void writeRowSample(Hdf5File& f, const std::string& g, const RowSample& s) {
+  f.writeArray(g + "/rows", toDoubles(s.rows), s.rows.size(), 1);
+  f.writeArray(g + "/weights", s.weights, s.weights.size(), 1);
+  f.writeArray(g + "/stencil_offsets", toDoubles(s.stencil.offsets), s.stencil.offsets.size(), 1);
+  f.writeArray(g + "/stencil_gids", toDoubles(s.stencil.gids), s.stencil.gids.size(), 1);
+  f.writeArray(g + "/basis_rows", s.basisRows, s.stencil.gids.size(), static_cast<size_t>(s.reducedDim));
+  f.setAttribute(g, "shifted", std::vector<double>{s.shifted ? 1.0 : 0.0});
+}
+
+// The error indicator's sample of a basis group g (none written when it is empty).
+void writeIndicator(Hdf5File& f, const std::string& g, const IndicatorRows& x) {
+  if (x.empty()) return;
+  const std::string gi = g + "/indicator";
+  f.createGroup(gi);
+  f.writeArray(gi + "/entries", toDoubles(x.entries), x.entries.size(), 1);
+  f.writeArray(gi + "/basis_rows", x.basisRows, x.entries.size(), static_cast<size_t>(x.terms.reducedDim));
+  f.setAttribute(gi, "terms", std::vector<double>{double(x.terms.rows.size())});
+  if (!x.terms.rows.empty()) {
+    f.createGroup(gi + "/terms");
+    writeRowSample(f, gi + "/terms", x.terms);
+  }
 }
 
 void writeBasisData(Hdf5File& f, const StoredBasisData& b, const RCP<const MultiVector>& A, const PhaseSpace* space) {
@@ -145,7 +170,8 @@ void writeBasisData(Hdf5File& f, const StoredBasisData& b, const RCP<const Multi
   setList(f, g + "/interpolation_values", "interpolated_parameters", b.interpolated);
   f.setAttribute(g + "/interpolation_values", "layout",
                  std::string("per node (Chebyshev-Lobatto tensor grid over interpolated_parameters, last one "
-                             "fastest; one node if none): L_r (2k x 2k, column-major), f_r (2k), y0 at reference_gids"));
+                             "fastest; one node if none): L_r (2k x 2k, column-major), f_r (2k), y0 at reference_gids, "
+                             "then the error indicator's rows of L A (s x 2k, row-major) and f (s)"));
   const auto& C = b.constant;
   f.writeArray(g + "/constant_values", C.values(), C.numNodes(), 1);
   setList(f, g + "/constant_values", "nodes_per_parameter", C.nodesPerParameter());
@@ -155,6 +181,7 @@ void writeBasisData(Hdf5File& f, const StoredBasisData& b, const RCP<const Multi
     f.setAttribute(g + "/interpolation_values", "error_" + piece, std::vector<double>{err});
   writeMatrix(f, g + "/probe_gids", toDoubles(b.probeGids), b.probeGids.size(), 1);
   writeMatrix(f, g + "/probe_rows", b.probeRows, b.probeGids.size(), r);
+  writeIndicator(f, g, b.indicator);
   if (A.is_null()) return;
   f.writeStates(g + "/basis", *A, *space);
   f.setAttribute(g + "/basis", "fingerprint", columnFingerprint(*A));  // the basis is outside the checksum
@@ -167,16 +194,14 @@ void writeModel(Hdf5File& f, const StoredHyperModel& m) {
   if (m.onlineNeedsFullSystem()) {
     f.setAttribute(gm, "adeim_config", m.adeimConfig);
     f.setAttribute(gm, "online", std::string("the full system at the query's parameter, on every rank (needs /k<k>/basis)"));
+    const IndicatorCalibration& c = m.calibration;
+    f.setAttribute(gm, "indicator_calibration", std::vector<double>{c.scale, c.exponent, double(c.points), c.worstFactor});
     return;
   }
-  const RowSample& s = m.sample;
-  f.writeArray(gm + "/rows", toDoubles(s.rows), s.rows.size(), 1);
-  f.writeArray(gm + "/weights", s.weights, s.weights.size(), 1);
-  f.writeArray(gm + "/stencil_offsets", toDoubles(s.stencil.offsets), s.stencil.offsets.size(), 1);
-  f.writeArray(gm + "/stencil_gids", toDoubles(s.stencil.gids), s.stencil.gids.size(), 1);
-  f.writeArray(gm + "/basis_rows", s.basisRows, s.stencil.gids.size(), static_cast<size_t>(s.reducedDim));
+  writeRowSample(f, gm, m.sample);
   f.setAttribute(gm, "cond_PtU", std::vector<double>{m.conditionNumber});
-  f.setAttribute(gm, "shifted", std::vector<double>{s.shifted ? 1.0 : 0.0});
+  const IndicatorCalibration& c = m.calibration;
+  f.setAttribute(gm, "indicator_calibration", std::vector<double>{c.scale, c.exponent, double(c.points), c.worstFactor});
 }
 
 // The root attributes, each of its type and range.
@@ -197,6 +222,10 @@ void readProvenance(const Hdf5File& f, ReducedModelData& d) {
                "two numbers with dt > 0 and T >= dt");
   d.T = time[0], d.dt = time[1];
   d.polynomialDegree = static_cast<int>(wholeAttribute(f, "/", "polynomial_degree", 0, 64));
+  const auto target = f.doubleAttribute("/", "target_error");
+  GPHR_REQUIRE(target.size() == 1 && std::isfinite(target[0]) && target[0] >= 0.0, InputError,
+               "attribute 'target_error' is not one finite number >= 0 (0: no target)");
+  d.targetError = target[0];
   d.parameterNames = split(f.stringAttribute("/", "parameter_names"), ',');
   const auto lo = finite(f.doubleAttribute("/", "box_lower"), "attribute 'box_lower'");
   const auto hi = finite(f.doubleAttribute("/", "box_upper"), "attribute 'box_upper'");
@@ -237,6 +266,77 @@ ModelKey parseModelKey(const std::string& key) {
   return ModelKey{method, whole(key.substr(a + 1, b - a - 1), 'k'), whole(key.substr(b + 1), 'm')};
 }
 
+// A row sample's datasets in group g (writeRowSample), whole and consistent; reducedDim 2k.
+RowSample readRowSample(const Hdf5File& f, const std::string& g, int k) {
+  RowSample s;
+  s.rows = wholeNumbers<GO>(f.readArray(g + "/rows"), g + "/rows", 0, kMaxIndex);
+  {
+    auto sorted = s.rows;  // in the order DEIM chose them, each once
+    std::sort(sorted.begin(), sorted.end());
+    GPHR_REQUIRE(std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end(), InputError, g,
+                 "/rows names a term twice; allowed: each term once");
+  }
+  s.weights = finite(f.readArray(g + "/weights"), g + "/weights");
+  s.stencil.offsets = wholeNumbers<size_t>(f.readArray(g + "/stencil_offsets"), g + "/stencil_offsets", 0, kMaxIndex);
+  s.stencil.gids = wholeNumbers<GO>(f.readArray(g + "/stencil_gids"), g + "/stencil_gids", 0, kMaxIndex);
+  s.basisRows = finite(f.readArray(g + "/basis_rows"), g + "/basis_rows");
+  s.reducedDim = 2 * k;
+  s.shifted = wholeAttribute(f, g, "shifted", 0, 1) != 0;
+  GPHR_REQUIRE(!s.rows.empty() && s.weights.size() == s.rows.size() && s.stencil.offsets.size() == s.rows.size() + 1 &&
+                   s.basisRows.size() == s.stencil.gids.size() * s.reducedDim,
+               InputError, g, " is inconsistent: ", s.rows.size(), " rows (allowed: at least 1), ", s.weights.size(),
+               " weights, ", s.stencil.offsets.size(), " stencil offsets (rows + 1), ", s.basisRows.size(),
+               " basis-row values (stencil entries x 2k = ", s.stencil.gids.size() * s.reducedDim, ")");
+  const auto& off = s.stencil.offsets;
+  GPHR_REQUIRE(off.front() == 0 && off.back() == s.stencil.gids.size(), InputError, g, "/stencil_offsets runs from ",
+               off.front(), " to ", off.back(), "; allowed: from 0 to the ", s.stencil.gids.size(), " stencil entries");
+  for (size_t i = 1; i < off.size(); ++i)
+    GPHR_REQUIRE(off[i - 1] < off[i], InputError, g, "/stencil_offsets is not increasing at entry ", i, " (",
+                 off[i - 1], ", ", off[i], "): every row has at least one stencil entry");
+  return s;
+}
+
+void requireReferenced(const std::vector<GO>& gids, const StoredBasisData& basis, const std::string& what) {
+  for (GO gid : gids)
+    GPHR_REQUIRE(std::binary_search(basis.referenceGids.begin(), basis.referenceGids.end(), gid), InputError, what,
+                 " names state entry ", gid, ", which has no reference value in /k", basis.k, "/reference_gids");
+}
+
+// The error indicator's sample of basis group g (none: empty), its entries pairs (q_i, p_i).
+IndicatorRows readIndicator(const Hdf5File& f, const std::string& g, int k) {
+  IndicatorRows x;
+  const std::string gi = g + "/indicator";
+  if (!f.exists(gi)) return x;
+  x.entries = wholeNumbers<GO>(f.readArray(gi + "/entries"), gi + "/entries", 0, kMaxIndex);
+  requireAscending(x.entries, gi + "/entries");
+  const size_t s = x.entries.size(), h = s / 2;
+  GPHR_REQUIRE(s >= 2 && s % 2 == 0, InputError, gi, "/entries holds ", s, " entries; allowed: an even number >= 2");
+  for (size_t i = 1; i < h; ++i)
+    GPHR_REQUIRE(x.entries[i + h] - x.entries[i] == x.entries[h] - x.entries[0], InputError, gi, "/entries: entry ",
+                 i + h, " is not the partner p_i of entry ", i, " (q entries first, then their p entries)");
+  x.basisRows = finite(f.readArray(gi + "/basis_rows"), gi + "/basis_rows");
+  GPHR_REQUIRE(x.basisRows.size() == s * 2 * static_cast<size_t>(k), InputError, gi, "/basis_rows has ",
+               x.basisRows.size(), " values; allowed: ", s, " entries x 2k = ", s * 2 * k);
+  const long terms = wholeAttribute(f, gi, "terms", 0, kMaxIndex);
+  if (terms > 0) x.terms = readRowSample(f, gi + "/terms", k);
+  GPHR_REQUIRE(x.terms.rows.size() == static_cast<size_t>(terms), InputError, gi, " names ", terms, " terms and holds ",
+               x.terms.rows.size());
+  x.terms.reducedDim = 2 * k;
+  return x;
+}
+
+IndicatorCalibration readCalibration(const Hdf5File& f, const std::string& gm) {
+  const auto v = f.doubleAttribute(gm, "indicator_calibration");
+  GPHR_REQUIRE(v.size() == 4 && std::isfinite(v[0]) && v[0] >= 0.0 && std::isfinite(v[1]) && v[1] >= 0.5 &&
+                   v[1] <= 2.0 && v[2] >= 0.0 && v[2] <= 1e9 && v[2] == std::floor(v[2]) && std::isfinite(v[3]) &&
+                   v[3] >= 0.0,
+               InputError, "attribute 'indicator_calibration' of '", gm,
+               "' is not [scale >= 0, exponent in [0.5, 2], points >= 0, worst factor >= 0]");
+  IndicatorCalibration c;
+  c.scale = v[0], c.exponent = v[1], c.points = static_cast<int>(v[2]), c.worstFactor = v[3];
+  return c;
+}
+
 StoredBasisData readBasisData(const Hdf5File& f, const ReducedModelData& d, int k) {
   StoredBasisData b;
   b.k = k;
@@ -259,12 +359,14 @@ StoredBasisData readBasisData(const Hdf5File& f, const ReducedModelData& d, int 
   size_t numNodes = 1, numConstNodes = 1;
   for (int n : nodes) numNodes *= static_cast<size_t>(n);
   for (int n : cnodes) numConstNodes *= static_cast<size_t>(n);
-  GPHR_REQUIRE(rows == numNodes && cols == r * r + r + b.referenceGids.size(), InputError, iv, " is ", rows, " x ",
-               cols, "; allowed: ", numNodes, " x ", r * r + r + b.referenceGids.size(),
-               " (nodes x [L_r, f_r, y0 at reference_gids])");
+  b.indicator = readIndicator(f, g, k);
+  requireReferenced(b.indicator.entries, b, g + "/indicator/entries");
+  requireReferenced(b.indicator.terms.stencil.gids, b, g + "/indicator/terms/stencil_gids");
+  GPHR_REQUIRE(rows == numNodes && cols == b.valuesPerNode(), InputError, iv, " is ", rows, " x ", cols, "; allowed: ",
+               numNodes, " x ", b.valuesPerNode(), " (nodes x [L_r, f_r, y0 at reference_gids, indicator rows])");
   GPHR_REQUIRE(crows == numConstNodes && ccols == 1, InputError, cv, " is ", crows, " x ", ccols, "; allowed: ",
                numConstNodes, " x 1");
-  b.interpolant = ParameterInterpolant(box, nodes, r * r + r + b.referenceGids.size());
+  b.interpolant = ParameterInterpolant(box, nodes, b.valuesPerNode());
   b.interpolant.setValues(values);
   b.constant = ParameterInterpolant(d.box, cnodes, 1);
   b.constant.setValues(constants);
@@ -286,44 +388,20 @@ StoredHyperModel readModel(const Hdf5File& f, const StoredBasisData& basis, cons
   StoredHyperModel out;
   out.method = method, out.k = k, out.m = m;
   const std::string gm = basisGroup(k) + "/" + method + "/m" + std::to_string(m);
+  out.calibration = readCalibration(f, gm);
   if (out.onlineNeedsFullSystem()) {
     out.adeimConfig = f.stringAttribute(gm, "adeim_config");
     GPHR_REQUIRE(!out.adeimConfig.empty(), InputError, "attribute 'adeim_config' of '", gm, "' is empty");
     return out;
   }
-  RowSample& s = out.sample;
-  s.rows = wholeNumbers<GO>(f.readArray(gm + "/rows"), gm + "/rows", 0, kMaxIndex);
-  {
-    auto sorted = s.rows;  // in the order DEIM chose them, each once
-    std::sort(sorted.begin(), sorted.end());
-    GPHR_REQUIRE(std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end(), InputError, gm,
-                 "/rows names a term twice; allowed: each term once");
-  }
-  s.weights = finite(f.readArray(gm + "/weights"), gm + "/weights");
-  s.stencil.offsets = wholeNumbers<size_t>(f.readArray(gm + "/stencil_offsets"), gm + "/stencil_offsets", 0, kMaxIndex);
-  s.stencil.gids = wholeNumbers<GO>(f.readArray(gm + "/stencil_gids"), gm + "/stencil_gids", 0, kMaxIndex);
-  s.basisRows = finite(f.readArray(gm + "/basis_rows"), gm + "/basis_rows");
-  s.reducedDim = 2 * k;
-  const long shifted = wholeAttribute(f, gm, "shifted", 0, 1);
-  s.shifted = shifted != 0;
+  out.sample = readRowSample(f, gm, k);
+  // m is the budget: gp-eqp may stop with fewer terms (no further term improves its fit).
+  GPHR_REQUIRE(out.sample.rows.size() <= static_cast<size_t>(m), InputError, "model ", out.key(), " has ",
+               out.sample.rows.size(), " rows; allowed: 1 to m = ", m);
   out.conditionNumber = f.doubleAttribute(gm, "cond_PtU").at(0);
   GPHR_REQUIRE(std::isfinite(out.conditionNumber) && out.conditionNumber >= 0, InputError, "attribute 'cond_PtU' of '",
                gm, "' = ", out.conditionNumber, "; allowed: a finite number >= 0");
-  // m is the budget: gp-eqp may stop with fewer terms (no further term improves its fit).
-  GPHR_REQUIRE(!s.rows.empty() && s.rows.size() <= static_cast<size_t>(m) && s.weights.size() == s.rows.size() &&
-                   s.stencil.offsets.size() == s.rows.size() + 1 && s.basisRows.size() == s.stencil.gids.size() * s.reducedDim,
-               InputError, "model ", out.key(), " is inconsistent: ", s.rows.size(), " rows (allowed: 1 to m = ", m,
-               "), ", s.weights.size(), " weights, ", s.stencil.offsets.size(), " stencil offsets (rows + 1), ",
-               s.basisRows.size(), " basis-row values (stencil entries x 2k = ", s.stencil.gids.size() * s.reducedDim, ")");
-  const auto& off = s.stencil.offsets;
-  GPHR_REQUIRE(off.front() == 0 && off.back() == s.stencil.gids.size(), InputError, gm, "/stencil_offsets runs from ",
-               off.front(), " to ", off.back(), "; allowed: from 0 to the ", s.stencil.gids.size(), " stencil entries");
-  for (size_t i = 1; i < off.size(); ++i)
-    GPHR_REQUIRE(off[i - 1] < off[i], InputError, gm, "/stencil_offsets is not increasing at entry ", i, " (",
-                 off[i - 1], ", ", off[i], "): every row has at least one stencil entry");
-  for (GO gid : s.stencil.gids)
-    GPHR_REQUIRE(std::binary_search(basis.referenceGids.begin(), basis.referenceGids.end(), gid), InputError, gm,
-                 "/stencil_gids names state entry ", gid, ", which has no reference value in /k", k, "/reference_gids");
+  requireReferenced(out.sample.stencil.gids, basis, gm + "/stencil_gids");
   return out;
 }
 
@@ -348,9 +426,20 @@ std::string modelDataChecksum(const ReducedModelData& d) {
     h.numbers(b.constant.values());
     h.numbers(b.probeGids);
     h.numbers(b.probeRows);
+    const IndicatorRows& x = b.indicator;
+    h.numbers(x.entries);
+    h.numbers(x.basisRows);
+    h.numbers(x.terms.rows);
+    h.numbers(x.terms.weights);
+    h.numbers(x.terms.stencil.offsets);
+    h.numbers(x.terms.stencil.gids);
+    h.numbers(x.terms.basisRows);
   }
+  h.number(d.targetError);
   for (const auto& m : d.models) {
     h.text(m.key());
+    const IndicatorCalibration& c = m.calibration;
+    h.numbers(std::vector<double>{c.scale, c.exponent, double(c.points), c.worstFactor});
     if (m.onlineNeedsFullSystem()) {  // stored as its options
       h.text(m.adeimConfig);
       continue;
@@ -384,20 +473,34 @@ OnlineParameterData StoredBasisData::at(const std::vector<double>& mu) const {
     for (int c = row + 1; c < r; ++c) out.linear.L(row, c) = out.linear.L(c, row) = 0.5 * (out.linear.L(row, c) + out.linear.L(c, row));
   for (int row = 0; row < r; ++row) out.linear.f(row) = v[i++];
   out.linear.c = constant.evaluate(mu).at(0);
-  out.reference.assign(v.begin() + i, v.end());
+  out.reference.assign(v.begin() + i, v.begin() + i + referenceGids.size());
+  i += referenceGids.size();
+  const size_t s = indicator.entries.size();
+  out.indicator.LA.assign(v.begin() + i, v.begin() + i + s * r);
+  out.indicator.f.assign(v.begin() + i + s * r, v.end());
   return out;
+}
+
+size_t StoredBasisData::valuesPerNode() const {
+  const size_t r = 2 * static_cast<size_t>(k), s = indicator.entries.size();
+  return r * r + r + referenceGids.size() + s * (r + 1);
 }
 
 std::vector<double> StoredBasisData::pack(const OnlineParameterData& d) const {
   const int r = 2 * k;
-  GPHR_REQUIRE(d.linear.L.numRows() == r && d.reference.size() == referenceGids.size(), InputError,
-               "reduced-model file: node data of 2k = ", d.linear.L.numRows(), " and ", d.reference.size(),
-               " reference entries for 2k = ", r, " and ", referenceGids.size());
+  const size_t s = indicator.entries.size();
+  GPHR_REQUIRE(d.linear.L.numRows() == r && d.reference.size() == referenceGids.size() &&
+                   d.indicator.LA.size() == s * r && d.indicator.f.size() == s,
+               InputError, "reduced-model file: node data of 2k = ", d.linear.L.numRows(), ", ", d.reference.size(),
+               " reference entries and ", d.indicator.f.size(), " indicator rows for 2k = ", r, ", ",
+               referenceGids.size(), " and ", s);
   std::vector<double> v;
   for (int c = 0; c < r; ++c)
     for (int row = 0; row < r; ++row) v.push_back(d.linear.L(row, c));
   for (int row = 0; row < r; ++row) v.push_back(d.linear.f(row));
   v.insert(v.end(), d.reference.begin(), d.reference.end());
+  v.insert(v.end(), d.indicator.LA.begin(), d.indicator.LA.end());
+  v.insert(v.end(), d.indicator.f.begin(), d.indicator.f.end());
   return v;
 }
 

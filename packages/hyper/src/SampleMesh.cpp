@@ -1,5 +1,8 @@
 #include "gphr/hyper/SampleMesh.hpp"
 
+#include <Teuchos_CommHelpers.hpp>
+
+#include <algorithm>
 #include <unordered_map>
 
 #include "gphr/core/Error.hpp"
@@ -97,6 +100,21 @@ SampleMesh buildSampleMesh(const HamiltonianSystem& system, const MultiVector& A
   mesh.sample = gatherRowSample(system, A, rows, weights);
   mesh.linear = std::move(linear);
   return mesh;
+}
+
+std::vector<GO> rowsTouching(const NonlinearTerm& term, const std::vector<GO>& entries) {
+  const GO d = term.numTerms(), base = term.rowMap()->getMinAllGlobalIndex();
+  std::vector<int> mark(d, 0), all(d, 0);
+  const Stencil& st = term.stencil();
+  for (LO i = 0; i < st.numRows(); ++i)
+    for (size_t j = st.offsets[i]; j < st.offsets[i + 1]; ++j)
+      if (std::binary_search(entries.begin(), entries.end(), st.gids[j]))
+        mark[term.rowMap()->getGlobalElement(i) - base] = 1;
+  Teuchos::reduceAll(*term.rowMap()->getComm(), Teuchos::REDUCE_SUM, static_cast<int>(d), mark.data(), all.data());
+  std::vector<GO> rows;
+  for (GO i = 0; i < d; ++i)
+    if (all[i]) rows.push_back(base + i);
+  return rows;
 }
 
 }  // namespace gphr

@@ -137,8 +137,18 @@ std::atomic<bool> aCloseFailed{false};  // Hdf5File::closeFailed()
 }  // namespace
 
 void Hdf5File::close() {
-  if (file_ >= 0 && H5Fclose(file_) < 0) aCloseFailed = true;
+  if (file_ >= 0 && writeFailed_ && comm_->getSize() > 1) aCloseFailed = true;  // see the declaration
+  else if (file_ >= 0 && H5Fclose(file_) < 0) aCloseFailed = true;
   file_ = -1;
+}
+
+void Hdf5File::checkWrite(herr_t status, const std::string& what) {
+  try {
+    checkOnAll(status, comm_, what, path_);
+  } catch (...) {
+    writeFailed_ = true;
+    throw;
+  }
 }
 
 bool Hdf5File::closeFailed() { return aCloseFailed; }
@@ -175,7 +185,7 @@ bool Hdf5File::hasAttribute(const std::string& object, const std::string& key) c
   return found > 0;
 }
 
-void Hdf5File::flush() { checkOnAll(H5Fflush(file_, H5F_SCOPE_GLOBAL), comm_, "flushing", path_); }
+void Hdf5File::flush() { checkWrite(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing"); }
 
 void Hdf5File::startWriteback() const {
 #ifdef __linux__
@@ -279,8 +289,7 @@ void Hdf5File::writeRows(const std::string& name, hsize_t first, hsize_t rows, c
   Id mspace{H5Screate_simple(1, mdims, nullptr), H5Sclose};
   if (rows * local == 0) H5Sselect_none(mspace.id);
   Id xfer{collectiveTransfer(), H5Pclose};
-  checkOnAll(H5Dwrite(dset.id, H5T_NATIVE_DOUBLE, mspace.id, fspace.id, xfer.id, data), comm_,
-             "writing dataset '" + name + "'", path_);
+  checkWrite(H5Dwrite(dset.id, H5T_NATIVE_DOUBLE, mspace.id, fspace.id, xfer.id, data), "writing dataset '" + name + "'");
 }
 
 RCP<MultiVector> Hdf5File::readDistributed(const std::string& name, const RCP<const Map>& map, hsize_t N,
@@ -398,8 +407,8 @@ void Hdf5File::writeArray(const std::string& name, const std::vector<double>& da
   }
   Id xfer{collectiveTransfer(), H5Pclose};
   const double dummy = 0.0;
-  checkOnAll(H5Dwrite(dset.id, H5T_NATIVE_DOUBLE, mspace.id, fspace.id, xfer.id, data.empty() ? &dummy : data.data()),
-             comm_, "writing dataset '" + name + "'", path_);
+  checkWrite(H5Dwrite(dset.id, H5T_NATIVE_DOUBLE, mspace.id, fspace.id, xfer.id, data.empty() ? &dummy : data.data()),
+             "writing dataset '" + name + "'");
 }
 
 std::vector<double> Hdf5File::readArray(const std::string& name, size_t* rows, size_t* cols) const {

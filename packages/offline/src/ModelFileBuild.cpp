@@ -1,5 +1,7 @@
 #include "gphr/offline/ModelFileBuild.hpp"
 
+#include "gphr/offline/ErrorCalibration.hpp"
+
 #include <Teuchos_Time.hpp>
 #include <algorithm>
 #include <cstdio>
@@ -148,6 +150,18 @@ ModelBuildResult buildReducedModelFile(const Scene& scene, const RCP<const Comm>
   }
   GPHR_REQUIRE(!data.bases.empty(), InputError, "reduced-model file '", path, "': no model could be built (",
                r.skipped.size(), " left out, said above); allowed: m the DEIM basis holds, budgets the training supports");
+  data.targetError = options.file.targetError;
+  if (options.file.indicatorDofs > 0) {
+    const StageClocks::Scope stage(seq.clocks(), "calibration");
+    std::map<int, RCP<const MultiVector>> byK;
+    for (const auto& b : data.bases) byK[b.k] = seq.reducedBasis(b.k);
+    if (comm->getRank() == 0 && options.training.progress)
+      std::fprintf(stderr, "[gphr] build: calibrating the error indicators: %zu models at %zu training parameters\n",
+                   data.models.size(), r.training.parameters.size());
+    r.calibration = calibrateErrorIndicators(data, scene, *inst.system, byK, r.training,
+                                             options.training.snapshotEvery, options.training.dt,
+                                             options.training.steps);
+  }
   data.offlineSeconds = clock.totalElapsedTime(true);
   {
     const StageClocks::Scope stage(seq.clocks(), "write");

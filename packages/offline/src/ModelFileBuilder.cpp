@@ -24,11 +24,12 @@ namespace {
 // Exact L_r, f_r, c and reference rows at mu (an O(n k) projection of the full system). The
 // system at mu is built on the layout of `like` (Scene::rebuild): only its values are new.
 OnlineParameterData exactAt(const Scene& scene, const HamiltonianSystem& like, const MultiVector& A,
-                            const std::vector<GO>& gids, const std::vector<double>& mu) {
+                            const StoredBasisData& b, const std::vector<double>& mu) {
   const auto inst = scene.instantiate(like, mu, true);
   OnlineParameterData d;
   d.linear = reduceLinearPart(*inst.system, A);
-  d.reference = gatherRows(*inst.system->reference(), gids);
+  d.reference = gatherRows(*inst.system->reference(), b.referenceGids);
+  if (!b.indicator.empty()) d.indicator = indicatorLinearRows(*inst.system, A, b.indicator.entries);
   return d;
 }
 
@@ -47,14 +48,15 @@ double relativeError(const std::vector<double>& a, const std::vector<double>& b,
 // parameter: a scene that declared a parameter's entries wrongly shows up here.
 void checkInterpolant(const Scene& scene, const HamiltonianSystem& like, const MultiVector& A, StoredBasisData& b) {
   const size_t r = 2 * static_cast<size_t>(b.k), nL = r * r, nf = nL + r;
-  for (const char* piece : {"L", "f", "c", "reference"}) b.interpolationError[piece] = 0.0;
+  const size_t nr = nf + b.referenceGids.size();
+  for (const char* piece : {"L", "f", "c", "reference", "indicator"}) b.interpolationError[piece] = 0.0;
   for (const auto& mu : b.constant.checkPoints(8)) {
-    const auto data = exactAt(scene, like, A, b.referenceGids, mu), interpolated = b.at(mu);
+    const auto data = exactAt(scene, like, A, b, mu), interpolated = b.at(mu);
     const auto exact = b.pack(data), approx = b.pack(interpolated);
     auto worst = [&](const char* piece, size_t i0, size_t i1) {
       b.interpolationError[piece] = std::max(b.interpolationError[piece], relativeError(approx, exact, i0, i1));
     };
-    worst("L", 0, nL), worst("f", nL, nf), worst("reference", nf, exact.size());
+    worst("L", 0, nL), worst("f", nL, nf), worst("reference", nf, nr), worst("indicator", nr, exact.size());
     const double c = std::abs(interpolated.linear.c - data.linear.c) / std::max(std::abs(data.linear.c), 1e-300);
     b.interpolationError["c"] = std::max(b.interpolationError["c"], c);
   }
@@ -71,6 +73,9 @@ StoredBasisData basisData(const Scene& scene, const HamiltonianSystem& like, con
   b.probeRows = gatherRows(A, b.probeGids);
   std::set<GO> gids(b.probeGids.begin(), b.probeGids.end());
   for (const auto& m : models) gids.insert(m.sample.stencil.gids.begin(), m.sample.stencil.gids.end());
+  b.indicator = indicatorRows(like, A, opt.indicatorDofs);
+  gids.insert(b.indicator.entries.begin(), b.indicator.entries.end());
+  gids.insert(b.indicator.terms.stencil.gids.begin(), b.indicator.terms.stencil.gids.end());
   b.referenceGids.assign(gids.begin(), gids.end());
   const auto& box = scene.parameterBox();
   std::vector<std::pair<double, double>> sub;
@@ -79,8 +84,7 @@ StoredBasisData basisData(const Scene& scene, const HamiltonianSystem& like, con
     centre.push_back(0.5 * (box.bounds[p].first + box.bounds[p].second));
     if (box.enters.at(p) & (EntersLinearPart | EntersInitialState)) b.interpolated.push_back(p), sub.push_back(box.bounds[p]);
   }
-  b.interpolant = ParameterInterpolant(sub, std::vector<int>(sub.size(), opt.interpolationNodes),
-                                       4 * k * k + 2 * k + b.referenceGids.size());
+  b.interpolant = ParameterInterpolant(sub, std::vector<int>(sub.size(), opt.interpolationNodes), b.valuesPerNode());
   // c at the points instantiated for the first interpolant: where every parameter enters L_r, f_r
   // or y0 (the SWE's two), the constant's nodes are the same points and need no instance of their
   // own (49 of the SWE 256^2 build's 106 instances).
@@ -89,7 +93,7 @@ StoredBasisData basisData(const Scene& scene, const HamiltonianSystem& like, con
     auto mu = centre;  // the other parameters do not change these pieces (the scene's declaration)
     const auto node = b.interpolant.node(j);
     for (size_t i = 0; i < b.interpolated.size(); ++i) mu[b.interpolated[i]] = node[i];
-    const OnlineParameterData data = exactAt(scene, like, A, b.referenceGids, mu);
+    const OnlineParameterData data = exactAt(scene, like, A, b, mu);
     constantAt[mu] = data.linear.c;
     b.interpolant.setNodeValues(j, b.pack(data));
   }
@@ -109,6 +113,8 @@ ModelFileOptions modelFileOptionsFrom(const Teuchos::ParameterList& build) {
   ModelFileOptions o;
   for (int g : build.get<Teuchos::Array<int>>("probes")) o.probes.push_back(g);
   o.interpolationNodes = build.get<int>("interpolationNodes");
+  o.indicatorDofs = build.get<int>("indicatorDofs");
+  o.targetError = build.get<double>("targetError");
   return o;
 }
 
@@ -123,6 +129,13 @@ Teuchos::ParameterList modelFileValidParameters() {
   setIntParameter(bld, "interpolationNodes", 7, 2, 33,
                   "gphr build: Chebyshev-Lobatto nodes per parameter of the interpolant of L_r, f_r, c and the "
                   "reference rows over the box (the n-independent set-up route of a query; its error is reported)");
+  setIntParameter(bld, "indicatorDofs", 16, 0, 4096,
+                  "gphr build: degrees of freedom (spread evenly over the n) whose q and p entries carry the online "
+                  "error indicator of every query (doc/error-estimate.md): its cost per step grows with them, "
+                  "not with n; 0: no indicator, no error estimate");
+  setDoubleParameter(bld, "targetError", 0.0, 0.0, 1.0,
+                     "gphr build: the relative error E_L2 a query of the file is held to: stored in the file, and a "
+                     "query whose error estimate exceeds it is marked and counted; 0: none");
   return bld;
 }
 

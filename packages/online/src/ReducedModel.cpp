@@ -3,6 +3,7 @@
 #include <Teuchos_DefaultSerialComm.hpp>
 #include <Teuchos_Time.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <unordered_map>
 
@@ -61,16 +62,35 @@ std::string boxText(const ReducedModelData& d) {
 }  // namespace
 
 ReducedModel::ReducedModel(const std::string& path, std::shared_ptr<const Scene> scene)
-    : file_(std::make_shared<const OpenModelFile>(path)) {
+    : file_(std::make_shared<const OpenModelFile>(path)), scene_(std::move(scene)) {
+  checkLoaded();
+}
+
+ReducedModel::ReducedModel(ReducedModelData data, std::shared_ptr<const Scene> scene,
+                           std::map<int, RCP<const MultiVector>> bases)
+    : memory_(std::make_shared<const ReducedModelData>(std::move(data))), memoryBases_(std::move(bases)),
+      scene_(std::move(scene)) {
+  checkLoaded();
+}
+
+RCP<MultiVector> ReducedModel::basis(int k, const PhaseSpace& space) const {
+  if (file_) return file_->basis(k, space);
+  const auto it = memoryBases_.find(k);
+  GPHR_REQUIRE(it != memoryBases_.end() && !it->second.is_null() && it->second->getMap()->isSameAs(*space.map()),
+               InputError, path(), ": no basis of k = ", k, " on the given phase space");
+  return rcp(new MultiVector(*it->second, Teuchos::Copy));
+}
+
+void ReducedModel::checkLoaded() {
   try {
-    scene_ = scene ? scene : sceneOf(data());
+    if (!scene_) scene_ = sceneOf(data());
     GPHR_REQUIRE(scene_->name() == data().sceneName, InputError, "it is of scene '", data().sceneName,
                  "', not of the scene '", scene_->name(), "' given");
     GPHR_REQUIRE(scene_->parameterBox().names == data().parameterNames, InputError,
                  "its parameters differ from scene '", scene_->name(), "''s");
     checkStoredSections();
   } catch (const InputError& e) {
-    throw InputError(detail::concat("reduced-model file '", path, "': ", e.what()));
+    throw InputError(detail::concat("reduced-model file '", path(), "': ", e.what()));
   }
 }
 
@@ -113,6 +133,7 @@ OnlineParameterData ReducedModel::exactParameterData(const StoredBasisData& b, c
   OnlineParameterData out;
   out.linear = reduceLinearPart(*inst.system, *A);
   out.reference = gatherRows(*inst.system->reference(), b.referenceGids);
+  if (!b.indicator.empty()) out.indicator = indicatorLinearRows(*inst.system, *A, b.indicator.entries);
   return out;
 }
 
@@ -132,6 +153,19 @@ bool ReducedModel::checkParameter(const std::vector<double>& mu, bool allowExtra
   return outside;
 }
 
+std::shared_ptr<ResidualIndicator> ReducedModel::errorIndicator(const StoredBasisData& basis,
+                                                                const OnlineParameterData& p,
+                                                                RCP<const RowEvaluator> kernel) const {
+  if (basis.indicator.empty()) return nullptr;
+  std::vector<double> reference = pick(basis, p.reference, basis.indicator.entries);
+  const auto terms = pick(basis, p.reference, basis.indicator.terms.stencil.gids);
+  reference.insert(reference.end(), terms.begin(), terms.end());
+  const Teuchos::ParameterList integ = validatedIntegrator(integrator_);
+  return std::make_shared<ResidualIndicator>(
+      kernel, basis.indicator, reference, p.indicator,
+      quadratureFor(integ.get<std::string>("scheme"), integ.get<int>("quadraturePoints"), data().polynomialDegree));
+}
+
 OnlineModel ReducedModel::instantiate(const std::string& method, int k, int m, const std::vector<double>& mu,
                                       bool allowExtrapolation, SetupRoute route) const {
   const SingleBlasThread blas;  // the same bits whatever OPENBLAS_NUM_THREADS (core/BlasThreads.hpp)
@@ -149,7 +183,10 @@ OnlineModel ReducedModel::instantiate(const std::string& method, int k, int m, c
   mesh.sample = stored.sample;
   mesh.sample.reference = pick(basis, p.reference, stored.sample.stencil.gids);
   mesh.linear = p.linear;
-  out.model_ = rcp(new GpDeimModel(scene_->rowKernel(mu), mesh));
+  const auto kernel = scene_->rowKernel(mu);
+  out.model_ = rcp(new GpDeimModel(kernel, mesh));
+  out.indicator_ = errorIndicator(basis, p, kernel);
+  out.calibration_ = stored.calibration;
   out.integrator_ = integrator_;
   out.degree_ = data().polynomialDegree;
   out.mu_ = mu;
@@ -170,6 +207,35 @@ SimulationStats unobservedEnergyChecked(SimulationStats stats, DenseHamiltonian&
   }
   return stats;
 }
+
+// The error indicator along a query (hyper/ErrorIndicator.hpp) as the time loop's adaptive hook:
+// its work counts in the query's online time, and is also reported on its own.
+class IndicatorHook {
+ public:
+  IndicatorHook(ResidualIndicator* indicator, double dt) : indicator_(indicator), dt_(dt) {}
+  void operator()(long j, const DenseVector& z) {
+    if (!indicator_) return;
+    const auto t0 = std::chrono::steady_clock::now();
+    if (j == 0) indicator_->start(z);
+    else indicator_->step(previous_, z, dt_);
+    previous_ = z;
+    seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  // The run's indicator and estimate (NaN unless it reached its end).
+  SimulationStats report(SimulationStats stats, const IndicatorCalibration& calibration) const {
+    stats.indicatorSeconds = seconds_;
+    if (indicator_ && stats.ok()) {
+      stats.errorIndicator = indicator_->value();
+      stats.errorEstimate = calibration.estimate(stats.errorIndicator);
+    }
+    return stats;
+  }
+
+ private:
+  ResidualIndicator* indicator_;
+  double dt_, seconds_ = 0.0;
+  DenseVector previous_;
+};
 
 // The time loop's settings of a query: the file's integrator at step dt over T / dt steps.
 SimulationSettings settingsOf(const Teuchos::ParameterList& integrator, int degree, double T, double dt) {
@@ -192,8 +258,12 @@ SimulationStats OnlineModel::simulate(double T, double dt, const QueryObserver& 
     if (!probeGids_.empty()) probeValues(zj, probes);
     observer(QueryStep{j, t, zj, H, probes});
   };
-  if (observer) return gphr::simulate(*model_, settingsOf(integrator_, degree_, T, dt), z, observe);
-  return unobservedEnergyChecked(gphr::simulate(*model_, settingsOf(integrator_, degree_, T, dt), z), *model_, z);
+  IndicatorHook indicate(indicator_.get(), dt);
+  const StepHook adapt = [&](long j, double, const DenseVector& zj) { indicate(j, zj); };
+  const SimulationSettings settings = settingsOf(integrator_, degree_, T, dt);
+  if (observer) return indicate.report(gphr::simulate(*model_, settings, z, observe, adapt), calibration_);
+  return indicate.report(unobservedEnergyChecked(gphr::simulate(*model_, settings, z, StepHook(), adapt), *model_, z),
+                         calibration_);
 }
 
 RCP<GpAdeimModel> ReducedModel::adaptiveModel(int k, int m, const SceneInstance& inst, const RCP<const MultiVector>& A,
@@ -226,8 +296,18 @@ SimulationStats ReducedModel::simulateAdaptive(int k, int m, const std::vector<d
   };
   DenseVector z;
   const SimulationSettings settings = settingsOf(integrator_, data().polynomialDegree, T, dt);
-  if (observer) return gphr::simulate(model, settings, z, observe, adeimUpdateHook(model));
-  return unobservedEnergyChecked(gphr::simulate(model, settings, z, StepHook(), adeimUpdateHook(model)), model, z);
+  // the indicator on the file's interpolated data, as every other query's
+  const auto indicator = errorIndicator(basis, basis.at(mu), scene_->rowKernel(mu));
+  IndicatorHook indicate(indicator.get(), dt);
+  const StepHook update = adeimUpdateHook(model);
+  const StepHook adapt = [&](long j, double t, const DenseVector& zj) {
+    indicate(j, zj);
+    update(j, t, zj);
+  };
+  const IndicatorCalibration& calibration = data().model(method::kGpAdeim, k, m).calibration;
+  if (observer) return indicate.report(gphr::simulate(model, settings, z, observe, adapt), calibration);
+  return indicate.report(unobservedEnergyChecked(gphr::simulate(model, settings, z, StepHook(), adapt), model, z),
+                         calibration);
 }
 
 }  // namespace gphr

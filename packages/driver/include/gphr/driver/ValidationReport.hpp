@@ -30,6 +30,9 @@ struct ValidationRecord {
   double eL2 = NAN, onlineSeconds = NAN, setupSeconds = NAN;
   /// @}
   double errorEstimate = NAN;  ///< E_L2 estimated without the full model (ReducedEvaluation::errorEstimate)
+  /// The query's own estimate (SimulationStats::errorEstimate: the online indicator, calibrated by
+  /// the build); NaN for the ROM and where the file has none.
+  double queryEstimate = NAN;
   bool extrapolated = false;  ///< Whether mu lies outside the box.
   std::string label() const;  ///< "gp-deim k=10 m=20", "rom k=10"
 };

@@ -17,12 +17,13 @@
 
 #include "gphr/core/Method.hpp"
 #include "gphr/core/PhaseSpace.hpp"
+#include "gphr/hyper/ErrorIndicator.hpp"
 #include "gphr/hyper/ParameterInterpolant.hpp"
 #include "gphr/reduction/ReducedHamiltonian.hpp"
 
 namespace gphr {
 
-constexpr int kReducedModelSchema = 3;  ///< Version of the reduced-model file's layout (doc/model-file.md).
+constexpr int kReducedModelSchema = 4;  ///< Version of the reduced-model file's layout (doc/model-file.md).
 
 /// One hyper-reduced model: its sample mesh without the parameter-dependent reference rows.
 struct StoredHyperModel {
@@ -33,6 +34,9 @@ struct StoredHyperModel {
   /// @}
   RowSample sample;    ///< reference left empty: it comes from the basis' interpolant per query
   double conditionNumber = 0.0;  ///< cond_2(P^T U) of the DEIM pair
+  /// Its error indicator's calibration (ErrorIndicator.hpp): E_L2 ~ scale eta^exponent, fitted on
+  /// the build's training parameters; not calibrated where the build could not (no indicator rows).
+  IndicatorCalibration calibration;
   /// gp-adeim: its config section (YAML). It samples the full residual online, so it stores no
   /// sample mesh and its queries build the full system (`onlineNeedsFullSystem()`).
   std::string adeimConfig;
@@ -46,26 +50,31 @@ struct StoredHyperModel {
 struct OnlineParameterData {
   ReducedLinearPart linear;        ///< L_r, f_r, c = H(y0(mu))
   std::vector<double> reference;   ///< y0(mu) at StoredBasisData::referenceGids
+  IndicatorLinearRows indicator;   ///< the error indicator's rows of L A and f (empty without one)
 };
 
 /// What the file holds for one reduced size k: the parameter interpolants, probe rows, optionally A.
 struct StoredBasisData {
   int k = 0;  ///< Reduced size k.
-  std::vector<GO> referenceGids;   ///< union of the models' stencil entries and the probes
+  std::vector<GO> referenceGids;   ///< union of the models' and the indicator's stencil entries and the probes
   /// L_r, f_r and y0 depend only on the parameters that enter the linear part or the initial state
   /// (ParameterEntry): the interpolant spans those (`interpolated`, indices into mu; none: one node),
-  /// per node [L_r (2k x 2k, column-major) | f_r (2k) | y0 at referenceGids]. c = H(y0) depends on
+  /// per node [L_r (2k x 2k, column-major) | f_r (2k) | y0 at referenceGids | the indicator's rows
+  /// of L A (s x 2k, row-major) and f (s)]. c = H(y0) depends on
   /// every parameter (through N(y0) on the row kernel's): its own interpolant over the whole box.
   std::vector<size_t> interpolated;
-  /// Interpolant of [L_r | f_r | y0 at referenceGids] over the `interpolated` parameters.
+  /// Interpolant of [L_r | f_r | y0 at referenceGids | indicator rows] over the `interpolated` parameters.
   ParameterInterpolant interpolant;
   ParameterInterpolant constant;  ///< Interpolant of c = H(y0) over the whole box.
   std::map<std::string, double> interpolationError;  ///< relative error at the check points, per piece
   std::vector<GO> probeGids;       ///< state entries whose lifted values a query can report
   std::vector<double> probeRows;   ///< the rows of A at probeGids (probes x 2k, row-major)
   bool hasBasis = false;           ///< `/k<k>/basis` holds A (2k rows of 2n)
+  IndicatorRows indicator;         ///< the online error indicator's sample (empty: none)
+  /// Values per interpolation node: 4k^2 + 2k + reference entries + s (2k + 1) for s indicator entries.
+  size_t valuesPerNode() const;
   OnlineParameterData at(const std::vector<double>& mu) const;  ///< the interpolants, unpacked
-  /// Exact data at one point as the interpolant's values ([L_r | f_r | y0], without c).
+  /// Exact data at one point as the interpolant's values ([L_r | f_r | y0 | indicator rows], without c).
   std::vector<double> pack(const OnlineParameterData& data) const;
   std::vector<double> restrict(const std::vector<double>& mu) const;  ///< mu at `interpolated`
 };
@@ -94,6 +103,9 @@ struct ReducedModelData {
   std::vector<unsigned> enters;  ///< ParameterEntry flags per parameter
   std::vector<StoredBasisData> bases;  ///< Per reduced size k, its data.
   std::vector<StoredHyperModel> models;  ///< The hyper-reduced models.
+  /// The error a query is held to (build.targetError): a query whose estimate exceeds it is marked;
+  /// 0: none set.
+  double targetError = 0.0;
   const StoredBasisData& basis(int k) const;                      ///< InputError naming the ks held
   const StoredHyperModel& model(const std::string& method, int k, int m) const;  ///< InputError naming the models held
   std::string modelList() const;  ///< "gp-deim k=10 m=20, ..." for messages

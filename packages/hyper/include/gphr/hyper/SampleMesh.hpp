@@ -29,6 +29,10 @@ RowSample gatherRowSample(const HamiltonianSystem& system, const MultiVector& A,
 RowSample gatherRowSample(const HamiltonianSystem& system, const LocalRows& A, const std::vector<GO>& rows,
                           const std::vector<double>& weights, const RowSample& known);
 
+/// The rows of G whose stencils hold one of `entries` (state gids, ascending): marked by their
+/// owners, summed over the ranks (d integers, once, offline). Collective.
+std::vector<GO> rowsTouching(const NonlinearTerm& term, const std::vector<GO>& entries);
+
 /// Gathers (collectively) what the rows `rows` of the system's G need; weights one per row.
 SampleMesh buildSampleMesh(const HamiltonianSystem& system, const MultiVector& A, const std::vector<GO>& rows,
                            const std::vector<double>& weights, ReducedLinearPart linear);

@@ -24,7 +24,11 @@ class Hdf5File {
   ~Hdf5File();
   Hdf5File(const Hdf5File&) = delete;
   Hdf5File& operator=(const Hdf5File&) = delete;
-  void close();  ///< Closes the file (also done by the destructor).
+  /// Closes the file (also done by the destructor). After a failed collective write of a file
+  /// open on several ranks it does not call H5Fclose (and closeFailed() becomes true): the ranks'
+  /// HDF5 states then differ (a full disk met by rank 0 alone, which writes the replicated
+  /// datasets), and the collective close hung with each rank in another barrier.
+  void close();
   /// Whether a file of this process could not be closed (H5Fclose failed: a full disk when HDF5
   /// wrote the file's last metadata, say). HDF5 1.10 then leaves the file half-closed in its table,
   /// and its own termination (at MPI_Finalize) crashes on it: a program that finds this true should
@@ -106,6 +110,9 @@ class Hdf5File {
   std::string path_;
   RCP<const Comm> comm_;
   hid_t file_ = -1;
+  bool writeFailed_ = false;  ///< a collective write or flush failed (close() then skips H5Fclose on several ranks)
+  /// checkOnAll of a collective write, remembering its failure for close().
+  void checkWrite(herr_t status, const std::string& what);
 };
 
 /// Write-then-rename: the final name appears only when the file is complete. A RenameOnCommit

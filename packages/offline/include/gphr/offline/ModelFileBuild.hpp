@@ -4,11 +4,13 @@
 /// a Hamiltonian of its own calls (examples/embedding): training, the symplectic basis, per
 /// reduced size k the DEIM basis and the term-weight fits of the stored methods, then the
 /// reduced-model file (doc/model-file.md) that ReducedModel (packages/online) loads.
+#include <map>
 #include <string>
 #include <vector>
 
 #include "gphr/core/StageClock.hpp"
 #include "gphr/hyper/GpAdeimModel.hpp"
+#include "gphr/offline/ErrorCalibration.hpp"
 #include "gphr/offline/ModelFileBuilder.hpp"
 #include "gphr/offline/OfflineSequence.hpp"
 
@@ -34,12 +36,14 @@ struct ModelBuildResult {
   /// This rank's clocks per stage (StageClock.hpp), in order: "training", "instance", "basis",
   /// "header", per k "deim basis k=K", "gp-deim k=K" (DEIM indices and sample meshes), "fits k=K"
   /// (term-weight fits, gp-eqp), "interpolation k=K" (the parameter interpolants of the basis
-  /// data), then "write" (the model file). Stages not run are absent; they add up to the phase.
+  /// data), "calibration" (the error indicators, ErrorCalibration.hpp), then "write" (the model file). Stages not run are absent; they add up to the phase.
   std::vector<StageTime> stages;
   /// What could not be built and is not in the file, one line each ("gp-deim k = 10, m = 120: the
   /// DEIM basis has 91 vectors ..."; a k with no model at all is left out too), as `gphr run`
   /// marks such a run unavailable; also said on stderr by rank 0 as it happens.
   std::vector<std::string> skipped;
+  /// Per model key, the training points its error indicator was calibrated on (ErrorCalibration.hpp).
+  std::map<std::string, std::vector<CalibrationPoint>> calibration;
 };
 
 /// Checks `options` for `scene` before any work: the methods, sizes and parameter, gp-adeim alone

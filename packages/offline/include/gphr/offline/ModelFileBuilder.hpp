@@ -18,9 +18,14 @@ struct ModelFileOptions {
   int interpolationNodes = 7;  ///< Chebyshev-Lobatto nodes per parameter (2..33)
   std::string indices = "deim";  ///< DEIM indices: deim | qdeim
   std::string integratorConfig;  ///< YAML of the integrator section (empty: the defaults)
+  /// Degrees of freedom whose q and p entries carry the online error indicator (ErrorIndicator.hpp); 0: none.
+  int indicatorDofs = 16;
+  /// The error a query is held to (build.targetError; 0: none): stored, and queries whose
+  /// estimate exceeds it are marked.
+  double targetError = 0.0;
 };
 
-/// The options a `build` section sets (probes, interpolationNodes); the indices and the integrator's
+/// The options a `build` section sets (probes, interpolationNodes, indicatorDofs); the indices and the integrator's
 /// YAML are the caller's (sections hyper and integrator).
 ModelFileOptions modelFileOptionsFrom(const Teuchos::ParameterList& build);
 /// The keys of a `build` section with their defaults, ranges and documentation.

@@ -64,7 +64,12 @@ class OnlineModel {
   GpDeimModel& model() { return *model_; }  ///< The GP-DEIM model (sample mesh and row kernel at mu).
   /// From z = 0 (the shifted initial state y0(mu)) over T / dt steps (T a whole number of steps).
   /// A Newton failure or a non-finite state ends the run with status `diverged`, not an exception.
+  /// The stats carry the run's error indicator and, where the file calibrated it, its error
+  /// estimate (SimulationStats::errorEstimate; doc/error-estimate.md).
   SimulationStats simulate(double T, double dt, const QueryObserver& observer = {});
+  /// Whether the model has an error indicator (the file holds indicator rows of its k).
+  bool hasErrorIndicator() const { return static_cast<bool>(indicator_); }
+  const IndicatorCalibration& calibration() const { return calibration_; }  ///< The file's calibration of the model.
   /// The lifted physical state at the probe entries.
   void probeValues(const DenseVector& z, std::vector<double>& out) const;
 
@@ -78,6 +83,8 @@ class OnlineModel {
   std::vector<double> probeRows_, probeReference_;
   double setupSeconds_ = 0.0;
   bool extrapolated_ = false;
+  std::shared_ptr<ResidualIndicator> indicator_;  ///< null: the file has no indicator rows of this k
+  IndicatorCalibration calibration_;
 };
 
 /// A reduced-model file loaded for simulation (see the file's description).
@@ -87,14 +94,19 @@ class ReducedModel {
   /// built-in scenes). A user's own scene is passed here; its name must match the file's.
   /// InputError naming the file for any check it fails (see the file's description).
   explicit ReducedModel(const std::string& path, std::shared_ptr<const Scene> scene = nullptr);
-  const std::string& path() const { return file_->path(); }  ///< Path of the file.
-  const ReducedModelData& data() const { return file_->data(); }  ///< The file's contents.
+  /// The model data in memory, not (yet) in a file (the build calibrates its error indicators
+  /// on it): the same checks of the scene and the stored sections. basis(k, space) gives bases[k]
+  /// where its map is space's (InputError otherwise, and for a k it does not hold).
+  ReducedModel(ReducedModelData data, std::shared_ptr<const Scene> scene,
+               std::map<int, RCP<const MultiVector>> bases);
+  const std::string& path() const { return file_ ? file_->path() : inMemory_; }  ///< Path of the file.
+  const ReducedModelData& data() const { return file_ ? file_->data() : *memory_; }  ///< The file's contents.
   const Scene& scene() const { return *scene_; }  ///< The scene the file was built for.
   /// The file's integrator section, validated (the time scheme and Newton of every query).
   const Teuchos::ParameterList& integrator() const { return integrator_; }
   /// The basis A of k on space's map, from the open file (OpenModelFile::basis: collective over
   /// space's communicator; InputError if the file holds none or it fails its checks).
-  RCP<MultiVector> basis(int k, const PhaseSpace& space) const { return file_->basis(k, space); }
+  RCP<MultiVector> basis(int k, const PhaseSpace& space) const;
   /// InputError naming the box unless mu is inside it or allowExtrapolation is set (then the
   /// result is marked extrapolated); InputError naming the models held if (method, k, m) is not.
   OnlineModel instantiate(const std::string& method, int k, int m, const std::vector<double>& mu,
@@ -114,9 +126,16 @@ class ReducedModel {
 
  private:
   void checkStoredSections();  ///< the load-time checks of the scene, integrator and adeim sections
+  /// The error indicator of k at mu from the parameter data p (null where the file has none).
+  std::shared_ptr<ResidualIndicator> errorIndicator(const StoredBasisData& basis, const OnlineParameterData& p,
+                                                    RCP<const RowEvaluator> kernel) const;
   OnlineParameterData exactParameterData(const StoredBasisData& basis, const std::vector<double>& mu) const;
   bool checkParameter(const std::vector<double>& mu, bool allowExtrapolation) const;  ///< true if outside the box
-  std::shared_ptr<const OpenModelFile> file_;
+  void checkLoaded();  ///< the checks of both constructors, InputError naming path()
+  std::shared_ptr<const OpenModelFile> file_;  ///< null: the data are in memory
+  std::shared_ptr<const ReducedModelData> memory_;
+  std::map<int, RCP<const MultiVector>> memoryBases_;
+  std::string inMemory_ = "(model data in memory)";
   std::shared_ptr<const Scene> scene_;
   Teuchos::ParameterList integrator_;
   std::map<std::string, AdeimOptions> adeim_;  ///< per gp-adeim model's key, its options

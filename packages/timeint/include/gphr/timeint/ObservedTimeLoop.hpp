@@ -11,6 +11,7 @@
 #include <Teuchos_Time.hpp>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <string>
 
 #include "gphr/core/DenseTypes.hpp"
@@ -29,6 +30,14 @@ struct SimulationStats {
   RunStatus status = RunStatus::Ok;  ///< Ok, or Diverged (the loop decides no other)
   std::string reason;           ///< why it diverged
   long lastStep = 0;            ///< the last step whose state was observed
+  /// A query's error indicator eta and its calibrated estimate of E_L2 (hyper/ErrorIndicator.hpp,
+  /// doc/error-estimate.md): NaN where the model file has no indicator or calibration, or the run
+  /// did not reach its end. indicatorSeconds: the indicator's share of onlineSeconds.
+  /// @{
+  double errorIndicator = std::numeric_limits<double>::quiet_NaN();
+  double errorEstimate = std::numeric_limits<double>::quiet_NaN();
+  double indicatorSeconds = 0.0;
+  /// @}
   bool ok() const { return status == RunStatus::Ok; }  ///< it ran to the end
 };
 
