@@ -2,7 +2,8 @@
 # Paths that would destroy or misplace files are refused before any work, with exit 2 and one line
 # naming the path and what is allowed: --model at a device, FIFO, symbolic link or directory, at
 # the config file or at the artifacts file (the model file is renamed over whatever is there);
-# --output or --model given empty or without a value (query's "" would write into /). A config in
+# --output or --model given empty or without a value (query's "" would write into /); a
+# --target-error that is not 0 < EPS < 1. A config in
 # Teuchos XML with its root list named gphr runs like the YAML one.
 # usage: bad_paths.sh GPHR
 set -u
@@ -28,6 +29,11 @@ refused build c.yaml --model dev --output art
 refused build c.yaml --model fifo --output art
 expect="--model 'link' is a symbolic link"; refused build c.yaml --model link --output art
 expect="--model 'dir' is a directory"; refused build c.yaml --model dir --output art
+# a target error that is not a relative error, or missing: refused before any work
+expect="--target-error '2'; allowed: a number 0 < EPS < 1"; refused build c.yaml --model new.h5 --target-error 2 --output art
+expect="--target-error '1e-3x'; allowed"; refused build c.yaml --model new.h5 --target-error 1e-3x --output art
+expect="'--target-error' needs a number after it"; refused build c.yaml --model new.h5 --output art --target-error
+expect="unknown argument '--target-error'"; refused run c.yaml --target-error 1e-3
 expect="--model './c.yaml' is the config file"; refused build c.yaml --model ./c.yaml --output art
 expect="is the artifacts file of --output"; refused build c.yaml --model art/../art/artifacts.h5 --output art
 [ -p fifo ] && [ -L link ] && [ -d dir ] && [ -e dev ] && [ ! -f dev ] || fail "a refused --model target was replaced"

@@ -57,8 +57,19 @@ void printCalibration(const ModelBuildResult& r) {
                 target > 0.0 ? (estimated <= target ? ": meets the target error" : ": above the target error") : "");
   }
   if (target > 0.0)
-    std::printf("  target error %.2e (build.targetError): queries whose estimate exceeds it are marked over_target; the "
-                "build does not add training points to meet it\n", target);
+    std::printf("  target error %.2e: queries whose estimate exceeds it are marked over_target\n", target);
+}
+
+// The greedy training's rounds: full solves, the best model's largest estimate, the point added.
+void printGreedy(const GreedyResult& g, double target) {
+  if (g.rounds.empty()) return;
+  std::printf("  greedy training to %.2e: %s after %ld full solves (%zu rounds)\n", target,
+              g.met ? "met" : "NOT met", g.rounds.back().fullSolves, g.rounds.size());
+  for (const auto& r : g.rounds) {
+    std::printf("    %3ld full solves: %s, largest estimate %.3e", r.fullSolves, r.model.c_str(), r.maxEstimate);
+    for (size_t i = 0; i < r.added.size(); ++i) std::printf("%s%.6g", i ? ", " : "; adds (", r.added[i]);
+    std::printf("%s\n", r.added.empty() ? "" : ")");
+  }
 }
 
 void printBuild(const std::string& path, const ReducedModelData& data, double seconds, int ranks) {
@@ -102,13 +113,16 @@ void checkModelPath(const std::string& modelPath, const std::string& configPath,
 }  // namespace
 
 int runBuild(const std::string& configPath, const std::string& modelPath, const std::string& artifactsDir,
-             const RCP<const Comm>& comm) {
+             const RCP<const Comm>& comm, double targetError) {
   // The command's own set-up (config, output directory, the scene's instance for the cache) is a
   // stage too: on a large scene its instance is not free.
   requireOutputsApart({{configPath, "the config file"}}, {{modelPath, "--model"}, {artifactsDir, "--output"}});
   StageClocks setup;
   auto setupClock = std::make_unique<StageClocks::Scope>(setup, "setup");
-  const RunOptions opt = runOptionsFrom(loadConfig(configPath));
+  RunOptions opt = runOptionsFrom(loadConfig(configPath));
+  GPHR_REQUIRE(std::isfinite(targetError) && targetError >= 0.0 && targetError < 1.0, InputError, "--target-error ",
+               targetError, "; allowed: 0 < EPS < 1 (a relative error E_L2)");
+  if (targetError > 0.0) opt.greedy.targetError = opt.file.targetError = targetError;
   checkModelPath(modelPath, configPath, artifactsDir);
   RunContext ctx;
   ctx.comm = comm;
@@ -137,7 +151,13 @@ int runBuild(const std::string& configPath, const std::string& modelPath, const 
                    "its online model needs all d rows or is a baseline: run it with gphr run");
   const ArtifactsCache cache = artifactsCache(ctx, opt, inst.system->space().fullDim());
   setupClock.reset();
-  const ModelBuildResult r = buildReducedModelFile(*opt.scene, comm, options, modelPath, &cache);
+  GreedyResult greedy;
+  if (opt.greedy.targetError > 0.0 && comm->getRank() == 0)
+    std::fprintf(stderr, "[gphr] build: greedy training to the target error %g (training.points and values not used)\n",
+                 opt.greedy.targetError);
+  if (opt.greedy.targetError > 0.0) greedy = buildToTargetError(*opt.scene, comm, options, modelPath, opt.greedy, &cache);
+  const ModelBuildResult r =
+      opt.greedy.targetError > 0.0 ? greedy.build : buildReducedModelFile(*opt.scene, comm, options, modelPath, &cache);
   std::vector<StageTime> stages = setup.stages();
   stages.insert(stages.end(), r.stages.begin(), r.stages.end());
   const StageTable table = gatherStages(comm, stages);
@@ -148,6 +168,7 @@ int runBuild(const std::string& configPath, const std::string& modelPath, const 
   if (comm->getRank() == 0) {
     printBuild(modelPath, r.data, r.seconds, comm->getSize());
     printCalibration(r);
+    printGreedy(greedy, opt.greedy.targetError);
     std::printf("%s", table.summary().c_str());
   }
   return 0;

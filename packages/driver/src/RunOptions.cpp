@@ -284,6 +284,11 @@ RunOptions runOptionsFrom(const Teuchos::ParameterList& cfg) {
   o.file.indices = o.indices;
   o.file.integratorConfig = o.record.integratorYaml;
   o.withBasis = cfg.sublist("build").get<bool>("withBasis");
+  const auto& build = cfg.sublist("build");
+  o.greedy.targetError = o.file.targetError;
+  o.greedy.candidates = build.get<int>("candidates");
+  o.greedy.seed = static_cast<unsigned long>(build.get<int>("candidateSeed"));
+  o.greedy.maxPoints = build.get<int>("maxTrainingPoints");
   return o;
 }
 

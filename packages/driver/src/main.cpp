@@ -20,6 +20,9 @@
 
 #include <Teuchos_Time.hpp>
 
+#include <cmath>
+#include <cstdlib>
+
 #include "gphr/core/Error.hpp"
 #include "gphr/driver/Commands.hpp"
 #include "gphr/driver/Console.hpp"
@@ -41,10 +44,11 @@ struct Args {
   enum Verbosity { Quiet, Normal, Verbose } verbosity = Normal;
   std::string config, output = "gphr-output", model, queries;
   int threads = 0;  // query: threads per rank, 0 = the default (QueryThreads.hpp)
+  double targetError = 0.0;  // build: --target-error EPS (0: the config's build.targetError)
 };
 
 const char* kUsage = "usage: gphr [--output DIR] | run CONFIG [--output DIR] | build CONFIG --model FILE.h5 "
-                     "[--output DIR] | query MODEL.h5 QUERIES.yaml [--output DIR] [--threads N] | validate MODEL.h5 TESTS.yaml "
+                     "[--output DIR] [--target-error EPS] | query MODEL.h5 QUERIES.yaml [--output DIR] [--threads N] | validate MODEL.h5 TESTS.yaml "
                      "[--output DIR] | --help; each command also takes --verbose or --quiet";
 
 // --output DIR, --model FILE (build), --threads N (query), --verbose and --quiet after the
@@ -70,12 +74,21 @@ void options(Args& a, const std::vector<std::string>& v, size_t from, bool model
                  gphr::InputError, "'--verbose' and '--quiet' are given together; allowed: one of them");
     if (v[i] == "--output") a.output = path(i);
     else if (model && v[i] == "--model") a.model = path(i);
-    else if (threads && v[i] == "--threads")
+    else if (model && v[i] == "--target-error") {
+      GPHR_REQUIRE(i + 1 < v.size(), gphr::InputError, "'--target-error' needs a number after it (", kUsage, ")");
+      const std::string text = v[++i];
+      char* end = nullptr;
+      a.targetError = std::strtod(text.c_str(), &end);
+      GPHR_REQUIRE(!text.empty() && end && *end == '\0' && std::isfinite(a.targetError) && a.targetError > 0.0 &&
+                       a.targetError < 1.0,
+                   gphr::InputError, "--target-error '", text, "'; allowed: a number 0 < EPS < 1 (a relative error E_L2)");
+    } else if (threads && v[i] == "--threads")
       a.threads = gphr::queryThreadsFromText(i + 1 < v.size() ? v[++i] : std::string());
     else if (v[i] == "--verbose") a.verbosity = Args::Verbose;
     else if (v[i] == "--quiet") a.verbosity = Args::Quiet;
     else
-      throw gphr::InputError("unknown argument '" + v[i] + "'; allowed: --output DIR" + (model ? ", --model FILE" : "") +
+      throw gphr::InputError("unknown argument '" + v[i] + "'; allowed: --output DIR" +
+                             (model ? ", --model FILE, --target-error EPS" : "") +
                              (threads ? ", --threads N" : "") + ", --verbose, --quiet");
   }
 }
@@ -219,7 +232,7 @@ int main(int argc, char** argv) {
         return 0;
       }
       if (args.verbosity == Args::Quiet) errors = quiet();
-      if (args.command == Args::Build) return gphr::runBuild(args.config, args.model, args.output, comm);
+      if (args.command == Args::Build) return gphr::runBuild(args.config, args.model, args.output, comm, args.targetError);
       if (args.command == Args::Query) return gphr::runQuery(args.model, args.queries, args.output, comm, args.threads);
       if (args.command == Args::Validate) return gphr::runValidate(args.model, args.queries, args.output, comm);
       return runMain(args, comm);

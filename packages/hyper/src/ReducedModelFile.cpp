@@ -129,6 +129,19 @@ void writeProvenance(Hdf5File& f, const ReducedModelData& d) {
   std::vector<double> lower, upper, enters;
   for (size_t p = 0; p < d.box.size(); ++p)
     lower.push_back(d.box[p].first), upper.push_back(d.box[p].second), enters.push_back(d.enters.at(p));
+  if (!d.greedy.empty()) {  // rows: full solves, largest estimate, the point added (NaN: none)
+    std::vector<double> rows;
+    std::string models;
+    for (const auto& r : d.greedy) {
+      rows.push_back(double(r.fullSolves)), rows.push_back(r.maxEstimate);
+      for (size_t p = 0; p < d.box.size(); ++p) rows.push_back(r.added.empty() ? NAN : r.added.at(p));
+      models += (models.empty() ? "" : ";") + r.model;
+    }
+    f.writeArray("/greedy", rows, d.greedy.size(), 2 + d.box.size());
+    f.setAttribute("/greedy", "models", models);
+    f.setAttribute("/greedy", "layout", std::string("per round: training points, the best model's largest estimated "
+                                                    "E_L2 over the candidates, the parameter added next (NaN: none)"));
+  }
   f.setAttribute("/", "box_lower", lower);
   f.setAttribute("/", "box_upper", upper);
   f.setAttribute("/", "parameter_enters", enters);
@@ -237,6 +250,19 @@ void readProvenance(const Hdf5File& f, ReducedModelData& d) {
     GPHR_REQUIRE(lo[p] <= hi[p] && !d.parameterNames[p].empty(), InputError, "parameter ", p, " ('",
                  d.parameterNames[p], "') has the box [", lo[p], ", ", hi[p], "]; allowed: a name and lower <= upper");
     d.box.emplace_back(lo[p], hi[p]);
+  }
+  if (f.exists("/greedy")) {
+    size_t rows = 0, cols = 0;
+    const auto v = f.readArray("/greedy", &rows, &cols);
+    const auto models = split(f.stringAttribute("/greedy", "models"), ';');
+    GPHR_REQUIRE(cols == 2 + d.box.size() && models.size() == rows, InputError, "/greedy is ", rows, " x ", cols,
+                 " with ", models.size(), " model names; allowed: rounds x ", 2 + d.box.size(), ", a name per round");
+    for (size_t i = 0; i < rows; ++i) {
+      TrainingRound r;
+      r.fullSolves = static_cast<long>(v[i * cols]), r.maxEstimate = v[i * cols + 1], r.model = models[i];
+      if (std::isfinite(v[i * cols + 2])) r.added.assign(v.begin() + i * cols + 2, v.begin() + (i + 1) * cols);
+      d.greedy.push_back(r);
+    }
   }
 }
 

@@ -151,6 +151,7 @@ ModelBuildResult buildReducedModelFile(const Scene& scene, const RCP<const Comm>
   GPHR_REQUIRE(!data.bases.empty(), InputError, "reduced-model file '", path, "': no model could be built (",
                r.skipped.size(), " left out, said above); allowed: m the DEIM basis holds, budgets the training supports");
   data.targetError = options.file.targetError;
+  data.greedy = options.greedyRounds;
   if (options.file.indicatorDofs > 0) {
     const StageClocks::Scope stage(seq.clocks(), "calibration");
     std::map<int, RCP<const MultiVector>> byK;

@@ -133,9 +133,16 @@ Teuchos::ParameterList modelFileValidParameters() {
                   "gphr build: degrees of freedom (spread evenly over the n) whose q and p entries carry the online "
                   "error indicator of every query (doc/error-estimate.md): its cost per step grows with them, "
                   "not with n; 0: no indicator, no error estimate");
-  setDoubleParameter(bld, "targetError", 0.0, 0.0, 1.0,
-                     "gphr build: the relative error E_L2 a query of the file is held to: stored in the file, and a "
-                     "query whose error estimate exceeds it is marked and counted; 0: none");
+  setDoubleParameter(bld, "targetError", 0.0, 0.0, 0.999,
+                     "gphr build: train greedily until the best model's estimated E_L2 over the candidates is below "
+                     "it (the training section's set is then not used; doc/model-file.md); stored in the file, where a "
+                     "query whose error estimate exceeds it is marked and counted; 0: the training set as given");
+  setIntParameter(bld, "candidates", 64, 1, 100000,
+                  "gphr build with targetError: candidate points of the box (uniform at random) where the error is "
+                  "estimated each round");
+  setIntParameter(bld, "candidateSeed", 1, 0, 2147483647, "gphr build with targetError: the candidates' seed");
+  setIntParameter(bld, "maxTrainingPoints", 40, 1, 10000,
+                  "gphr build with targetError: training points at most (the corners and centre of the box first)");
   return bld;
 }
 

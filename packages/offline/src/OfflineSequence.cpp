@@ -28,7 +28,9 @@ OfflineOptions completed(OfflineOptions o) {
 
 OfflineKeys offlineKeys(const Scene& scene, const OfflineOptions& o) {
   OfflineKeys k;
-  k.training = trainingCacheKey(o.sceneConfig.empty() ? "name: " + scene.name() : o.sceneConfig, o.training);
+  const std::string sceneConfig = o.sceneConfig.empty() ? "name: " + scene.name() : o.sceneConfig;
+  k.training = trainingCacheKey(sceneConfig, o.training);
+  k.trainingStates = trainingStatesKey(sceneConfig, o.training);
   k.basis = k.training + basisCacheKey(o.basis);
   k.deim = k.basis + deimBasisCacheKey(completed(o).deim);
   k.nnls = k.basis + quadratureCacheKey(o.eqp, o.eqpTolerance);
@@ -52,7 +54,7 @@ const TrainingResult& OfflineSequence::training() {
   if (!training_) {
     {
       const StageClocks::Scope clock(clocks_, "training");
-      training_ = std::make_unique<TrainingResult>(runTraining(scene_, comm_, options_.training, cache_.get(), keys_.training));
+      training_ = std::make_unique<TrainingResult>(runTraining(scene_, comm_, options_.training, cache_.get(), keys_.trainingStates));
     }
     ended("training", training_->seconds, training_->reused == static_cast<long>(training_->parameters.size()));
   }

@@ -69,10 +69,13 @@ TrainingOptions trainingOptionsFrom(const Teuchos::ParameterList& tr, const Para
 std::string trainingCacheKey(const std::string& sceneConfig, const TrainingOptions& o) {
   std::vector<double> flat;
   for (const auto& mu : o.parameters) flat.insert(flat.end(), mu.begin(), mu.end());
-  return CacheKey("training", 1)
+  return trainingStatesKey(sceneConfig, o) +
+         CacheKey("training parameters", 1).add("parameters", flat).add("parameterCount", static_cast<long>(o.parameters.size())).str();
+}
+
+std::string trainingStatesKey(const std::string& sceneConfig, const TrainingOptions& o) {
+  return CacheKey("training", 2)
       .add("scene", sceneConfig)
-      .add("parameters", flat)
-      .add("parameterCount", static_cast<long>(o.parameters.size()))
       .add("dt", o.dt)
       .add("steps", o.steps)
       .add("snapshotEvery", o.snapshotEvery)
@@ -219,15 +222,21 @@ int trainingGroupSize(long fullDim, int ranks, long parameters) {
 
 namespace {
 
-// Which parameters the cache holds complete for `key`; a half-written one is removed (redone).
-std::vector<char> completeInCache(const ArtifactsCache& cache, size_t count, const std::string& key) {
+// Which parameters the cache holds complete for `key` and their own parameter values (exactly:
+// the dataset's `parameters` attribute), so that a training set grown by appending parameters
+// trains the new ones only; a half-written one, or one of other values, is removed (redone).
+std::vector<char> completeInCache(const ArtifactsCache& cache, const TrainingOptions& o, const std::string& key) {
+  const size_t count = o.parameters.size();
   std::vector<char> done(count, 0);
   const auto f = cache.open();
   for (size_t j = 0; j < count; ++j) {
+    const std::string name = datasetName(j);
     // one without its fingerprint (an older gphr's) is trained again: its reads could not be checked
-    done[j] = ArtifactsCache::holds(*f, datasetName(j), key) && f->hasAttribute(datasetName(j), "fingerprint");
-    if (!done[j]) f->remove(datasetName(j));
+    done[j] = ArtifactsCache::holds(*f, name, key) && f->hasAttribute(name, "fingerprint") &&
+              f->hasAttribute(name, "parameters") && f->doubleAttribute(name, "parameters") == o.parameters[j];
+    if (!done[j]) f->remove(name);
   }
+  for (size_t j = count; f->exists(datasetName(j)); ++j) f->remove(datasetName(j));  // beyond the set: not ours
   return done;
 }
 
@@ -361,7 +370,7 @@ TrainingResult runTraining(const Scene& scene, const RCP<const Comm>& comm, cons
     return res;
   }
   startCache(*cache, key);
-  const std::vector<char> done = completeInCache(*cache, count, key);
+  const std::vector<char> done = completeInCache(*cache, o, key);
   res.reused = std::count(done.begin(), done.end(), 1);
   const int size = o.groupSize > 0 ? std::min(o.groupSize, comm->getSize())
                                    : trainingGroupSize(ps.fullDim(), comm->getSize(), static_cast<long>(count));

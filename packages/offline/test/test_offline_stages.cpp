@@ -19,6 +19,7 @@
 #include "gphr/models/Scene.hpp"
 #include "gphr/hyper/DeimBasis.hpp"
 #include "gphr/offline/DeimBasisStage.hpp"
+#include "gphr/offline/GreedyTraining.hpp"
 #include "gphr/offline/ModelFileBuild.hpp"
 #include "gphr/offline/OfflineSequence.hpp"
 #include "gphr/offline/PodCheckpoint.hpp"
@@ -281,6 +282,34 @@ TEST(Training, ResumedFromTheCacheBitForBit) {
   EXPECT_EQ(other.reused, 0);
   const TrainingResult none = runTraining(scene, comm, o);  // no cache: the same snapshots
   EXPECT_EQ(maxDifference(*none.snapshots[2], *first.snapshots[2]), 0.0);
+}
+
+// The cache's key is of the trajectories' settings; each parameter's states are kept with its own
+// values: a set grown by a parameter trains that one only (what a greedy training adds each round),
+// and a set whose parameter changed retrains that one only.
+TEST(Training, AGrownSetTrainsItsNewParametersOnly) {
+  const SmallScene small;
+  const auto& [comm, dir, scene, cache] = small;
+  TrainingOptions o = smallTraining();
+  o.groupSize = comm->getSize();
+  const TrainingResult first = runTraining(scene, comm, o, &cache, "key");
+  o.parameters.push_back({0.95});
+  const TrainingResult grown = runTraining(scene, comm, o, &cache, "key");
+  EXPECT_EQ(grown.reused, 3);
+  ASSERT_EQ(grown.snapshots.size(), 4u);
+  for (size_t j = 0; j < 3; ++j) EXPECT_EQ(maxDifference(*grown.snapshots[j], *first.snapshots[j]), 0.0) << j;
+  TrainingOptions alone = o;
+  alone.parameters = {{0.95}};
+  EXPECT_EQ(maxDifference(*grown.snapshots[3], *runTraining(scene, comm, alone).snapshots[0]), 0.0);
+  o.parameters[1] = {1.05};  // another value at index 1: that one is trained again, the others kept
+  const TrainingResult changed = runTraining(scene, comm, o, &cache, "key");
+  EXPECT_EQ(changed.reused, 3);
+  alone.parameters = {{1.05}};
+  EXPECT_EQ(maxDifference(*changed.snapshots[1], *runTraining(scene, comm, alone).snapshots[0]), 0.0);
+  o.parameters.pop_back();  // a shorter set: the dataset past its end is dropped, the rest kept
+  const TrainingResult shorter = runTraining(scene, comm, o, &cache, "key");
+  EXPECT_EQ(shorter.reused, 3);
+  EXPECT_FALSE(cache.open()->exists("/training/p3"));
 }
 
 TEST(Training, HeldInMemoryAcrossBlocksAsInTheCache) {
@@ -744,6 +773,69 @@ TEST(ModelFileBuild, TheFileTheOnlineLibraryLoads) {
   bad = o, bad.ms = {200}, bad.methods = {"gp-deim"};  // nothing to store: an error, no file
   EXPECT_THROW(buildReducedModelFile(*scene, comm, bad, dir.file("bad.h5")), InputError);
   EXPECT_FALSE(std::filesystem::exists(dir.file("bad.h5")));
+}
+
+
+TEST(GreedyTraining, StartsAtTheCornersAndCentreAndSeedsItsCandidates) {
+  ParameterBox box;
+  box.names = {"a", "b"};
+  box.bounds = {{0.0, 1.0}, {2.0, 4.0}};
+  EXPECT_EQ(cornersAndCentre(box),
+            (std::vector<std::vector<double>>{{0, 2}, {1, 2}, {0, 4}, {1, 4}, {0.5, 3}}));
+  const auto a = candidatePoints(box, 50, 7), b = candidatePoints(box, 50, 7), c = candidatePoints(box, 50, 8);
+  EXPECT_EQ(a, b);  // the same seed, the same points
+  EXPECT_NE(a, c);
+  for (const auto& mu : a) {
+    EXPECT_TRUE(mu[0] >= 0.0 && mu[0] < 1.0 && mu[1] >= 2.0 && mu[1] < 4.0);
+  }
+}
+
+// Each round adds the candidate where the best model's estimate is largest: the first round's pick
+// equals the worst candidate of a file built from the corners and centre alone, queried at every
+// candidate; the file records the rounds; every rank picks the same points.
+TEST(GreedyTraining, AddsTheWorstCandidateOfTheBestModel) {
+  auto comm = Tpetra::getDefaultComm();
+  TempDir dir;
+  const auto scene = std::make_shared<Nls1d>(32);
+  ModelBuildOptions o;
+  o.training = smallTraining();
+  o.basis.k = 3;
+  o.ms = {6};
+  GreedyOptions g;
+  g.targetError = 1e-9;  // not met: the build stops at maxPoints
+  g.candidates = 6;
+  g.seed = 3;
+  g.maxPoints = 4;
+  const GreedyResult r = buildToTargetError(*scene, comm, o, dir.file("g.h5"), g);
+  EXPECT_FALSE(r.met);
+  ASSERT_EQ(r.rounds.size(), 2u);  // 3 points (corners and centre of the eps box), then 4
+  EXPECT_EQ(r.rounds[0].fullSolves, 3);
+  EXPECT_EQ(r.rounds[1].fullSolves, 4);
+  EXPECT_TRUE(r.rounds[1].added.empty());
+  ASSERT_EQ(r.rounds[0].added.size(), 1u);
+  // the pick, recomputed from a file of the first round's training set
+  o.training.parameters = cornersAndCentre(scene->parameterBox());
+  buildReducedModelFile(*scene, comm, o, dir.file("first.h5"));
+  const ReducedModel first(dir.file("first.h5"), scene);
+  double worst = -1.0;
+  std::vector<double> at;
+  for (const auto& mu : candidatePoints(scene->parameterBox(), g.candidates, g.seed)) {
+    const double e = first.instantiate("gp-deim", 3, 6, mu).simulate(0.2, 0.01).errorEstimate;
+    if (e > worst) worst = e, at = mu;
+  }
+  EXPECT_EQ(r.rounds[0].added, at);
+  EXPECT_DOUBLE_EQ(r.rounds[0].maxEstimate, worst);
+  // the file's record, read back
+  const ReducedModel file(dir.file("g.h5"), scene);
+  ASSERT_EQ(file.data().greedy.size(), 2u);
+  EXPECT_EQ(file.data().greedy[0].added, at);
+  EXPECT_EQ(file.data().greedy[1].fullSolves, 4);
+  EXPECT_EQ(file.data().targetError, 1e-9);
+  // the same pick on every rank
+  double lo = at[0], hi = at[0];
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MIN, at[0], Teuchos::outArg(lo));
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, at[0], Teuchos::outArg(hi));
+  EXPECT_EQ(lo, hi);
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include "gphr/hyper/GpAdeimModel.hpp"
 #include "gphr/hyper/GradientDeimModel.hpp"
 #include "gphr/models/Scene.hpp"
+#include "gphr/offline/GreedyTraining.hpp"
 #include "gphr/offline/ModelFileBuilder.hpp"
 #include "gphr/offline/OfflineSequence.hpp"
 
@@ -76,6 +77,7 @@ struct RunOptions {
   AdeimOptions adeim;             ///< the adeim section (per m: adeimOptionsFor)
   ModelFileOptions file;          ///< the build section's file options, indices and integrator
   bool withBasis = false;         ///< build.withBasis
+  GreedyOptions greedy;           ///< build.targetError, candidates, candidateSeed, maxTrainingPoints (gphr build)
   OutputOptions output;           ///< what the run writes
   ConfigRecord record;            ///< the configuration as text, for the reports
 };

@@ -79,6 +79,14 @@ struct StoredBasisData {
   std::vector<double> restrict(const std::vector<double>& mu) const;  ///< mu at `interpolated`
 };
 
+/// One round of a greedy training (offline/GreedyTraining.hpp), as the file records it.
+struct TrainingRound {
+  long fullSolves = 0;        ///< training points (full-model runs) of the round's build
+  std::string model;          ///< the model with the smallest largest estimate over the candidates
+  double maxEstimate = 0.0;   ///< that largest estimate
+  std::vector<double> added;  ///< the candidate added next (empty in the last round)
+};
+
 /// The contents of a reduced-model file (doc/model-file.md).
 struct ReducedModelData {
   int schemaVersion = kReducedModelSchema;  ///< Layout version (kReducedModelSchema).
@@ -106,6 +114,9 @@ struct ReducedModelData {
   /// The error a query is held to (build.targetError): a query whose estimate exceeds it is marked;
   /// 0: none set.
   double targetError = 0.0;
+  /// The rounds of the greedy training that built the file (empty: a training set given whole).
+  /// Provenance, outside the checksum: no query reads it.
+  std::vector<TrainingRound> greedy;
   const StoredBasisData& basis(int k) const;                      ///< InputError naming the ks held
   const StoredHyperModel& model(const std::string& method, int k, int m) const;  ///< InputError naming the models held
   std::string modelList() const;  ///< "gp-deim k=10 m=20, ..." for messages

@@ -25,6 +25,7 @@ struct ModelBuildOptions : OfflineOptions {
   std::vector<double> parameter;  ///< the instance that supplies the stored sample meshes (empty: the box's centre)
   double T = 0.0;             ///< the file's default horizon (0: the training's steps x dt)
   std::string config;         ///< provenance: the whole configuration as YAML
+  std::vector<TrainingRound> greedyRounds;  ///< provenance: the greedy training's rounds (GreedyTraining.hpp)
 };
 
 /// What the offline phase produced.

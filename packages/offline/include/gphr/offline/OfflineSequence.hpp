@@ -40,7 +40,8 @@ struct OfflineOptions {
 
 /// The stages' cache keys: prefixes that the DEIM basis and fit stages complete with k (and m).
 struct OfflineKeys {
-  std::string training;  ///< of the training snapshots
+  std::string training;  ///< of the training set (its parameters included): what the later stages' keys begin with
+  std::string trainingStates;  ///< of the training's states in the cache (trainingStatesKey: each kept with its parameter)
   std::string basis;     ///< of the basis (the training's key first)
   std::string deim;      ///< of the DEIM bases (the basis's key first)
   std::string nnls;      ///< of the gp-eqp fits (the basis's key first)

@@ -46,6 +46,10 @@ TrainingOptions trainingOptionsFrom(const Teuchos::ParameterList& training, cons
 /// snapshotEvery and integrator. groupSize and progress (who integrates what, and what is printed)
 /// are left out: the snapshots are the same to round-off.
 std::string trainingCacheKey(const std::string& sceneConfig, const TrainingOptions& options);
+/// The key runTraining keeps the states under: trainingCacheKey without the parameters (the scene,
+/// time step, steps, snapshotEvery, integrator). Each parameter's dataset is kept with its own
+/// values, so that a set grown by a parameter trains that one only.
+std::string trainingStatesKey(const std::string& sceneConfig, const TrainingOptions& options);
 /// The keys of a `training` section with their defaults, ranges and documentation, for a box of
 /// `parameters` parameters (the default grid: 3 points each).
 Teuchos::ParameterList trainingValidParameters(size_t parameters);
@@ -72,8 +76,10 @@ struct TrainingResult {
 /// Integrates the scene at every training parameter. With `cache`, each parameter's snapshots are
 /// written to it while they are integrated, kSnapshotReadColumns states at a time, so the training
 /// holds one such block per rank however long the trajectory; the result streams them from the
-/// file. A parameter whose dataset is complete for `key` is not integrated again, one without its
-/// mark (killed mid-way) is redone, and a cache trained with another key is trained again. With a
+/// file. A parameter whose dataset is complete for `key` (trainingStatesKey) and holds its values
+/// is not integrated again -- so a grown set integrates its new parameters only --, one without its
+/// mark (killed mid-way) or of other values is redone, and a cache trained with another key is
+/// trained again. With a
 /// cache the ranks train in groups (TrainingOptions::groupSize), a round of parameters side by
 /// side, each group's ranks writing their own rows of its parameter (Hdf5File::writeStateRows).
 /// Collective over `comm`.

@@ -1,0 +1,48 @@
+#pragma once
+/// @file
+/// Greedy training to a target error (issue 54; libROM's greedy sampler, pyMOR's weak greedy):
+/// start from the box's corners and centre, build the reduced-model file, estimate every stored
+/// sample-mesh model's error at a seeded set of candidate points of the box with the query's own
+/// error estimate (hyper/ErrorIndicator.hpp: no full solve), and while the best model's largest
+/// estimate exceeds the target add its worst candidate to the training set and build again. The
+/// artifacts cache keeps every finished parameter's states (trainingStatesKey), so a round trains
+/// its new parameter only; the bases are recomputed from the grown set.
+#include <string>
+#include <vector>
+
+#include "gphr/offline/ModelFileBuild.hpp"
+
+namespace gphr {
+
+/// What the greedy training aims at and may spend.
+struct GreedyOptions {
+  double targetError = 0.0;  ///< EPS: the best model's estimated max E_L2 over the candidates to reach (> 0)
+  int candidates = 64;       ///< candidate points of the box, uniform at random from `seed`
+  unsigned long seed = 1;    ///< of the candidates: the same seed, the same points (and rounds)
+  int maxPoints = 40;        ///< training points at most (the build stops there, target met or not)
+};
+
+/// One round: the training set's size, the best model and its largest estimate over the
+/// candidates left, and the candidate added (empty in the last round): TrainingRound, as the file records it.
+using GreedyRound = TrainingRound;
+
+/// The greedy training's result: the last build (its file at `path`) and the rounds.
+struct GreedyResult {
+  ModelBuildResult build;           ///< the last round's build
+  std::vector<GreedyRound> rounds;  ///< in order
+  bool met = false;                 ///< the target was reached
+};
+
+/// The box's corners and centre (2^p + 1 points; the centre alone for p = 0).
+std::vector<std::vector<double>> cornersAndCentre(const ParameterBox& box);
+/// `count` points uniform in the box from `seed` (std::mt19937_64, the same on every rank and machine).
+std::vector<std::vector<double>> candidatePoints(const ParameterBox& box, int count, unsigned long seed);
+
+/// Trains greedily to g.targetError (see the file's description) and writes the model file at
+/// `path`; the file records the target, the rounds and the estimate reached (ReducedModelData::
+/// greedy). options.training.parameters is replaced by the greedy set. Collective over `comm`.
+GreedyResult buildToTargetError(const Scene& scene, const RCP<const Comm>& comm, ModelBuildOptions options,
+                                const std::string& path, const GreedyOptions& g, const ArtifactsCache* cache = nullptr,
+                                const OfflineSequence::StageHook& hook = {});
+
+}  // namespace gphr

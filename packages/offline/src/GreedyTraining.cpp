@@ -1,0 +1,107 @@
+// Greedy training to a target error (GreedyTraining.hpp).
+#include "gphr/offline/GreedyTraining.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <random>
+
+#include "gphr/core/Error.hpp"
+#include "gphr/online/ReducedModel.hpp"
+
+namespace gphr {
+
+std::vector<std::vector<double>> cornersAndCentre(const ParameterBox& box) {
+  const size_t p = box.bounds.size();
+  std::vector<std::vector<double>> out;
+  for (size_t c = 0; p > 0 && c < (size_t(1) << p); ++c) {
+    std::vector<double> mu;
+    for (size_t i = 0; i < p; ++i) mu.push_back((c >> i) & 1 ? box.bounds[i].second : box.bounds[i].first);
+    out.push_back(mu);
+  }
+  std::vector<double> centre;
+  for (const auto& [lo, hi] : box.bounds) centre.push_back(0.5 * (lo + hi));
+  out.push_back(centre);
+  return out;
+}
+
+std::vector<std::vector<double>> candidatePoints(const ParameterBox& box, int count, unsigned long seed) {
+  std::mt19937_64 gen(seed);  // its sequence is fixed by the standard; the mapping below too
+  std::vector<std::vector<double>> out(static_cast<size_t>(std::max(count, 0)));
+  for (auto& mu : out)
+    for (const auto& [lo, hi] : box.bounds) mu.push_back(lo + (hi - lo) * (double(gen() >> 11) * 0x1.0p-53));
+  return out;
+}
+
+namespace {
+
+// The largest estimate of each calibrated sample-mesh model of the file over the candidates, and
+// where: the round's measure. A run without an estimate counts as infinite (it failed).
+GreedyRound estimateRound(const ReducedModel& rm, const std::vector<std::vector<double>>& candidates, double T,
+                          double dt, std::vector<double>& worst) {
+  GreedyRound round;
+  round.maxEstimate = std::numeric_limits<double>::infinity();
+  for (const auto& x : rm.data().models) {
+    if (x.onlineNeedsFullSystem() || !x.calibration.calibrated()) continue;  // gp-adeim: a full system per point
+    double largest = -1.0;
+    size_t at = 0;
+    for (size_t c = 0; c < candidates.size(); ++c) {
+      const double e = rm.instantiate(x.method, x.k, x.m, candidates[c]).simulate(T, dt).errorEstimate;
+      const double v = std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
+      if (v > largest) largest = v, at = c;
+    }
+    if (largest < round.maxEstimate || round.model.empty()) {
+      round.maxEstimate = largest, round.model = x.key();
+      worst = candidates.empty() ? std::vector<double>() : candidates[at];
+    }
+  }
+  return round;
+}
+
+}  // namespace
+
+GreedyResult buildToTargetError(const Scene& scene, const RCP<const Comm>& comm, ModelBuildOptions o,
+                                const std::string& path, const GreedyOptions& g, const ArtifactsCache* cache,
+                                const OfflineSequence::StageHook& hook) {
+  GPHR_REQUIRE(std::isfinite(g.targetError) && g.targetError > 0.0 && g.targetError < 1.0, InputError,
+               "target error ", g.targetError, "; allowed: 0 < target < 1 (a relative error E_L2)");
+  GPHR_REQUIRE(g.candidates >= 1 && g.candidates <= 100000, InputError, "greedy candidates ", g.candidates,
+               "; allowed: 1 to 100000");
+  GPHR_REQUIRE(o.file.indicatorDofs > 0, InputError,
+               "greedy training needs the error indicator: build.indicatorDofs = 0; allowed: >= 1");
+  const ParameterBox& box = scene.parameterBox();
+  std::vector<std::vector<double>> params = cornersAndCentre(box), candidates = candidatePoints(box, g.candidates, g.seed);
+  GPHR_REQUIRE(g.maxPoints >= static_cast<int>(params.size()), InputError, "greedy training starts from ",
+               params.size(), " points (the box's corners and centre); allowed: build.maxTrainingPoints >= that, got ",
+               g.maxPoints);
+  o.file.targetError = g.targetError;
+  const std::shared_ptr<const Scene> sceneRef(&scene, [](const Scene*) {});  // not owned: the caller's
+  const double dt = o.training.dt, T = dt * static_cast<double>(o.training.steps);
+  GreedyResult out;
+  for (;;) {
+    o.training.parameters = params;
+    o.greedyRounds = out.rounds;  // the file records the rounds so far
+    out.build = buildReducedModelFile(scene, comm, o, path, cache, hook);
+    std::vector<double> worst;
+    GreedyRound round = estimateRound(ReducedModel(path, sceneRef), candidates, T, dt, worst);
+    round.fullSolves = static_cast<long>(params.size());
+    out.met = round.maxEstimate <= g.targetError;
+    const bool stop = out.met || static_cast<int>(params.size()) >= g.maxPoints || worst.empty();
+    if (!stop) round.added = worst;
+    if (comm->getRank() == 0)
+      std::fprintf(stderr, "[gphr] greedy: %zu training points, best model %s, largest estimate %.3e over %zu "
+                   "candidates (target %.3e)%s\n", params.size(), round.model.c_str(), round.maxEstimate,
+                   candidates.size(), g.targetError, out.met ? ": met" : stop ? ": stopped, not met" : "");
+    out.rounds.push_back(round);
+    if (stop) break;
+    params.push_back(worst);
+    candidates.erase(std::find(candidates.begin(), candidates.end(), worst));
+  }
+  // The file once more with every round in it: its stages are all in the cache (or in memory: the
+  // training again without one), only the calibration and the write are redone.
+  o.greedyRounds = out.rounds;
+  out.build = buildReducedModelFile(scene, comm, o, path, cache, hook);
+  return out;
+}
+
+}  // namespace gphr
