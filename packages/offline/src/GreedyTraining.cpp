@@ -1,12 +1,14 @@
 // Greedy training to a target error (GreedyTraining.hpp).
 #include "gphr/offline/GreedyTraining.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <random>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/core/Method.hpp"
 #include "gphr/online/ReducedModel.hpp"
 
 namespace gphr {
@@ -69,6 +71,11 @@ GreedyResult buildToTargetError(const Scene& scene, const RCP<const Comm>& comm,
                "; allowed: 1 to 100000");
   GPHR_REQUIRE(o.file.indicatorDofs > 0, InputError,
                "greedy training needs the error indicator: build.indicatorDofs = 0; allowed: >= 1");
+  GPHR_REQUIRE(std::any_of(o.methods.begin(), o.methods.end(),
+                           [](const std::string& m) { return !methodInfo(m).needsFullResidual; }),
+               InputError, "greedy training estimates the sample-mesh models at its candidates; the methods asked "
+               "for have none (gp-adeim needs a full system per point); allowed: gp-deim, gp-eqp or gp-eqp-refit "
+               "among them");
   const ParameterBox& box = scene.parameterBox();
   std::vector<std::vector<double>> params = cornersAndCentre(box), candidates = candidatePoints(box, g.candidates, g.seed);
   GPHR_REQUIRE(g.maxPoints >= static_cast<int>(params.size()), InputError, "greedy training starts from ",
@@ -84,6 +91,8 @@ GreedyResult buildToTargetError(const Scene& scene, const RCP<const Comm>& comm,
     out.build = buildReducedModelFile(scene, comm, o, path, cache, hook);
     std::vector<double> worst;
     GreedyRound round = estimateRound(ReducedModel(path, sceneRef), candidates, T, dt, worst);
+    GPHR_REQUIRE(!round.model.empty(), InputError, "greedy training: no stored model of ", out.build.data.modelList(),
+                 " has an error estimate (no training point gave both its error and its indicator)");
     round.fullSolves = static_cast<long>(params.size());
     out.met = round.maxEstimate <= g.targetError;
     const bool stop = out.met || static_cast<int>(params.size()) >= g.maxPoints || worst.empty();

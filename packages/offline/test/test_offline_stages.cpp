@@ -831,6 +831,14 @@ TEST(GreedyTraining, AddsTheWorstCandidateOfTheBestModel) {
   EXPECT_EQ(file.data().greedy[0].added, at);
   EXPECT_EQ(file.data().greedy[1].fullSolves, 4);
   EXPECT_EQ(file.data().targetError, 1e-9);
+  // refused before any work: a target that is not a relative error, and no model to estimate
+  GreedyOptions bad = g;
+  bad.targetError = 0.0;
+  EXPECT_THROW(buildToTargetError(*scene, comm, o, dir.file("bad.h5"), bad), InputError);
+  ModelBuildOptions adeimOnly = o;
+  adeimOnly.methods = {"gp-adeim"};
+  EXPECT_THROW(buildToTargetError(*scene, comm, adeimOnly, dir.file("bad.h5"), g), InputError);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("bad.h5")));
   // the same pick on every rank
   double lo = at[0], hi = at[0];
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MIN, at[0], Teuchos::outArg(lo));
