@@ -64,6 +64,15 @@ TrainingOptions smallTraining() {
   return o;
 }
 
+// The offline phase of the small training: basis size k, DEIM sizes ms (gp-deim unless changed).
+ModelBuildOptions smallBuild(int k, std::vector<int> ms) {
+  ModelBuildOptions o;
+  o.training = smallTraining();
+  o.basis.k = k;
+  o.ms = std::move(ms);
+  return o;
+}
+
 TEST(TrainingGrid, TensorGridFirstParameterFastest) {
   ParameterBox box;
   box.names = {"a", "b"};
@@ -738,10 +747,8 @@ TEST(ModelFileBuild, TheFileTheOnlineLibraryLoads) {
   auto comm = Tpetra::getDefaultComm();
   TempDir dir;
   const auto scene = std::make_shared<Nls1d>(32);
-  ModelBuildOptions o;
-  o.training = smallTraining();
-  o.basis.k = 4;
-  o.ms = {6, 8, 200};  // m = 200: past the DEIM basis (at most d = 32 vectors); gp-eqp stops at fewer terms
+  // m = 200: past the DEIM basis (at most d = 32 vectors); gp-eqp stops at fewer terms
+  ModelBuildOptions o = smallBuild(4, {6, 8, 200});
   o.methods = {"gp-deim", "gp-eqp"};
   o.file.probes = {3};
   o.file.interpolationNodes = 3;
@@ -797,10 +804,7 @@ TEST(GreedyTraining, AddsTheWorstCandidateOfTheBestModel) {
   auto comm = Tpetra::getDefaultComm();
   TempDir dir;
   const auto scene = std::make_shared<Nls1d>(32);
-  ModelBuildOptions o;
-  o.training = smallTraining();
-  o.basis.k = 3;
-  o.ms = {6};
+  ModelBuildOptions o = smallBuild(3, {6});
   GreedyOptions g;
   g.targetError = 1e-9;  // not met: the build stops at maxPoints
   g.candidates = 6;

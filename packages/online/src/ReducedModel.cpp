@@ -218,7 +218,8 @@ class IndicatorHook {
     const auto t0 = std::chrono::steady_clock::now();
     if (j == 0) indicator_->start(z);
     else indicator_->step(previous_, z, dt_);
-    previous_ = z;
+    if (previous_.length() != z.length()) previous_.size(z.length());  // once: no allocation per step
+    previous_.assign(z);
     seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
   // The run's indicator and estimate (NaN unless it reached its end).
