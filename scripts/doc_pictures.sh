@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Makes the pictures the documentation shows, from the SWE example on 2 ranks:
 #   doc/img/fields_swe.png     its fields.png (README.md)
-#   doc/img/paraview_swe.png   its fields.xdmf in ParaView (doc/user-guide.md; needs Debian's
+#   doc/img/paraview_swe.png   its fields.xdmf in ParaView (doc/reference.md; needs Debian's
 #                              paraview and python3-paraview (setup.sh --tests installs them) and xvfb)
 # usage: bash scripts/doc_pictures.sh   (after scripts/setup.sh)
 set -eu

@@ -1,4 +1,4 @@
-"""The ParaView picture of doc/user-guide.md: fields.xdmf of the SWE example at its last time, the
+"""The ParaView picture of doc/reference.md: fields.xdmf of the SWE example at its last time, the
 full model's water surface (Warp By Scalar of chi_fom) beside the pointwise difference of a
 hyper-reduced model to it, as a ParaView user would set them up.
 

@@ -38,6 +38,10 @@ case $case in
   scalar_root)     printf 'gphr: 7\n' > "$cfg"; expect="is malformed YAML" ; unexpected="must fit on one line" ;;
   real_n)          printf '%s\n' "$base" | sed 's/n: 64/n: 64.0/' > "$cfg"
                    expect="key 'scene.n' has value 64, a real number (written with a point or an exponent); allowed: an integer in" ;;
+  m_per_k_k)       printf '%s\n  pipeline: {methods: [gp-deim], k: [4, 8], m: [8], mPerK: {k6: [4]}}\n' "$base" > "$cfg"
+                   expect="key 'pipeline.mPerK.k6' names k = 6, which is not evaluated; allowed: a k of pipeline.k (4, 8)" ;;
+  m_per_k_name)    printf '%s\n  pipeline: {methods: [gp-deim], k: [4], m: [8], mPerK: {four: [4]}}\n' "$base" > "$cfg"
+                   expect="key 'pipeline.mPerK.four' is not a reduced size; allowed: k<K> for a K of pipeline.k (4), e.g. k4" ;;
   duplicate_m)     printf '%s\n  pipeline:\n    methods: [gp-deim]\n    m: [8, 4, 8]\n' "$base" > "$cfg"
                    expect="key 'pipeline.m' has entry 8 twice; allowed: each size once" ;;
   # a k above what 2 x 11 training states give (two POD columns each: at most 44), refused before the training

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# gphr build's per-stage clocks (doc/user-guide.md, "stages.csv"), on 2 ranks:
+# gphr build's per-stage clocks (doc/reference.md, "stages.csv"), on 2 ranks:
 #  1. DIR/stages.csv has the documented header and one row per rank and stage, the stages of a
 #     gp-deim + gp-eqp build in order, and no stages.csv.tmp left behind;
 #  2. compute_s = cpu_s - mpi_cpu_s, no MPI column exceeds its total (wall, cpu), and critical_s

@@ -160,7 +160,7 @@ def check_gp_adeim(s, rom, a):
 
 
 ADEIM_COLUMNS = ("run", "k", "m", "update", "step", "t", "rank", "coefficient_rank", "m_s", "resampled",
-                 "sampled_residual_before", "sampled_residual_after", "full_residual", "cond1_PtU", "update_s",
+                 "sampled_residual_before", "sampled_residual_after", "full_residual", "window_norm", "cond1_PtU", "update_s",
                  "dH_total", "eps_fom", "eps_hr", "deim_end", "deim_start", "bound", "paper_bound")
 
 
@@ -198,8 +198,15 @@ def adeim_updates(a):
                     "%s: the residual at S rose from %g to %g" % (where, f["sampled_residual_before"], f["sampled_residual_after"]))
             if f["full_residual"] >= 0:
                 monitored += 1
-                require(f["full_residual"] >= f["sampled_residual_after"] * (1 - 1e-12),
-                        "%s: full residual %g below the one at S %g" % (where, f["full_residual"], f["sampled_residual_after"]))
+                # The rows of S are among all d rows, so the full residual is at least the one at S,
+                # unless both are below what the fit resolves: directions of C_j with |R_ll| under
+                # adeim.coefficientTol (1e-10) |R_11| are cut, so a window inside span(U) leaves
+                # residuals of up to ~1e-10 ||F_j|| that say nothing about S (default run, m = 40 =
+                # 2k w: 2.3e-10 over all rows against 3.4e-10 at S, ||F_j|| = 5.1). Compared above
+                # 10x that floor.
+                require(f["full_residual"] >= f["sampled_residual_after"] * (1 - 1e-12) - 1e-9 * f["window_norm"],
+                        "%s: full residual %g below the one at S %g (||F_j|| %g)"
+                        % (where, f["full_residual"], f["sampled_residual_after"], f["window_norm"]))
             require(abs(f["bound"] - f["paper_bound"] - starts) <= 1e-8 * f["bound"],
                     "%s: bound %g - paper_bound %g != the earlier deim_start terms %g" % (where, f["bound"], f["paper_bound"], starts))
             starts += f["deim_start"]

@@ -192,6 +192,13 @@ assert est["rank_correlation"] >= 0.9 and est["within_3x"] == 1.0, est
 print("validation statistics agree with the hand computation for", len(summary["models"]), "models; estimate rank correlation", est["rank_correlation"])
 PY
 grep -q "beyond" v/validation.md || fail "validation.md does not mark the extrapolated point"
+# The test points that are training points (the build's eps 0.9, 1.0, 1.1: the grid's ends) are
+# named, and the break-even names the stages the build (on the first build's artifacts) read from
+# its cache rather than computed.
+grep -q "^Test points that are training points (.*): grid-0000, grid-0003\.$" v/validation.md \
+  || fail "validation.md does not name the training points among the tests: $(grep -i 'training points' v/validation.md)"
+grep -q "stages it took from its artifacts cache (training, basis, deim basis k=6) count only the time to read them" \
+  v/validation.md || fail "validation.md's break-even does not say which stages were cached: $(grep -i 'break-even' v/validation.md)"
 # Numbers a person reads: the grid's eps as written (0.9, not 0.90000000000000002) in the CSV; in
 # validation.md speed-ups as 1.23x, break-even as a whole number of queries, a level no model meets
 # with its reason.

@@ -9,7 +9,8 @@
 # no error or time (nan in runs.csv, '-' in report.md). A run with adeim.initialWindow beyond its
 # steps never adapts, and the report says so.
 # `gphr build` of the same config stores what it can (m = 4 and 9) and names what it left out
-# (m = 64) on stderr, as run marks it unavailable, instead of stopping without a file.
+# (m = 64) on stderr, as run marks it unavailable, instead of stopping without a file. With
+# pipeline.mPerK each k gets its own m list (k = 2: m = 3; k = 4: pipeline.m) in the build and the run.
 # usage: unavailable_runs.sh GPHR
 set -u
 gphr=$1
@@ -36,6 +37,15 @@ if grep -q "^No update ran" "$work/out1/report.md"; then echo "FAIL: 'no update 
 grep -q "not stored: gp-deim k = 4, m = 64: the DEIM basis has [0-9]* vectors" "$work/err" ||
   { echo "FAIL: build does not name the skipped m = 64"; cat "$work/err"; exit 1; }
 grep -q "gp-deim k=4 m=4, gp-deim k=4 m=9;" "$work/built" || { echo "FAIL: build did not store m = 4 and 9"; cat "$work/built"; exit 1; }
+# m per k: k = 2 takes its own list [3] (the file holds gp-deim k=2 m=3 and no other m of k = 2), k = 4 pipeline.m
+printf 'gphr:\n  scene: {name: nls1d, n: 32}\n  time: {T: 0.2, dt: 0.01}\n  training: {points: [2]}\n  reduction: {k: 4}\n  pipeline: {methods: [gp-deim], k: [2, 4], m: [4, 9], mPerK: {k2: [3]}}\n  output: {plots: false}\n' > "$work/perk.yaml"
+"$gphr" build "$work/perk.yaml" --model "$work/perk.h5" --output "$work/perk" > "$work/built" 2> "$work/err" ||
+  { echo "FAIL: build with mPerK exit $?"; cat "$work/err"; exit 1; }
+grep -q "gp-deim k=2 m=3, gp-deim k=4 m=4, gp-deim k=4 m=9;" "$work/built" ||
+  { echo "FAIL: build with mPerK did not store k=2 m=3 and k=4 m=4, 9 alone"; cat "$work/built"; exit 1; }
+"$gphr" run "$work/perk.yaml" --output "$work/perk" > /dev/null 2> "$work/err" || { echo "FAIL: run with mPerK exit $?"; cat "$work/err"; exit 1; }
+[ "$(cut -d, -f1-3 "$work/perk/runs.csv" | grep -c '^gp-deim,')" -eq 3 ] && grep -q "^gp-deim,2,3," "$work/perk/runs.csv" ||
+  { echo "FAIL: run with mPerK did not evaluate k=2 m=3, k=4 m=4, 9"; cat "$work/perk/runs.csv"; exit 1; }
 python3 - "$work/out1/summary.json" <<'PY'
 import json, sys
 runs = {(r["method"], r.get("m")): r for r in json.load(open(sys.argv[1]))["runs"]}
@@ -47,5 +57,5 @@ for method in ("gp-deim", "gp-adeim"):
     # gp-deim: its DEIM basis has fewer vectors than m; gp-adeim: m exceeds G's d rows, named
     expected = "vectors" if method == "gp-deim" else "G has d = 32 rows"
     assert big["status"] == "unavailable" and expected in why, (method, big)
-print("ok: m = 4 and 9 ran, m = 64 unavailable with a reason, for gp-deim and gp-adeim; window caution for m = 9 at w = 1 only; build stored m = 4 and 9 and named m = 64")
+print("ok: m = 4 and 9 ran, m = 64 unavailable with a reason, for gp-deim and gp-adeim; window caution for m = 9 at w = 1 only; build stored m = 4 and 9 and named m = 64; mPerK gave k = 2 its own m in build and run")
 PY

@@ -51,7 +51,9 @@ ClockReading readClocks() {
   return r;
 }
 
-StageClocks::Scope::Scope(StageClocks& clocks, std::string name) : clocks_(clocks) { clocks_.begin(std::move(name)); }
+StageClocks::Scope::Scope(StageClocks& clocks, std::string name) : clocks_(clocks), phase_(name) {
+  clocks_.begin(std::move(name));
+}
 
 StageClocks::Scope::~Scope() { clocks_.end(); }
 

@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/core/Progress.hpp"
 #include "gphr/driver/BuildCommand.hpp"
 #include "gphr/driver/OutputDirectory.hpp"
 #include "gphr/driver/Config.hpp"
@@ -120,6 +121,7 @@ int runBuild(const std::string& configPath, const std::string& modelPath, const 
   StageClocks setup;
   auto setupClock = std::make_unique<StageClocks::Scope>(setup, "setup");
   RunOptions opt = runOptionsFrom(loadConfig(configPath));
+  ProgressWatch::configure(opt.output.progressSeconds, comm->getRank() == 0);
   GPHR_REQUIRE(std::isfinite(targetError) && targetError >= 0.0 && targetError < 1.0, InputError, "--target-error ",
                targetError, "; allowed: 0 < EPS < 1 (a relative error E_L2)");
   if (targetError > 0.0) opt.greedy.targetError = opt.file.targetError = targetError;

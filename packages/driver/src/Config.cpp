@@ -80,6 +80,9 @@ Teuchos::ParameterList defaultConfig() {
   pl.sublist("pipeline").set("m", Teuchos::Array<int>(Teuchos::tuple<int>(10, 20, 40)));
   pl.sublist("hyper").set("snapshotEvery", 5);
   pl.sublist("training").set("points", Teuchos::Array<int>(1, 3));
+  // GP-ADEIM's window wide enough for the largest m: 2k w = 40 >= m = 40 at the default k = 10, so
+  // that no update leaves directions of U out (doc/design.md, "GP-ADEIM", window)
+  pl.sublist("adeim").set("window", 2);
   return validateConfig(pl);
 }
 

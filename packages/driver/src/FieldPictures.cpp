@@ -83,7 +83,11 @@ FieldPicture surfacePicture(const std::vector<double>& fieldTimes, const FomResu
       const auto yr = gather(*out.runs[r].kept->states[j]);
       const std::string label = runTitle(*out.runs[r].run);
       p.panels[(1 + 2 * r) * steps.size() + c] = {label + when, pictured(g, yr, nullptr)};
-      p.panels[(2 + 2 * r) * steps.size() + c] = {label + when, pictured(g, yr, &y), true};
+      FieldPanel difference{label + when, pictured(g, yr, &y), true};
+      // At t = 0 every model starts from the full model's state: its all-white panel says why.
+      if (std::all_of(difference.values.begin(), difference.values.end(), [](double v) { return v == 0.0; }))
+        difference.title += " (difference exactly 0)";
+      p.panels[(2 + 2 * r) * steps.size() + c] = std::move(difference);
     }
   }
   return p;

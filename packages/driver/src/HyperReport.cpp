@@ -106,7 +106,7 @@ void writeAdeimUpdates(const FomResult& fom, const std::vector<ModelRun>& runs, 
   std::ofstream os(csv);
   os.precision(10);
   os << "run,k,m,update,step,t,rank,coefficient_rank,m_s,resampled,sampled_residual_before,sampled_residual_after,"
-        "full_residual,cond1_PtU,update_s,dH_total,eps_fom,eps_hr,deim_end,deim_start,bound,paper_bound\n";
+        "full_residual,window_norm,cond1_PtU,update_s,dH_total,eps_fom,eps_hr,deim_end,deim_start,bound,paper_bound\n";
   for (const auto& r : runs) {
     if (!r.info().adaptive() || r.modelHamiltonian.empty()) continue;
     const double H0 = fom.hamiltonian.front();
@@ -121,7 +121,8 @@ void writeAdeimUpdates(const FomResult& fom, const std::vector<ModelRun>& runs, 
       const double start = std::abs(Hlift - u.hrAfter), epsFom = std::abs(fom.hamiltonian[l] - H0);
       os << "\"" << r.label() << "\"," << r.k << "," << r.m << "," << ++j << "," << u.step << "," << u.step * dt << ","
          << u.rank << "," << u.coefficientRank << "," << u.numSamples << "," << (u.resampled ? 1 : 0) << ","
-         << u.sampledBefore << "," << u.sampledAfter << "," << u.fullResidual << "," << u.condPtU << "," << u.seconds << ","
+         << u.sampledBefore << "," << u.sampledAfter << "," << u.fullResidual << "," << u.windowNorm << "," << u.condPtU
+         << "," << u.seconds << ","
          << std::abs(fom.hamiltonian[l] - Hlift) << "," << epsFom << "," << epsHr << "," << end << "," << start << ","
          << epsFom + paperSum + starts << "," << epsFom + paperSum << "\n";
       starts += start;
@@ -193,7 +194,8 @@ std::string termWeightsTable(const RomStages& st) {
   return md.str();
 }
 
-std::string reportMd(const RunContext& ctx, const RunOptions& opt, const FomResult& fom, const RomStages& st) {
+std::string reportMd(const RunContext& ctx, const RunOptions& opt, const FomResult& fom, const RomStages& st,
+                     const std::string& figures) {
   std::ostringstream md;
   const double fomOnline = fom.tOnline;
   md << "# GPHR report: " << opt.scene->name() << "\n\n";
@@ -224,7 +226,11 @@ std::string reportMd(const RunContext& ctx, const RunOptions& opt, const FomResu
     const ModelRun* best = nullptr;
     for (const auto& r : st.runs)
       if (r.bounded() && r.eL2 <= level && (!best || r.tOnline < best->tOnline)) best = &r;
-    if (best) md << "| " << fmt(level, "%.0e") << " | " << best->label() << " | " << fmt(best->eL2) << " | "
+    // a reduced model slower than the full model is no saving: said where it is the cheapest
+    const std::string slower = best && best->tOnline >= fomOnline
+                                   ? " (slower than the full model's " + fmt(fomOnline, "%.3g") + " s: no saving)"
+                                   : "";
+    if (best) md << "| " << fmt(level, "%.0e") << " | " << best->label() << slower << " | " << fmt(best->eL2) << " | "
                  << fmt(best->tOnline, "%.3f") << " |\n";
   }
   if (anyAdaptive(st)) {
@@ -251,7 +257,7 @@ std::string reportMd(const RunContext& ctx, const RunOptions& opt, const FomResu
   md << "\nDiagnostics of each GP-DEIM run (cond(P^T U), the smallest eigenvalue of Hess H_hr(z0) next to "
         "the reduced model's, and whether convexity was lost) are in summary.json; a (k, m) with "
         "`convexity_lost: true` can run away while H_hr is conserved.\n";
-  md << "\nFigures: error_vs_m.png, pareto.png, hamiltonian_terms.png, singular_values.png; the fields: fields.png (2-D scenes) or spacetime.png (1-D).\n";
+  md << figures;
   return md.str();
 }
 
@@ -372,8 +378,6 @@ void writeHyperData(const RunContext& ctx, const RunOptions& opt, const FomResul
                     const std::map<std::string, std::string>& p, std::vector<std::string>& written) {
   writeRunsCsv(st, fom.tOnline, p.at("runs.csv"));
   written.push_back("runs.csv");
-  writeTextFile(p.at("report.md"), reportMd(ctx, opt, fom, st));
-  written.push_back("report.md");
   if (!st.deimSingularValues.empty()) {
     std::ofstream os(p.at("deim_singular_values.csv"));
     os.precision(17);
@@ -395,6 +399,16 @@ void writeHyperData(const RunContext& ctx, const RunOptions& opt, const FomResul
 }
 
 }  // namespace
+
+void writeHyperReportMd(const RunContext& ctx, const RunOptions& opt, const FomResult& fom, const RomStages& st,
+                        const std::string& path, const std::vector<std::string>& figures, const std::string& fieldNote) {
+  std::string line;
+  for (const auto& f : figures) line += (line.empty() ? "" : ", ") + f;
+  line = line.empty() ? "\nNo figures were drawn" + std::string(opt.output.plots ? " (gnuplot missing or failed)" : " (output.plots: false)")
+                      : "\nFigures: " + line;
+  if (!fieldNote.empty()) line += "; " + fieldNote;
+  writeTextFile(path, reportMd(ctx, opt, fom, st, line + ".\n"));
+}
 
 std::vector<std::string> writeHyperReport(const RunContext& ctx, const RunOptions& opt, const FomResult& fom, const RomStages& st,
                                           const std::map<std::string, std::string>& p, bool plots) {

@@ -7,6 +7,7 @@
 #include <map>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/core/Progress.hpp"
 #include "gphr/driver/ModelEvaluation.hpp"
 #include "gphr/hyper/DeimBasis.hpp"
 #include "gphr/hyper/EmpiricalQuadrature.hpp"
@@ -65,7 +66,7 @@ void runGpDeim(const RunOptions& opt, const FomResult& fom, RomStages& st, const
   const CachedDeimBasis& db = st.offline->deimBasis(k);
   if (k == st.offline->sizes().back()) st.deimSingularValues = db.basis.singularValues;
   const double lminR = romHessianMinEig(inst, A, k);
-  for (int m : opt.pipeline.ms) {
+  for (int m : opt.pipeline.msOf(k)) {
     if (m > static_cast<int>(db.basis.U->getNumVectors())) {
       st.runs.push_back(unavailable(method::kGpDeim, k, m, "the DEIM basis has " + std::to_string(db.basis.U->getNumVectors()) +
                                                          " vectors (numerical rank of the snapshots or hyper.maxRank)"));
@@ -102,7 +103,7 @@ void runGpEqp(const RunOptions& opt, const FomResult& fom, RomStages& st, const 
               const MultiVector& A, int k, const ReducedLinearPart& linear, const std::string& method) {
   TermWeightFits& fits = st.offline->termWeightFits(k, opt.indices);
   const double lminR = romHessianMinEig(inst, A, k);
-  for (int m : opt.pipeline.ms) {
+  for (int m : opt.pipeline.msOf(k)) {
     CachedFit c;
     try {
       c = fits.get(method, m);
@@ -178,7 +179,7 @@ void setAdeimSummary(ModelRun& run, const AdeimOptions& o, double tInitial, doub
 void runGpAdeim(const RunOptions& opt, const FomResult& fom, RomStages& st, const SceneInstance& inst,
                 const RCP<const MultiVector>& A, int k, const ReducedLinearPart& linear) {
   const SimulationSettings& time = opt.evaluation.time;
-  for (int m : opt.pipeline.ms) {
+  for (int m : opt.pipeline.msOf(k)) {
     const AdeimOptions o = adeimOptionsFor(opt.adeim, m);
     Teuchos::Time clock("adeim offline");
     clock.start();
@@ -216,7 +217,7 @@ void runGpAdeim(const RunOptions& opt, const FomResult& fom, RomStages& st, cons
 // Classic DEIM (U_g from grad N snapshots) for every m, and SDEIM (U_g = A, m = 2k).
 void runGradientDeim(const RunOptions& opt, const FomResult& fom, RomStages& st, const SceneInstance& inst,
                      const MultiVector& A, int k, const ReducedLinearPart& linear, bool classic, bool sdeim) {
-  const auto& ms = opt.pipeline.ms;
+  const auto& ms = opt.pipeline.msOf(k);
   const GradientSnapshots kind = opt.deimSnapshots;
   const std::string snapshots = kind == GradientSnapshots::Full ? "full" : "projected";
   auto evaluate = [&](const std::string& method, const MultiVector& Ug, int m, double tBasis) {
@@ -268,6 +269,7 @@ void runHyperReduction(const RunOptions& opt, const FomResult& fom, RomStages& s
   const SceneInstance& inst = st.offline->instance();
   for (int k : st.offline->sizes()) {
     const auto A = st.offline->reducedBasis(k);
+    const ProgressPhase phase("hyper-reduced models of k = " + std::to_string(k));
     const ReducedLinearPart linear = reduceLinearPart(*inst.system, *A);
     if (gp) runGpDeim(opt, fom, st, inst, *A, k, linear);
     if (eqp) runGpEqp(opt, fom, st, inst, *A, k, linear, method::kGpEqp);

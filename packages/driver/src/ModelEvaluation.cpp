@@ -1,9 +1,12 @@
 #include "gphr/driver/ModelEvaluation.hpp"
 
+#include <Teuchos_Time.hpp>
+
 #include <cmath>
 #include <cstdio>
 #include <limits>
 
+#include "gphr/core/Progress.hpp"
 #include "gphr/driver/FieldModels.hpp"
 
 namespace gphr {
@@ -16,9 +19,16 @@ ModelRun evaluateRun(const EvaluationSettings& settings, const FomResult& fom, c
   options.keepStates = fieldStates;
   options.adapt = spec.adapt;
   ModelRun run;
-  static_cast<ReducedEvaluation&>(run) = evaluateReducedModel(settings, fom, system, A, model, options);
   run.method = spec.method, run.k = spec.k, run.m = spec.m, run.steps = settings.time.steps;
+  options.label = run.label();
+  Teuchos::Time clock("evaluation");
+  clock.start();
+  static_cast<ReducedEvaluation&>(run) = evaluateReducedModel(settings, fom, system, A, model, options);
   const bool root = A.getMap()->getComm()->getRank() == 0;
+  // A run the watcher spoke of (longer than the progress interval) has its end said too.
+  const double every = ProgressWatch::seconds();
+  if (run.ok && root && every > 0.0 && clock.stop() >= every)
+    progressLine("[gphr] %s: done, E_L2 = %.3g, online %.3g s", run.label().c_str(), run.eL2, run.tOnline);
   if (run.unboundedAt >= 0 && root)
     std::fprintf(stderr, "[gphr] %s unbounded from step %ld: %s\n", run.label().c_str(), run.unboundedAt,
                  run.unboundedReason.c_str());

@@ -18,6 +18,7 @@
 
 #include "gphr/core/Provenance.hpp"
 #include "gphr/core/Error.hpp"
+#include "gphr/core/Progress.hpp"
 #include "gphr/core/Fnv1a.hpp"
 #include "gphr/driver/QueryCommand.hpp"
 #include "gphr/driver/OutputDirectory.hpp"
@@ -338,6 +339,8 @@ int runQuery(const std::string& modelPath, const std::string& queriesPath, const
   makeDirectory(outputDir + "/queries", comm);
   Teuchos::Time wall("queries");
   wall.start();
+  ProgressWatch::configure(2.0, rank == 0);  // gphr run's default output.progressSeconds
+  const ProgressPhase phase("query: rank 0's queries");
   std::vector<QueryOutcome> outs(queries.size());
   std::vector<size_t> local, adaptive;  // this rank's share of the sample-mesh queries; the gp-adeim ones
   for (size_t i = 0, n = 0; i < queries.size(); ++i) {
@@ -366,7 +369,7 @@ int runQuery(const std::string& modelPath, const std::string& queriesPath, const
     ++done;
     const double t = wall.totalElapsedTime(true);
     if (rank == 0 && (t - lastPrint > 2.0 || done == mine)) {
-      std::fprintf(stderr, "[gphr] query: rank 0 %ld/%ld, all ranks ~%zu queries, elapsed %.1f s, ETA %.1f s\n", done,
+      progressLine("[gphr] query: rank 0 %ld/%ld, all ranks ~%zu queries, elapsed %.1f s, ETA %.1f s", done,
                    mine, queries.size(), t, t / done * (mine - done));
       lastPrint = t;
     }
@@ -397,7 +400,7 @@ int runQuery(const std::string& modelPath, const std::string& queriesPath, const
                 "%.1f queries/s; results in %s/results.h5, table %s/queries.csv\n", queries.size(), ran,
                 static_cast<long>(queries.size()) - ran, ok, size, threads, slowest, ran > 0 ? ran / slowest : 0.0,
                 outputDir.c_str(), outputDir.c_str());
-    std::printf("  error estimate: %ld of %zu queries, largest %s", estimated, queries.size(), number(worst).c_str());
+    std::printf("  error estimate: %ld of %zu queries, largest %.3g", estimated, queries.size(), worst);
     if (model.data().targetError > 0.0)
       std::printf("; %ld over the model's target error %g (over_target in queries.csv)", over, model.data().targetError);
     std::printf("\n");

@@ -226,6 +226,17 @@ ReportWritten writeOnRoot(const RunContext& ctx, const RunOptions& opt, const Fo
   if (!picture.note.empty()) std::fprintf(stderr, "[gphr] %s\n", picture.note.c_str());
   if (!picture.file.empty())
     w.pictured = drawFieldPicture(picture, (picture.file == "fields.png" ? files.fieldsPng : files.spaceTimePng).tempPath());
+  if (rom) {  // last: it names the pictures drawn
+    std::vector<std::string> figures;
+    for (const auto& f : w.hyperFiles)
+      if (f.size() > 4 && f.compare(f.size() - 4, 4, ".png") == 0) figures.push_back(f);
+    if (std::filesystem::exists(files.svPng.tempPath())) figures.push_back("singular_values.png");
+    if (w.plotted) figures.push_back("hamiltonian.png");
+    if (w.pictured) figures.push_back(picture.file + " (the fields)");
+    writeHyperReportMd(ctx, opt, fom, *rom, files.hyperPaths.at("report.md"), figures,
+                       w.pictured ? "" : picture.note.empty() ? std::string("no field picture") : picture.note);
+    w.hyperFiles.push_back("report.md");
+  }
   return w;
 }
 

@@ -1,5 +1,6 @@
 #include "gphr/driver/RomStage.hpp"
 
+#include "gphr/core/Progress.hpp"
 #include "gphr/driver/ModelEvaluation.hpp"
 #include "gphr/reduction/GalerkinRom.hpp"
 #include "gphr/core/Method.hpp"
@@ -9,6 +10,7 @@ namespace gphr {
 void runRom(const RunOptions& opt, const FomResult& fom, RomStages& st) {
   const SceneInstance& inst = st.offline->instance();
   for (int k : st.offline->sizes()) {
+    const ProgressPhase phase("rom k = " + std::to_string(k));
     auto A = leadingBasis(st.basis, k);  // a copy: the ROM owns its basis
     GalerkinRom rom(inst.system, A);
     ModelRun run = evaluateRun(opt.evaluation, fom, *inst.system, *A, rom, {method::kRom, k, 0, {}});

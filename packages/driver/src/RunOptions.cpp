@@ -29,6 +29,9 @@ Teuchos::ParameterList pipelineValidParameters() {
            "budget), gp-eqp-refit (GP-DEIM's terms, weights refit by least squares); empty: rom if pipeline.rom");
   pipe.set("k", Teuchos::Array<int>(), "reduced half-sizes k to evaluate (2k = reducedDim); empty: reduction.k");
   pipe.set("m", Teuchos::Array<int>(), "DEIM sizes m to evaluate for gp-deim, gp-adeim and deim (each at most d); the term budgets of gp-eqp and gp-eqp-refit");
+  setPassThroughSection(pipe, "mPerK",
+                        "a k's own m list in place of pipeline.m: keys k<K> for a K of pipeline.k, each a list of m, "
+                        "e.g. {k10: [20, 40], k40: [40, 80, 120]}; a k not named takes pipeline.m");
   setIntParameter(pipe, "onlineRepeats", 1, 1, 100000,
                   "time each rom / gp-deim / deim / sdeim online run this many times and report the fastest as "
                   "t_online_s (short runs are at the mercy of scheduler and cache noise); the first run gives the "
@@ -96,6 +99,33 @@ void requireSizes(const Teuchos::Array<int>& sizes, const char* key) {
   }
 }
 
+// pipeline.mPerK (a section passed through: its keys are the user's k): each key k<K> with K one
+// of `ks`, each value a list of sizes (a lone number is a list of one).
+std::map<int, std::vector<int>> mPerKFrom(const Teuchos::ParameterList& section, const std::vector<int>& ks) {
+  std::map<int, std::vector<int>> out;
+  std::string kList;
+  for (int k : ks) kList += (kList.empty() ? "" : ", ") + std::to_string(k);
+  for (auto it = section.begin(); it != section.end(); ++it) {
+    const std::string key = section.name(it), where = "pipeline.mPerK." + key;
+    const bool named = key.size() > 1 && key.size() < 10 && key[0] == 'k' && key[1] != '0' &&
+                       std::all_of(key.begin() + 1, key.end(), [](char c) { return c >= '0' && c <= '9'; });
+    GPHR_REQUIRE(named, InputError, "key '", where, "' is not a reduced size; allowed: k<K> for a K of pipeline.k (",
+                 kList, "), e.g. k", ks.front());
+    const int k = std::stoi(key.substr(1));
+    GPHR_REQUIRE(std::find(ks.begin(), ks.end(), k) != ks.end(), InputError, "key '", where, "' names k = ", k,
+                 ", which is not evaluated; allowed: a k of pipeline.k (", kList, ")");
+    const Teuchos::ParameterEntry& e = section.getEntry(key);
+    Teuchos::Array<int> sizes;
+    if (e.isType<Teuchos::Array<int>>()) sizes = Teuchos::getValue<Teuchos::Array<int>>(e);
+    else if (e.isType<int>()) sizes.push_back(Teuchos::getValue<int>(e));
+    else throw InputError(detail::concat("key '", where, "' is not a list of integers; allowed: a list of m >= 1"));
+    GPHR_REQUIRE(!sizes.empty(), InputError, "key '", where, "' is empty; allowed: a list of m >= 1");
+    requireSizes(sizes, where.c_str());
+    out[k].assign(sizes.begin(), sizes.end());
+  }
+  return out;
+}
+
 bool reduced(const MethodInfo& m) { return m.reduced(); }  // the full model is always shown
 
 }  // namespace
@@ -116,11 +146,13 @@ PipelineOptions pipelineOptionsFrom(const Teuchos::ParameterList& pipe, int redu
   o.ks.assign(ks.begin(), ks.end());
   if (o.ks.empty()) o.ks.push_back(reductionK);
   o.ms.assign(ms.begin(), ms.end());
+  o.msByK = mPerKFrom(pipe.sublist("mPerK"), o.ks);
   const bool wantsM =
       std::any_of(o.methods.begin(), o.methods.end(), [](const std::string& m) { return methodInfo(m).takesM; });
-  GPHR_REQUIRE(!wantsM || !o.ms.empty(), InputError, "key 'pipeline.m' is empty but pipeline.methods asks for ",
-               methodNames([](const MethodInfo& m) { return m.takesM; }),
-               "; allowed: a list of DEIM sizes / term budgets");
+  for (int k : o.ks)
+    GPHR_REQUIRE(!wantsM || !o.msOf(k).empty(), InputError, "key 'pipeline.m' is empty and pipeline.mPerK names no k",
+                 k, ", but pipeline.methods asks for ", methodNames([](const MethodInfo& m) { return m.takesM; }),
+                 "; allowed: a list of DEIM sizes / term budgets");
   return o;
 }
 
@@ -239,7 +271,8 @@ OfflineOptions offlineOptionsFrom(const Teuchos::ParameterList& cfg, const Scene
   o.basis = basisOptionsFrom(cfg.sublist("reduction"), basisK);
   o.ks = p.ks;
   o.ms = p.ms;
-  o.deim = deimBasisOptionsFrom(cfg.sublist("hyper"), p.ms.empty() ? 0 : *std::max_element(p.ms.begin(), p.ms.end()));
+  o.msByK = p.msByK;
+  o.deim = deimBasisOptionsFrom(cfg.sublist("hyper"), o.allMs().empty() ? 0 : o.allMs().back());
   o.eqp = quadratureOptionsFrom(cfg.sublist("eqp"));
   o.eqpTolerance = cfg.sublist("eqp").get<double>("tolerance");
   o.sceneConfig = sectionYaml(cfg, "scene");
@@ -278,7 +311,7 @@ RunOptions runOptionsFrom(const Teuchos::ParameterList& cfg) {
   o.adeim = adeimOptionsFrom(cfg.sublist("adeim"));
   if (std::any_of(o.pipeline.methods.begin(), o.pipeline.methods.end(),
                   [](const std::string& m) { return methodInfo(m).adaptive(); }))
-    for (int m : o.pipeline.ms) adeimOptionsFor(o.adeim, m);  // the adeim constraints that involve m
+    for (int m : o.pipeline.allMs()) adeimOptionsFor(o.adeim, m);  // the adeim constraints that involve m
   o.record = configRecord(cfg);
   o.file = modelFileOptionsFrom(cfg.sublist("build"));
   o.file.indices = o.indices;

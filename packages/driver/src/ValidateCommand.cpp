@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/core/Progress.hpp"
 #include "gphr/core/RankGroups.hpp"
 #include "gphr/driver/ValidateCommand.hpp"
 #include "gphr/driver/OutputDirectory.hpp"
@@ -152,6 +153,7 @@ std::vector<ValidationRecord> evaluatePoint(RunContext& ctx, const ReducedModel&
 int runValidate(const std::string& modelPath, const std::string& testsPath, const std::string& outputDir,
                 const RCP<const Comm>& comm) {
   requireOutputsApart({{modelPath, "the model file"}, {testsPath, "the validation file"}}, {{outputDir, "--output"}});
+  ProgressWatch::configure(2.0, comm->getRank() == 0);  // gphr run's default output.progressSeconds
   const auto loaded = loadOnEveryRank(modelPath, comm);
   const ReducedModel& rm = *loaded;
   const auto& d = rm.data();
@@ -186,6 +188,7 @@ int runValidate(const std::string& modelPath, const std::string& testsPath, cons
     double tFom = storedFom[i];
     bool cachedFom = false, reused = done[i];
     if (!reused) {
+      const ProgressPhase phase(detail::concat("validate: point ", i + 1, "/", points.size(), " (", q.name, ")"));
       try {
         recs = evaluatePoint(ctx, rm, q, tFom, cachedFom);
       } catch (const SolverError& e) {  // collective: every rank of the run fails at the same point
@@ -197,7 +200,7 @@ int runValidate(const std::string& modelPath, const std::string& testsPath, cons
     fomSeconds.push_back(tFom);
     if (comm->getRank() == 0) {
       const double t = wall.totalElapsedTime(true);
-      std::fprintf(stderr, "[gphr] validate: point %zu/%zu (%s)%s, %zu models, elapsed %.1f s, ETA %.1f s\n", i + 1,
+      progressLine("[gphr] validate: point %zu/%zu (%s)%s, %zu models, elapsed %.1f s, ETA %.1f s", i + 1,
                    points.size(), q.name.c_str(), reused ? " reused" : cachedFom ? " (full model cached)" : "",
                    recs.size(), t, t / (i + 1) * (points.size() - i - 1));
     }

@@ -89,8 +89,18 @@ void drawErrorPlot(const std::string& dir, const std::string& data, const std::s
   if (!drawn) std::fprintf(stderr, "[gphr] validate: '%s' not drawn\n", png.c_str());
 }
 
+// The line colour of model i of n: twenty distinct colours (a qualitative palette: dark and light
+// of ten hues), so that a file's models do not share one up to 20; beyond, the point type differs.
+std::string modelColour(size_t i) {
+  static const char* kColours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2",
+                                   "#7f7f7f", "#bcbd22", "#17becf", "#aec7e8", "#ffbb78", "#98df8a", "#ff9896",
+                                   "#c5b0d5", "#c49c94", "#f7b6d2", "#c7c7c7", "#dbdb8d", "#9edae5"};
+  return kColours[i % (sizeof kColours / sizeof *kColours)];
+}
+
 // Two parameters: one map per model, each test point a square coloured by log10 E_L2 (a point that
-// did not finish drawn as a cross), the training box outlined.
+// did not finish drawn as a cross), the training box outlined (dashed, with a margin around it so
+// that no edge lies on the axes) and the training points drawn as open circles.
 void plotErrorMaps(const std::string& dir, const ReducedModelData& d, const std::vector<ModelStatistics>& stats,
                    const std::vector<ValidationRecord>& records) {
   std::ostringstream dat;
@@ -102,6 +112,10 @@ void plotErrorMaps(const std::string& dir, const ReducedModelData& d, const std:
             << "\n";
     dat << "\n\n";
   }
+  dat << "# training points\n";  // the last block (a placeholder NaN row where the file has none)
+  for (const auto& mu : d.trainingParameters) dat << num(mu[0]) << " " << num(mu[1]) << "\n";
+  if (d.trainingParameters.empty()) dat << "NaN NaN\n";
+  dat << "\n\n";
   double lo = 0.0, hi = -30.0;
   for (const auto& r : records)
     if (r.status == RunStatus::Ok && r.eL2 > 0) {
@@ -110,6 +124,12 @@ void plotErrorMaps(const std::string& dir, const ReducedModelData& d, const std:
     }
   if (hi < lo) hi = lo + 1;
   const std::string data = gnuplotQuoted(dir + "/validation_error.dat");
+  const auto range = [&](size_t p) {  // the box and every test point, 8 % beyond: no box edge on the frame
+    double a = d.box[p].first, b = d.box[p].second;
+    for (const auto& r : records) a = std::min(a, r.mu[p]), b = std::max(b, r.mu[p]);
+    const double margin = 0.08 * std::max(b - a, 1e-12 * std::max(1.0, std::abs(b)));
+    return num(a - margin) + ":" + num(b + margin);
+  };
   std::ostringstream gp;
   const size_t cols = std::min<size_t>(stats.size(), 3), rows = (stats.size() + cols - 1) / cols;
   gp << "set terminal pngcairo size " << 420 * cols << "," << 380 * rows << " noenhanced\nset output "
@@ -119,11 +139,13 @@ void plotErrorMaps(const std::string& dir, const ReducedModelData& d, const std:
      << "\nset cblabel 'log10 E_L2'\n"
      << "set cbrange [" << lo << ":" << hi << "]\n"  // one colour scale for every model
      << "set object 1 rect from " << d.box[0].first << "," << d.box[1].first << " to " << d.box[0].second << ","
-     << d.box[1].second << " fs empty border lc rgb 'black' dt 2\n";
+     << d.box[1].second << " fs empty border lc rgb 'black' dt 2\n"
+     << "set xrange [" << range(0) << "]\nset yrange [" << range(1) << "]\n";
   for (size_t i = 0; i < stats.size(); ++i)
-    gp << "set title " << gnuplotQuoted(stats[i].label) << "\nplot " << data << " index " << i
-       << " using 1:2:3 with points pt 5 ps 2.5 palette, '' index " << i
-       << " using 1:($3 != $3 ? $2 : 1/0) with points pt 2 ps 2 lc rgb 'red'\n";
+    gp << "set title " << gnuplotQuoted(stats[i].label + " (o: training point)") << "\nplot " << data << " index "
+       << i << " using 1:2:3 with points pt 5 ps 2.5 palette, '' index " << i
+       << " using 1:($3 != $3 ? $2 : 1/0) with points pt 2 ps 2 lc rgb 'red', '' index " << stats.size()
+       << " using 1:2 with points pt 6 ps 2.8 lc rgb 'black'\n";
   gp << "unset multiplot\n";
   drawErrorPlot(dir, dat.str(), gp.str());
 }
@@ -144,19 +166,60 @@ void plotErrors(const std::string& dir, const ReducedModelData& d, const std::ve
     dat << "\n\n";
   }
   std::ostringstream xlabel, gp;
-  xlabel << d.parameterNames[0] << " (training box [" << d.box[0].first << ", " << d.box[0].second << "])";
-  gp << "set terminal pngcairo size 900,560 noenhanced\nset output " << gnuplotQuoted(dir + "/validation_error.png")
+  xlabel << d.parameterNames[0] << " (training box [" << d.box[0].first << ", " << d.box[0].second
+         << "], dashed; training points: ticks at the bottom)";
+  // The x range holds the box and every test point with a margin, so that the box's edges (dashed)
+  // never fall on the frame.
+  double xlo = d.box[0].first, xhi = d.box[0].second;
+  for (const auto& r : records) xlo = std::min(xlo, r.mu[0]), xhi = std::max(xhi, r.mu[0]);
+  const double margin = 0.05 * std::max(xhi - xlo, 1e-12 * std::max(1.0, std::abs(xhi)));
+  gp << "set terminal pngcairo size 960,560 noenhanced\nset output " << gnuplotQuoted(dir + "/validation_error.png")
      << "\nset logscale y\nset format y '%.0e'\nset key outside right\nset grid\n"
      << "set title 'Relative error E_L2 over the parameter box'\nset xlabel "
      << gnuplotQuoted(xlabel.str())
-     << "\nset ylabel 'E_L2'\n"
+     << "\nset ylabel 'E_L2'\nset xrange [" << xlo - margin << ":" << xhi + margin << "]\n"
      << "set arrow from " << d.box[0].first << ", graph 0 to " << d.box[0].first << ", graph 1 nohead dt 2\n"
-     << "set arrow from " << d.box[0].second << ", graph 0 to " << d.box[0].second << ", graph 1 nohead dt 2\nplot ";
+     << "set arrow from " << d.box[0].second << ", graph 0 to " << d.box[0].second << ", graph 1 nohead dt 2\n";
+  for (const auto& mu : d.trainingParameters)
+    gp << "set arrow from " << mu[0] << ", graph 0 to " << mu[0] << ", graph 0.05 nohead lw 3 lc rgb 'black'\n";
+  gp << "plot ";
   for (size_t i = 0; i < stats.size(); ++i)
     gp << (i ? ", " : "") << gnuplotQuoted(dir + "/validation_error.dat") << " index " << i
-       << " using 1:2 with linespoints pt " << (i + 4) << " title " << gnuplotQuoted(stats[i].label);
+       << " using 1:2 with linespoints lw 1.5 pt " << (i % 13 + 1) << " lc rgb '" << modelColour(i)
+       << "' title " << gnuplotQuoted(stats[i].label);
   gp << "\n";
   drawErrorPlot(dir, dat.str(), gp.str());
+}
+
+// What the break-even's offline seconds count: the build's wall time, in which a stage taken from
+// the artifacts cache counts as the time to read it.
+std::string offlineCounted(const ReducedModelData& d) {
+  if (d.cachedStages.empty()) return "offline is the build's wall time, every stage computed by it.";
+  std::string stages;
+  for (const auto& s : d.cachedStages) stages += (stages.empty() ? "" : ", ") + s;
+  return "offline is the build's wall time, in which the stages it took from its artifacts cache (" + stages +
+         ") count only the time to read them: a build from an empty --output directory costs more and breaks even "
+         "later.";
+}
+
+// The test points that are training points: their errors are the build's own fit, not held out.
+// Equal to round-off of the box's width (a grid's points are computed, a test point's read).
+std::string trainingAmongTests(const ReducedModelData& d, const std::vector<Query>& points) {
+  const auto same = [&](const std::vector<double>& a, const std::vector<double>& b) {
+    for (size_t p = 0; p < a.size(); ++p)
+      if (std::abs(a[p] - b[p]) > 1e-12 * std::max(1.0, d.box[p].second - d.box[p].first)) return false;
+    return a.size() == b.size();
+  };
+  std::string names;
+  for (const auto& q : points)
+    for (const auto& mu : d.trainingParameters)
+      if (same(mu, q.mu)) {
+        names += (names.empty() ? "" : ", ") + q.name;
+        break;
+      }
+  if (names.empty()) return "";
+  return "Test points that are training points (their errors are not held-out errors; marked in the plot): " +
+         names + ".\n\n";
 }
 
 }  // namespace
@@ -422,7 +485,9 @@ void writeValidationReport(const std::string& dir, const ReducedModel& model, co
      << shown(d.offlineSeconds, "%.1f") << " s offline on " << d.buildRanks << " rank(s)). Full model: " << shown(fomMean, "%.3g")
      << " s per query on average. E_L2 is eq:errNR over the saved steps; a point whose run did not finish counts as "
         "an infinite error. The 95th percentile interpolates linearly between order statistics. Break-even: the "
-        "number of queries after which the offline cost is repaid, offline / (full - model) per query.\n\n"
+        "number of queries after which the offline cost is repaid, offline / (full - model) per query; "
+     << offlineCounted(d) << "\n\n"
+     << trainingAmongTests(d, points)
      << "| model | points ok | max E_L2 | mean E_L2 | p95 E_L2 | worst point | online s | speed-up | "
         "break-even queries |\n"
      << "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
@@ -450,7 +515,10 @@ void writeValidationReport(const std::string& dir, const ReducedModel& model, co
     const ModelStatistics* best = nullptr;
     for (const auto& s : stats)
       if (s.maxError < level && (!best || s.meanOnline < best->meanOnline)) best = &s;
-    md << "| " << shown(level, "%.0e") << " | " << (best ? best->label : "none: " + whyNone(stats, level)) << " | "
+    const std::string slower = best && best->meanOnline >= fomMean
+                                   ? " (slower than the full model's " + shown(fomMean, "%.3g") + " s: no saving)"
+                                   : "";
+    md << "| " << shown(level, "%.0e") << " | " << (best ? best->label + slower : "none: " + whyNone(stats, level)) << " | "
        << (best ? sci(best->maxError) : "-") << " | " << (best ? shown(best->meanOnline, "%.3g") : "-") << " |\n";
   }
   JsonObject estimate;

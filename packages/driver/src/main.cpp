@@ -24,6 +24,7 @@
 #include <cstdlib>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/core/Progress.hpp"
 #include "gphr/driver/Commands.hpp"
 #include "gphr/driver/Console.hpp"
 #include "gphr/driver/Config.hpp"
@@ -143,6 +144,7 @@ int runMain(const Args& args, const gphr::RCP<const gphr::Comm>& comm) {
   const bool root = comm->getRank() == 0;
   if (!args.config.empty()) requireOutputsApart({{args.config, "the config file"}}, {{args.output, "--output"}});
   const RunOptions opt = runOptionsFrom(args.config.empty() ? defaultConfig() : loadConfig(args.config));
+  ProgressWatch::configure(opt.output.progressSeconds, root);
   RunContext ctx;
   ctx.comm = comm;
   ctx.outputDir = args.output;
@@ -158,7 +160,10 @@ int runMain(const Args& args, const gphr::RCP<const gphr::Comm>& comm) {
   const FomResult fom = runFom(opt.evaluation, *opt.scene, opt.mu, comm, opt.output.fieldStateModels());
   if (rom && std::find(methods.begin(), methods.end(), method::kRom) != methods.end()) runRom(opt, fom, *rom);
   if (rom) runHyperReduction(opt, fom, *rom);
-  writeReport(ctx, opt, fom, rom.get());
+  {
+    const ProgressPhase phase("report");
+    writeReport(ctx, opt, fom, rom.get());
+  }
   if (root) std::cout << runTable(ctx, opt, fom, rom.get());
   if (args.verbosity == Args::Verbose) Teuchos::TimeMonitor::summarize(comm.ptr(), std::cout);
   return 0;

@@ -6,13 +6,16 @@
 #include <cstdio>
 
 #include "gphr/core/Error.hpp"
+#include "gphr/core/Progress.hpp"
 #include "gphr/core/Method.hpp"
 #include "gphr/timeint/FullModelIntegrator.hpp"
 
 namespace gphr {
 
 namespace {
-// Progress on stderr (rank 0) at most every `every` seconds: step, time, elapsed, estimate left.
+// Progress on stderr (rank 0) at most every `every` seconds: step, time, elapsed, estimate left;
+// the last step where the run took that long (a sequence of lines ends at N of N; a short run
+// prints none).
 class Progress {
  public:
   Progress(std::string label, long total, double every, bool root)
@@ -21,10 +24,13 @@ class Progress {
   }
   void update(long step, double t) {
     const double el = clock_.totalElapsedTime(true);
-    if (!root_ || every_ <= 0 || el - last_ < every_ || step == 0) return;
+    if (!root_ || every_ <= 0 || step == 0 || el < every_ || (el - last_ < every_ && step < total_)) return;
     last_ = el;
-    std::fprintf(stderr, "[gphr] %s: step %ld/%ld (t = %.4g), %.1f s elapsed, ~%.1f s left\n", label_.c_str(),
-                 step, total_, t, el, el / step * (total_ - step));
+    if (step == total_)
+      progressLine("[gphr] %s: step %ld/%ld (t = %.4g), done in %.1f s", label_.c_str(), step, total_, t, el);
+    else
+      progressLine("[gphr] %s: step %ld/%ld (t = %.4g), %.1f s elapsed, ~%.1f s left", label_.c_str(), step, total_,
+                   t, el, el / step * (total_ - step));
   }
 
  private:

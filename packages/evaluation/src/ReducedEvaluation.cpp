@@ -5,7 +5,9 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 
+#include "gphr/core/Progress.hpp"
 #include "gphr/online/Lift.hpp"
 #include "gphr/timeint/SchemeResidual.hpp"
 
@@ -143,10 +145,14 @@ ReducedEvaluation evaluateReducedModel(const EvaluationSettings& settings, const
   if (settings.errorIndicator) residual = std::make_unique<SchemeResidual>(Teuchos::rcpFromRef(system), time.integrator);
   DeferredLift lift(A, system, reference, time.steps, settings.saveEvery, options.keepStates, run, residual.get(),
                     time.dt);
+  const std::string label = options.label.empty() ? std::string("reduced model") : options.label;
+  std::optional<ProgressPhase> phase(std::in_place, label + ": online run", time.steps);
   const SimulationStats sim = simulate(model, time, z, [&](long j, double, const DenseVector& zj) {
     if (options.hasHamiltonian) run.modelHamiltonian.push_back(finiteHamiltonian(model.hamiltonian(zj), j));
     lift.add(j, zj);
+    phase->at(j);
   }, options.adapt);
+  phase.emplace(label + ": errors and timing repeats");
   lift.flush();
   run.ok = sim.ok();
   run.lastStep = sim.lastStep;

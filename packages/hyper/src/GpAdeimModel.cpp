@@ -1,6 +1,7 @@
 #include "gphr/hyper/GpAdeimModel.hpp"
 
 #include <algorithm>
+#include <tuple>
 
 #include <Teuchos_BLAS.hpp>
 #include <Teuchos_CommHelpers.hpp>
@@ -233,7 +234,7 @@ bool GpAdeimModel::afterStep(long step, const DenseVector& z) {
   rec.sampledAfter = up.residualAfter;
   if (opt_.monitorResidual) {
     Teuchos::TimeMonitor tm(phase("residual monitor"));
-    rec.fullResidual = fullResidual(cf);
+    std::tie(rec.fullResidual, rec.windowNorm) = fullResidual(cf);
   }
   if (up.rank > 0) {
     const std::vector<double> rotation = opt_.indices == "partial" ? columnRotations(up) : std::vector<double>();
@@ -347,16 +348,17 @@ ReducedRowKernel& GpAdeimModel::samplingKernel() {
   return *sampling_;
 }
 
-double GpAdeimModel::fullResidual(const CoefficientFactor& cf) {
+std::pair<double, double> GpAdeimModel::fullResidual(const CoefficientFactor& cf) {
   if (!ownedFValid_) {
     windowSnapshots(*owned_, ownedF_);
     ownedFValid_ = true;
   }
   const auto norms = ownRowScores(*U_, ownedF_, owned_->numRows(), cf, false);
-  double local = 0.0, global = 0.0;
-  for (double v : norms) local += v * v;
-  Teuchos::reduceAll(*U_->getMap()->getComm(), Teuchos::REDUCE_SUM, 1, &local, &global);
-  return std::sqrt(global);
+  double local[2] = {0.0, 0.0}, global[2] = {0.0, 0.0};
+  for (double v : norms) local[0] += v * v;
+  for (double v : ownedF_) local[1] += v * v;
+  Teuchos::reduceAll(*U_->getMap()->getComm(), Teuchos::REDUCE_SUM, 2, local, global);
+  return {std::sqrt(global[0]), std::sqrt(global[1])};
 }
 
 // P_{j+1} (alg:SP-ADEIM line 11): greedy DEIM or QDEIM from U_{j+1}, or Peher15's partial update

@@ -122,6 +122,7 @@ void writeProvenance(Hdf5File& f, const ReducedModelData& d) {
   f.setAttribute("/", "created", d.created);
   f.setAttribute("/", "build_ranks", std::vector<double>{double(d.buildRanks)});
   f.setAttribute("/", "offline_seconds", std::vector<double>{d.offlineSeconds});
+  f.setAttribute("/", "cached_stages", joined(d.cachedStages));
   f.setAttribute("/", "time", std::vector<double>{d.T, d.dt});
   f.setAttribute("/", "polynomial_degree", std::vector<double>{double(d.polynomialDegree)});
   f.setAttribute("/", "target_error", std::vector<double>{d.targetError});
@@ -141,6 +142,11 @@ void writeProvenance(Hdf5File& f, const ReducedModelData& d) {
     f.setAttribute("/greedy", "models", models);
     f.setAttribute("/greedy", "layout", std::string("per round: training points, the best model's largest estimated "
                                                     "E_L2 over the candidates, the parameter added next (NaN: none)"));
+  }
+  if (!d.trainingParameters.empty() && !d.box.empty()) {  // the training parameters, one per row
+    std::vector<double> rows;
+    for (const auto& mu : d.trainingParameters) rows.insert(rows.end(), mu.begin(), mu.end());
+    f.writeArray("/training_parameters", rows, d.trainingParameters.size(), d.box.size());
   }
   f.setAttribute("/", "box_lower", lower);
   f.setAttribute("/", "box_upper", upper);
@@ -250,6 +256,18 @@ void readProvenance(const Hdf5File& f, ReducedModelData& d) {
     GPHR_REQUIRE(lo[p] <= hi[p] && !d.parameterNames[p].empty(), InputError, "parameter ", p, " ('",
                  d.parameterNames[p], "') has the box [", lo[p], ", ", hi[p], "]; allowed: a name and lower <= upper");
     d.box.emplace_back(lo[p], hi[p]);
+  }
+  if (f.hasAttribute("/", "cached_stages")) d.cachedStages = split(f.stringAttribute("/", "cached_stages"), ',');
+  if (f.exists("/training_parameters")) {
+    size_t rows = 0, cols = 0;
+    const auto v = f.readArray("/training_parameters", &rows, &cols);
+    GPHR_REQUIRE(cols == d.box.size() && rows <= 1000000, InputError, "/training_parameters is ", rows, " x ", cols,
+                 "; allowed: points x ", d.box.size(), " (one value per parameter)");
+    for (size_t i = 0; i < rows; ++i) {
+      d.trainingParameters.emplace_back(v.begin() + i * cols, v.begin() + (i + 1) * cols);
+      for (double x : d.trainingParameters.back())
+        GPHR_REQUIRE(std::isfinite(x), InputError, "/training_parameters row ", i, " holds ", x, "; allowed: finite values");
+    }
   }
   if (f.exists("/greedy")) {
     size_t rows = 0, cols = 0;

@@ -6,6 +6,7 @@
 
 #include "gphr/core/ColumnFingerprint.hpp"
 #include "gphr/core/Error.hpp"
+#include "gphr/core/Progress.hpp"
 #include "gphr/offline/PodCheckpoint.hpp"
 
 namespace gphr {
@@ -92,15 +93,14 @@ BasisStageResult runBasisStage(const TrainingResult& training, const PhaseSpace&
     const auto save = [&](const BasisProgress& b) {  // the line after the checkpoint: "checkpointed" is kept
       const bool kept = checkpoint.write(b.pod, PodProgress{static_cast<int>(b.blocks), {b.energy}});
       if (space.comm()->getRank() == 0)
-        std::fprintf(stderr, "[gphr] basis: parameter %zu of %d POD'd, %.1f s%s\n", b.blocks, count,
-                     clock.totalElapsedTime(true), kept ? ", checkpointed" : "");
+        progressLine("[gphr] basis: parameter %zu of %d POD'd, %.1f s%s", b.blocks, count, clock.totalElapsedTime(true),
+                     kept ? ", checkpointed" : "");
     };
     out.basis = computeSymplecticBasis(training.snapshots, space, options, &resume, save);
     // save() runs between parameters only (the last one's POD is the basis, written next): the
     // sequence of lines ends at count of count here.
     if (space.comm()->getRank() == 0 && resume.blocks < static_cast<size_t>(count))
-      std::fprintf(stderr, "[gphr] basis: parameter %d of %d POD'd, %.1f s\n", count, count,
-                   clock.totalElapsedTime(true));
+      progressLine("[gphr] basis: parameter %d of %d POD'd, %.1f s", count, count, clock.totalElapsedTime(true));
     if (cache) {
       writeBasis(*cache, *cache->open(), out.basis, space, sceneName, training, key);
       checkpoint.clear();  // their work is in the basis now

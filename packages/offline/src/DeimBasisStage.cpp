@@ -8,6 +8,7 @@
 
 #include "gphr/core/ColumnFingerprint.hpp"
 #include "gphr/core/Error.hpp"
+#include "gphr/core/Progress.hpp"
 #include "gphr/core/RankGroups.hpp"
 #include "gphr/offline/PodCheckpoint.hpp"
 
@@ -114,6 +115,7 @@ DeimBasis deimBasisInGroups(const Scene& scene, const TrainingResult& training, 
   ReducedStateCache blocks;  // a group's chunks q, q + G: a block longer than G chunks is cut by both
   Teuchos::Time clock("chunks");
   clock.start();
+  double lastLine = 0.0;
   for (int first = resumed; first < count; first += G) {
     const int q = first + groups.group(), inRound = std::min(G, count - first);
     DeimChunkModes mine;
@@ -134,12 +136,15 @@ DeimBasis deimBasisInGroups(const Scene& scene, const TrainingResult& training, 
     const bool kept = checkpoint.enabled() && first + inRound < count &&  // before the line: "checkpointed" is kept
                       saveRoot(checkpoint, root, first + inRound, before + clock.totalElapsedTime(true));
     const char* tail = kept ? ", checkpointed" : "";
-    if (groups.world()->getRank() == 0 && inRound == 1)
-      std::fprintf(stderr, "[gphr] deim basis: chunk %d of %d POD'd, %.1f s%s\n", first + 1, count,
-                   clock.totalElapsedTime(true), tail);
-    else if (groups.world()->getRank() == 0)
-      std::fprintf(stderr, "[gphr] deim basis: chunks %d-%d of %d POD'd by %d groups side by side, %.1f s%s\n",
-                   first + 1, first + inRound, count, G, clock.totalElapsedTime(true), tail);
+    // A line at most every progressSeconds (ProgressWatch; every chunk where none is set), the last always.
+    const double now = clock.totalElapsedTime(true), every = ProgressWatch::seconds();
+    if (groups.world()->getRank() != 0 || (first + inRound < count && every > 0.0 && now - lastLine < every)) continue;
+    lastLine = now;
+    if (inRound == 1)
+      progressLine("[gphr] deim basis: chunk %d of %d POD'd, %.1f s%s", first + 1, count, now, tail);
+    else
+      progressLine("[gphr] deim basis: chunks %d-%d of %d POD'd by %d groups side by side, %.1f s%s", first + 1,
+                   first + inRound, count, G, now, tail);
   }
   return root.basis();
 }

@@ -36,7 +36,7 @@ void addAdeimModels(const ModelBuildOptions& o, const RCP<const Comm>& comm, int
     if (comm->getRank() == 0) std::fprintf(stderr, "[gphr] build: gp-adeim not stored: %s\n", why.c_str());
     return;
   }
-  for (int m : o.ms) {
+  for (int m : o.msOf(k)) {
     StoredHyperModel sm;
     sm.method = method::kGpAdeim, sm.k = k, sm.m = m;
     adeimOptionsFor(o.adeim, m);  // the constraints that involve m, checked now
@@ -52,7 +52,7 @@ std::vector<StoredHyperModel> gpDeimModelsOfK(OfflineSequence& seq, const ModelB
   const auto& basis = *seq.deimBasis(k).basis.U;
   const int vectors = static_cast<int>(basis.getNumVectors());
   std::vector<int> ms;
-  for (int m : o.ms)
+  for (int m : o.msOf(k))
     if (m <= vectors) ms.push_back(m);
     else
       skipped.push_back(detail::concat("gp-deim k = ", k, ", m = ", m, ": the DEIM basis has ", vectors,
@@ -80,7 +80,7 @@ std::vector<StoredHyperModel> modelsOfK(OfflineSequence& seq, const ModelBuildOp
       // A DEIM basis the fits ask for inside is a stage of its own (nested scopes exclude it).
       const StageClocks::Scope clock(seq.clocks(), ofK("fits", k));
       std::map<int, std::string> unfit;
-      for (const auto& [m, fit] : seq.termWeightFits(k, o.file.indices).all(method, o.ms, unfit))
+      for (const auto& [m, fit] : seq.termWeightFits(k, o.file.indices).all(method, o.msOf(k), unfit))
         out.push_back(termModel(inst, *A, method, k, m, fit.terms, fit.weights));
       for (const auto& [m, why] : unfit) skipped.push_back(detail::concat(method, " k = ", k, ", m = ", m, ": ", why));
     }
@@ -99,8 +99,13 @@ void checkModelBuildOptions(const Scene& scene, const ModelBuildOptions& o, GO f
   // gp-adeim alone, unstorable: refused now, not after the training with "no model for k"
   GPHR_REQUIRE(o.methods != std::vector<std::string>{method::kGpAdeim} || whyNoAdeim(o).empty(), InputError,
                "gp-adeim, the only method asked for, cannot be stored: ", whyNoAdeim(o));
-  GPHR_REQUIRE(!o.ms.empty(), InputError, "no DEIM size m given; allowed: one or more m >= 1");
-  for (int m : o.ms) GPHR_REQUIRE(m >= 1, InputError, "DEIM size m = ", m, "; allowed: m >= 1");
+  for (int k : o.ks)
+    GPHR_REQUIRE(!o.msOf(k).empty(), InputError, "no DEIM size m given for k = ", k, "; allowed: one or more m >= 1");
+  GPHR_REQUIRE(!o.allMs().empty(), InputError, "no DEIM size m given; allowed: one or more m >= 1");
+  for (int m : o.allMs()) GPHR_REQUIRE(m >= 1, InputError, "DEIM size m = ", m, "; allowed: m >= 1");
+  for (const auto& [k, list] : o.msByK)
+    GPHR_REQUIRE(std::find(o.ks.begin(), o.ks.end(), k) != o.ks.end(), InputError, "DEIM sizes given for k = ", k,
+                 ", which is not among the reduced sizes built; allowed: a k of the build's k list");
   GPHR_REQUIRE(o.parameter.empty() || o.parameter.size() == scene.parameterBox().names.size(), InputError,
                "the instance parameter has ", o.parameter.size(), " values; allowed: ", scene.parameterBox().names.size(),
                " (one per parameter of the box)");
@@ -118,7 +123,11 @@ ModelBuildResult buildReducedModelFile(const Scene& scene, const RCP<const Comm>
   Teuchos::Time clock("build");
   clock.start();
   OfflineSequence seq(scene, comm, options, options.parameter, cache);
-  seq.setStageHook(hook);
+  std::vector<std::string> cached;  // the file says which stages' seconds were a cache read's
+  seq.setStageHook([&](const OfflineStageEnd& end) {
+    if (end.cached) cached.push_back(end.name);
+    if (hook) hook(end);
+  });
   ModelBuildResult r;
   r.training = seq.training();
   const SceneInstance& inst = seq.instance();
@@ -152,6 +161,8 @@ ModelBuildResult buildReducedModelFile(const Scene& scene, const RCP<const Comm>
                r.skipped.size(), " left out, said above); allowed: m the DEIM basis holds, budgets the training supports");
   data.targetError = options.file.targetError;
   data.greedy = options.greedyRounds;
+  data.trainingParameters = r.training.parameters;
+  data.cachedStages = cached;
   if (options.file.indicatorDofs > 0) {
     const StageClocks::Scope stage(seq.clocks(), "calibration");
     std::map<int, RCP<const MultiVector>> byK;

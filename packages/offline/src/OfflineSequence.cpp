@@ -20,11 +20,25 @@ std::vector<double> boxCentre(const ParameterBox& box) {
 
 // The DEIM basis keeps room for the largest m asked for (deimMaxRank) unless told otherwise.
 OfflineOptions completed(OfflineOptions o) {
-  if (o.deim.largestM == 0 && !o.ms.empty()) o.deim.largestM = *std::max_element(o.ms.begin(), o.ms.end());
+  const auto all = o.allMs();
+  if (o.deim.largestM == 0 && !all.empty()) o.deim.largestM = all.back();
   return o;
 }
 
 }  // namespace
+
+const std::vector<int>& deimSizesOf(const std::vector<int>& ms, const std::map<int, std::vector<int>>& byK, int k) {
+  const auto it = byK.find(k);
+  return it == byK.end() ? ms : it->second;
+}
+
+std::vector<int> allDeimSizes(const std::vector<int>& ms, const std::map<int, std::vector<int>>& byK) {
+  std::vector<int> all = ms;
+  for (const auto& [k, list] : byK) all.insert(all.end(), list.begin(), list.end());
+  std::sort(all.begin(), all.end());
+  all.erase(std::unique(all.begin(), all.end()), all.end());
+  return all;
+}
 
 OfflineKeys offlineKeys(const Scene& scene, const OfflineOptions& o) {
   OfflineKeys k;
@@ -129,7 +143,7 @@ TermWeightFits& OfflineSequence::termWeightFits(int k, const std::string& indice
     const std::string refitKey = keys_.nnls + keys_.deim + "indices = " + indices + "\n";
     fits_.reset();
     fits_ = std::make_unique<TermWeightFits>(scene_, comm_, training(), *A, options_.eqp, options_.eqpTolerance,
-                                             options_.ms, deimTerms, cache_.get(), keys_.nnls, refitKey);
+                                             options_.msOf(k), deimTerms, cache_.get(), keys_.nnls, refitKey);
     fitsK_ = k, fitsIndices_ = indices;
   }
   return *fits_;

@@ -10,6 +10,7 @@
 #include "gphr/core/ColumnFingerprint.hpp"
 #include "gphr/core/CacheKey.hpp"
 #include "gphr/core/Error.hpp"
+#include "gphr/core/Progress.hpp"
 #include "gphr/core/Provenance.hpp"
 #include "gphr/core/ParameterValidation.hpp"
 #include "gphr/core/RankGroups.hpp"
@@ -127,7 +128,7 @@ class Progress {
     const double el = clock_.totalElapsedTime(true);
     std::ostringstream m;
     for (double x : mu) m << (m.tellp() ? ", " : "") << x;
-    std::fprintf(stderr, "[gphr] train: parameter %zu/%zu (%s) %s, %.1f s elapsed, ~%.1f s left\n", j + 1, total,
+    progressLine("[gphr] train: parameter %zu/%zu (%s) %s, %.1f s elapsed, ~%.1f s left", j + 1, total,
                  m.str().c_str(), reused ? "reused from file" : "done", el,
                  computed ? el / computed * (total - j - 1) : 0.0);
   }

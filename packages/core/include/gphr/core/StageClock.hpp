@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "gphr/core/Progress.hpp"
+
 namespace gphr {
 
 /// The most MPI functions the interposer may time one by one (it has a kind per function it wraps).
@@ -103,7 +105,8 @@ class StageClocks {
   /// Times a stage while alive.
   class Scope {
    public:
-    /// Starts stage `name` of `clocks`; the destructor ends it.
+    /// Starts stage `name` of `clocks`; the destructor ends it. While it runs, the stage is the
+    /// innermost progress phase (core/Progress.hpp).
     Scope(StageClocks& clocks, std::string name);
     ~Scope();
     Scope(const Scope&) = delete;
@@ -111,6 +114,7 @@ class StageClocks {
 
    private:
     StageClocks& clocks_;
+    ProgressPhase phase_;  ///< a stage is a progress phase too: a long one is named on stderr
   };
 
   /// The stages timed so far.

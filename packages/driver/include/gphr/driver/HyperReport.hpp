@@ -16,11 +16,16 @@
 
 namespace gphr {
 
-/// Root only. paths: "runs.csv", "report.md", "error_vs_m.png", "pareto.png",
-/// "hamiltonian_terms.png", "deim_singular_values.csv" -> temporary file names.
-/// Returns the names of the files written.
+/// Root only. paths: "runs.csv", "error_vs_m.png", "pareto.png", "hamiltonian_terms.png",
+/// "deim_singular_values.csv" ... -> temporary file names. Returns the names of the files written.
+/// report.md comes after every picture (writeHyperReportMd), so that it names those drawn.
 std::vector<std::string> writeHyperReport(const RunContext& ctx, const RunOptions& options, const FomResult& fom, const RomStages& st,
                                           const std::map<std::string, std::string>& paths,
                                           bool plots);
+
+/// Root only: report.md at `path`, naming `figures` (the pictures drawn, in order) and the field
+/// picture's note where none was drawn (`fieldNote`, e.g. why).
+void writeHyperReportMd(const RunContext& ctx, const RunOptions& options, const FomResult& fom, const RomStages& st,
+                        const std::string& path, const std::vector<std::string>& figures, const std::string& fieldNote);
 
 }  // namespace gphr

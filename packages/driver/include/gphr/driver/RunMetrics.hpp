@@ -14,7 +14,7 @@
 
 namespace gphr {
 
-/// One figure of a run's summary.json entry (doc/user-guide.md lists every key).
+/// One figure of a run's summary.json entry (doc/reference.md, "summary.json", lists every key).
 enum class Metric : int {
   // identity and size
   Method, N, FullDim, NumTerms, K, ReducedDim, M, Steps, Dt, Ranks,

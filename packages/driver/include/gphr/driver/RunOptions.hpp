@@ -25,7 +25,11 @@ namespace gphr {
 struct PipelineOptions {
   std::vector<std::string> methods;  ///< pipeline.methods (+ rom with pipeline.rom), each once, checked
   std::vector<int> ks;               ///< pipeline.k, else reduction.k
-  std::vector<int> ms;               ///< pipeline.m
+  std::vector<int> ms;               ///< pipeline.m (every k not in msByK)
+  std::map<int, std::vector<int>> msByK;  ///< pipeline.mPerK: a k's own m list
+  /// The m list of reduced size k (pipeline.mPerK's where it names k, else pipeline.m).
+  const std::vector<int>& msOf(int k) const { return deimSizesOf(ms, msByK, k); }
+  std::vector<int> allMs() const { return allDeimSizes(ms, msByK); }  ///< every m of any k, ascending
 };
 /// The keys of a `pipeline` section with their defaults and documentation.
 Teuchos::ParameterList pipelineValidParameters();

@@ -2,7 +2,7 @@
 /// @file
 /// `gphr build`'s per-stage clocks of every rank (StageClock.hpp) as DIR/stages.csv, their time
 /// inside MPI per MPI function as DIR/mpi_calls.csv, and a short table on the console
-/// (doc/user-guide.md, "stages.csv"; bench/scaling.sh reads both files).
+/// (doc/reference.md, "stages.csv"; bench/scaling.sh reads both files).
 #include <string>
 #include <vector>
 

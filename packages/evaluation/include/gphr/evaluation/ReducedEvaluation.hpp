@@ -22,6 +22,7 @@ struct ReducedRunOptions {
   bool hasHamiltonian = true;  ///< observe the model's own H (MethodInfo::hasHamiltonian(): not the DEIM baselines)
   bool keepStates = false;     ///< keep the lifted physical states at the saved steps (ReducedEvaluation::states)
   StepHook adapt;              ///< after every step, in online time: GP-ADEIM's update (adeimUpdateHook); none: repeatable
+  std::string label;           ///< the run's name in progress lines (core/Progress.hpp); empty: "reduced model"
 };
 
 /// The figures and histories of one reduced run (see the file's description).

@@ -14,6 +14,7 @@
 #include <Teuchos_ParameterList.hpp>
 #include <deque>
 #include <string>
+#include <utility>
 
 #include "gphr/hyper/AdeimUpdate.hpp"
 #include "gphr/hyper/SampleMesh.hpp"
@@ -65,6 +66,7 @@ struct AdeimUpdateRecord {
   double sampledBefore = 0.0; ///< ||S^T R_j||_F
   double sampledAfter = 0.0;  ///< ||S^T (U_{j+1} C_j - F_j)||_F
   double fullResidual = -1.0; ///< ||U_{j+1} C_j - F_j||_F over all d rows (fig:schro_samplingstrats); -1: not computed
+  double windowNorm = -1.0;   ///< ||F_j||_F over all d rows, with fullResidual (the scale of its round-off); -1: not computed
   double condPtU = 0.0;       ///< cond_1(P_{j+1}^T U_{j+1}) of the new pair, LAPACK GECON estimate
   double hrBefore = 0.0;      ///< H_hr^j(z^{ell_{j+1}})   (the local model ending here)
   double hrAfter = 0.0;       ///< H_hr^{j+1}(z^{ell_{j+1}})
@@ -98,7 +100,8 @@ class GpAdeimModel final : public ReducedHamiltonian {
   void resample(const CoefficientFactor& cf, long updateNo);
   ReducedRowKernel& samplingKernel();  ///< the sample mesh of S, built on demand
   AdeimUpdate updateSampledRows(const CoefficientFactor& cf, int wbar, std::vector<double>& F);
-  double fullResidual(const CoefficientFactor& cf);
+  /// ||U_{j+1} C_j - F_j||_F and ||F_j||_F over all d rows (the residual monitor).
+  std::pair<double, double> fullResidual(const CoefficientFactor& cf);
   double moveInterpolationRows(const std::vector<double>& rotation);  ///< returns cond(P^T U)
   std::vector<double> columnRotations(const AdeimUpdate& up) const;  ///< ||(U_{j+1} - U_j) e_i|| / ||U_{j+1} e_i||
   void orthonormalizeBasis();

@@ -101,6 +101,11 @@ struct ReducedModelData {
   int buildRanks = 1;  ///< MPI ranks of the build.
   std::string checksum;  ///< the file's checksum of its model data (modelDataChecksum), as read and verified
   double offlineSeconds = 0.0;   ///< the build's wall time (training, bases, DEIM pairs, interpolants)
+  /// The offline stages the build took from its artifacts cache (their seconds in offlineSeconds
+  /// are a read's, not the computation's). Provenance, outside the checksum.
+  std::vector<std::string> cachedStages;
+  /// The build's training parameters (validate marks them). Provenance, outside the checksum.
+  std::vector<std::vector<double>> trainingParameters;
   /// the build configuration's time section (query defaults)
   /// @{
   double T = 0.0, dt = 0.0;

@@ -24,12 +24,22 @@
 
 namespace gphr {
 
+/// The DEIM sizes of reduced size k: byK's list where it has k, else `ms` (every other k's).
+const std::vector<int>& deimSizesOf(const std::vector<int>& ms, const std::map<int, std::vector<int>>& byK, int k);
+/// Every m of `ms` and of byK's lists, ascending, each once.
+std::vector<int> allDeimSizes(const std::vector<int>& ms, const std::map<int, std::vector<int>>& byK);
+
 /// What the offline stages compute.
 struct OfflineOptions {
   TrainingOptions training;   ///< the training set and its time integration
   BasisOptions basis;         ///< the symplectic basis; k: the largest of `ks` (0: by the energy tolerance)
   std::vector<int> ks;        ///< the reduced sizes (leading parts of the basis); empty: the basis's k
-  std::vector<int> ms;        ///< DEIM sizes m and term budgets
+  std::vector<int> ms;        ///< DEIM sizes m and term budgets (of every k not in msByK)
+  std::map<int, std::vector<int>> msByK;  ///< a k's own DEIM sizes and budgets, in place of ms
+  /// The DEIM sizes and budgets of reduced size k: msByK's where it has k, else ms.
+  const std::vector<int>& msOf(int k) const { return deimSizesOf(ms, msByK, k); }
+  /// Every m of any k (ms and msByK's), ascending, each once.
+  std::vector<int> allMs() const { return allDeimSizes(ms, msByK); }
   DeimBasisOptions deim;      ///< the DEIM basis (maxRank 0: the largest m + kDeimRankMargin)
   QuadratureOptions eqp;      ///< the term-weight fits' training system
   double eqpTolerance = 1e-8; ///< NNLS stopping tolerance (relative residual)

@@ -13,6 +13,10 @@
 /// the same validators as a config file) and every sample mesh's stencil widths against the
 /// scene's row kernel, so that a bad file fails here, naming itself, not in a query.
 ///
+/// MPI and Kokkos must run around every use (Tpetra::ScopeGuard in main, or the caller's own
+/// initialisation): doc/embedding.md is a whole program, compiled and run by the tests, with the
+/// CMake project, queries spread over ranks, observers, lifting and errors.
+///
 /// Loading and instantiate() are not collective and, on the default (interpolated) set-up route,
 /// nothing of size n or d is allocated: the scene object only supplies its row kernel at mu, the file the sample
 /// mesh and the parameter interpolant. The exact route builds the full system at mu and projects
