@@ -18,6 +18,7 @@
 #include "gphr/offline/ModelFileBuild.hpp"
 #include "gphr/driver/StageTable.hpp"
 #include "gphr/core/Method.hpp"
+#include "gphr/driver/GreedyReport.hpp"
 
 namespace gphr {
 
@@ -71,6 +72,9 @@ void printGreedy(const GreedyResult& g, double target) {
     for (size_t i = 0; i < r.added.size(); ++i) std::printf("%s%.6g", i ? ", " : "; adds (", r.added[i]);
     std::printf("%s\n", r.added.empty() ? "" : ")");
   }
+  for (const auto& q : g.build.data.queryDefaults)
+    std::printf("  query default of %s: k = %d, m = %d (estimated max %.3g%s; E_L2 max %.3g at fresh points)\n",
+                q.method.c_str(), q.k, q.m, q.estimatedMax, q.met ? "" : ", target NOT met", q.verifiedMax);
 }
 
 void printBuild(const std::string& path, const ReducedModelData& data, double seconds, int ranks) {
@@ -163,14 +167,17 @@ int runBuild(const std::string& configPath, const std::string& modelPath, const 
   std::vector<StageTime> stages = setup.stages();
   stages.insert(stages.end(), r.stages.begin(), r.stages.end());
   const StageTable table = gatherStages(comm, stages);
+  std::string greedyFiles;
   onRootAgreed(comm, "gphr build", [&] {
     writeTextFile(artifactsDir + "/stages.csv", table.csv());
     writeTextFile(artifactsDir + "/mpi_calls.csv", table.mpiCallsCsv());
+    greedyFiles = writeGreedyReport(artifactsDir, greedy, opt.scene->parameterBox().names, opt.greedy.targetError);
   });
   if (comm->getRank() == 0) {
     printBuild(modelPath, r.data, r.seconds, comm->getSize());
     printCalibration(r);
     printGreedy(greedy, opt.greedy.targetError);
+    if (!greedyFiles.empty()) std::printf("  the rounds: %s in %s\n", greedyFiles.c_str(), artifactsDir.c_str());
     std::printf("%s", table.summary().c_str());
   }
   return 0;

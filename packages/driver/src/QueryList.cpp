@@ -120,7 +120,8 @@ void check(const Query& q, const ReducedModel& model, QueryFileKind kind, const 
                  "]; allowed: inside it, or extrapolate: true");
   }
   if (kind == QueryFileKind::Queries) {
-    GPHR_REQUIRE(q.k > 0 && q.m > 0, InputError, where, ": k and m must be given (the file holds ", d.modelList(), ")");
+    GPHR_REQUIRE(q.k > 0 && q.m > 0, InputError, where, ": k and m must be given (the file holds ", d.modelList(),
+                 d.queryDefaults.empty() ? "; a file built with --target-error gives defaults per method)" : ")");
     try {
       d.model(q.method, q.k, q.m);
     } catch (const InputError& e) {
@@ -311,7 +312,14 @@ std::vector<Query> readQueries(const std::string& path, const ReducedModel& mode
     if (pl->isSublist("grid")) addGrid(pl->sublist("grid"), d, base, out);
     GPHR_REQUIRE(!out.empty(), InputError, "no query: give queries.points or queries.grid");
     GPHR_REQUIRE(out.size() <= kMaxQueries, InputError, out.size(), " queries; allowed: at most ", kMaxQueries);
-    for (const auto& q : out) check(q, model, kind, "query '" + q.name + "'");
+    for (auto& q : out) {
+      // k and m the query leaves open: the file's default for its method (a greedy build's
+      // cheapest model that met the target; ReducedModelData::queryDefaults)
+      const QueryDefault* fallback = kind == QueryFileKind::Queries ? d.queryDefault(q.method) : nullptr;
+      if (fallback && q.k == 0) q.k = fallback->k;
+      if (fallback && q.m == 0) q.m = fallback->m;
+      check(q, model, kind, "query '" + q.name + "'");
+    }
   } catch (const InputError& e) {
     throw InputError(detail::concat(root, " file '", path, "': ", e.what()));
   }

@@ -322,6 +322,7 @@ RunOptions runOptionsFrom(const Teuchos::ParameterList& cfg) {
   o.greedy.candidates = build.get<int>("candidates");
   o.greedy.seed = static_cast<unsigned long>(build.get<int>("candidateSeed"));
   o.greedy.maxPoints = build.get<int>("maxTrainingPoints");
+  o.greedy.confirmPoints = build.get<int>("confirmPoints");
   return o;
 }
 

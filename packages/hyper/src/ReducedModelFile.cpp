@@ -126,6 +126,16 @@ void writeProvenance(Hdf5File& f, const ReducedModelData& d) {
   f.setAttribute("/", "time", std::vector<double>{d.T, d.dt});
   f.setAttribute("/", "polynomial_degree", std::vector<double>{double(d.polynomialDegree)});
   f.setAttribute("/", "target_error", std::vector<double>{d.targetError});
+  if (!d.queryDefaults.empty()) {  // "method k=K m=M;..." and per default: estimated, verified max, met
+    std::string names;
+    std::vector<double> errors;
+    for (const auto& q : d.queryDefaults) {
+      names += detail::concat(names.empty() ? "" : ";", q.method, " k=", q.k, " m=", q.m);
+      errors.insert(errors.end(), {q.estimatedMax, q.verifiedMax, q.met ? 1.0 : 0.0});
+    }
+    f.setAttribute("/", "query_defaults", names);
+    f.setAttribute("/", "query_default_errors", errors);
+  }
   f.setAttribute("/", "parameter_names", joined(d.parameterNames));
   std::vector<double> lower, upper, enters;
   for (size_t p = 0; p < d.box.size(); ++p)
@@ -480,6 +490,10 @@ std::string modelDataChecksum(const ReducedModelData& d) {
     h.numbers(x.terms.basisRows);
   }
   h.number(d.targetError);
+  for (const auto& q : d.queryDefaults) {  // none: nothing added (files without defaults verify as before)
+    h.text(detail::concat(q.method, " k=", q.k, " m=", q.m));
+    h.numbers(std::vector<double>{q.estimatedMax, q.verifiedMax, q.met ? 1.0 : 0.0});
+  }
   for (const auto& m : d.models) {
     h.text(m.key());
     const IndicatorCalibration& c = m.calibration;
@@ -570,6 +584,12 @@ bool ReducedModelData::outsideBox(const std::vector<double>& mu) const {
   return false;
 }
 
+const QueryDefault* ReducedModelData::queryDefault(const std::string& method) const {
+  for (const auto& q : queryDefaults)
+    if (q.method == method) return &q;
+  return nullptr;
+}
+
 std::string ReducedModelData::modelList() const {
   std::string s;
   for (const auto& x : models)
@@ -600,6 +620,29 @@ void writeReducedModelFile(const std::string& path, const RCP<const Comm>& comm,
 
 namespace {
 
+// The query defaults (attributes query_defaults, query_default_errors; absent: none), each a model
+// the file holds, at most one per method.
+void readQueryDefaults(const Hdf5File& f, ReducedModelData& d) {
+  if (!f.hasAttribute("/", "query_defaults")) return;
+  const auto names = split(f.stringAttribute("/", "query_defaults"), ';');
+  const auto errors = f.doubleAttribute("/", "query_default_errors");
+  GPHR_REQUIRE(errors.size() == 3 * names.size(), InputError, "attribute 'query_default_errors' has ", errors.size(),
+               " numbers for ", names.size(), " query defaults; allowed: 3 per default");
+  for (size_t i = 0; i < names.size(); ++i) {
+    QueryDefault q;
+    char method[32] = {0};
+    int consumed = 0;
+    GPHR_REQUIRE(std::sscanf(names[i].c_str(), "%31s k=%d m=%d%n", method, &q.k, &q.m, &consumed) == 3 &&
+                     consumed == static_cast<int>(names[i].size()),
+                 InputError, "query default '", names[i], "'; allowed: 'METHOD k=K m=M'");
+    q.method = method;
+    d.model(q.method, q.k, q.m);  // InputError naming the models held
+    GPHR_REQUIRE(!d.queryDefault(q.method), InputError, "two query defaults for ", q.method);
+    q.estimatedMax = errors[3 * i], q.verifiedMax = errors[3 * i + 1], q.met = errors[3 * i + 2] != 0.0;
+    d.queryDefaults.push_back(q);
+  }
+}
+
 // The model data of an open file, validated whole (readReducedModelFile's contract).
 ReducedModelData readModelData(const Hdf5File& f) {
   GPHR_REQUIRE(f.hasAttribute("/", "format") && f.stringAttribute("/", "format") == kFormat, InputError,
@@ -621,6 +664,7 @@ ReducedModelData readModelData(const Hdf5File& f) {
     d.models.push_back(readModel(f, d.basis(k), method, k, m));
   }
   GPHR_REQUIRE(!d.models.empty(), InputError, "it holds no model (attribute 'models' is empty)");
+  readQueryDefaults(f, d);
   // a changed byte anywhere in the model data is an error, not a different model
   GPHR_REQUIRE(f.hasAttribute("/", "checksum"), InputError, "it has no checksum attribute (write it with gphr build)");
   const std::string stored = f.stringAttribute("/", "checksum"), computed = modelDataChecksum(d);

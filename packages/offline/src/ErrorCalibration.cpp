@@ -57,8 +57,8 @@ SimulationStats runAsQuery(const ReducedModel& rm, const StoredHyperModel& x, co
 
 }  // namespace
 
-std::map<std::string, std::vector<CalibrationPoint>> calibrateErrorIndicators(
-    ReducedModelData& data, const Scene& scene, const HamiltonianSystem& like,
+std::map<std::string, std::vector<CalibrationPoint>> measureModelErrors(
+    const ReducedModelData& data, const Scene& scene, const HamiltonianSystem& like,
     const std::map<int, RCP<const MultiVector>>& bases, const TrainingResult& training, long snapshotEvery,
     double dt, long steps) {
   std::map<std::string, std::vector<CalibrationPoint>> points;
@@ -82,6 +82,14 @@ std::map<std::string, std::vector<CalibrationPoint>> calibrateErrorIndicators(
       points[x.key()].push_back(p);
     }
   }
+  return points;
+}
+
+std::map<std::string, std::vector<CalibrationPoint>> calibrateErrorIndicators(
+    ReducedModelData& data, const Scene& scene, const HamiltonianSystem& like,
+    const std::map<int, RCP<const MultiVector>>& bases, const TrainingResult& training, long snapshotEvery,
+    double dt, long steps) {
+  auto points = measureModelErrors(data, scene, like, bases, training, snapshotEvery, dt, steps);
   for (auto& x : data.models) {
     std::vector<double> eta, err;
     for (const auto& p : points[x.key()]) eta.push_back(p.indicator), err.push_back(p.error);

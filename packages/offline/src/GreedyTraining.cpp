@@ -5,11 +5,14 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <random>
 
 #include "gphr/core/Error.hpp"
 #include "gphr/core/Method.hpp"
+#include "gphr/offline/ErrorCalibration.hpp"
 #include "gphr/online/ReducedModel.hpp"
+#include "gphr/reduction/SymplecticBasis.hpp"
 
 namespace gphr {
 
@@ -37,10 +40,12 @@ std::vector<std::vector<double>> candidatePoints(const ParameterBox& box, int co
 
 namespace {
 
-// The largest estimate of each calibrated sample-mesh model of the file over the candidates, and
-// where: the round's measure. A run without an estimate counts as infinite (it failed).
+// The largest estimate of each calibrated sample-mesh model of the file over the candidates
+// (`largest`, per model key), and where the best model's lies: the round's measure. A run without
+// an estimate counts as infinite (it failed).
 GreedyRound estimateRound(const ReducedModel& rm, const std::vector<std::vector<double>>& candidates, double T,
-                          double dt, std::vector<double>& worst) {
+                          double dt, std::vector<double>& worst, std::map<std::string, double>& largestOf) {
+  largestOf.clear();
   GreedyRound round;
   round.maxEstimate = std::numeric_limits<double>::infinity();
   for (const auto& x : rm.data().models) {
@@ -52,6 +57,7 @@ GreedyRound estimateRound(const ReducedModel& rm, const std::vector<std::vector<
       const double v = std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
       if (v > largest) largest = v, at = c;
     }
+    largestOf[x.key()] = largest;
     if (largest < round.maxEstimate || round.model.empty()) {
       round.maxEstimate = largest, round.model = x.key();
       worst = candidates.empty() ? std::vector<double>() : candidates[at];
@@ -60,7 +66,62 @@ GreedyRound estimateRound(const ReducedModel& rm, const std::vector<std::vector<
   return round;
 }
 
+// E_L2 of each query default at `count` fresh points (full solves, not added to the training: no
+// cache), the largest into verifiedMax. Collective.
+void confirmQueryDefaults(const Scene& scene, const RCP<const Comm>& comm, const ModelBuildOptions& o,
+                          const ModelBuildResult& build, const GreedyOptions& g, std::vector<QueryDefault>& defaults) {
+  if (g.confirmPoints <= 0 || defaults.empty()) return;
+  TrainingOptions fresh = o.training;
+  fresh.parameters = freshPoints(scene.parameterBox(), g.confirmPoints, g.seed);
+  fresh.progress = false;
+  const TrainingResult reference = runTraining(scene, comm, fresh);
+  const auto inst = scene.instantiate(comm, o.parameter.empty() ? cornersAndCentre(scene.parameterBox()).back()
+                                                               : o.parameter, true);
+  std::map<int, RCP<const MultiVector>> bases;
+  for (const auto& b : build.data.bases) bases[b.k] = leadingBasis(build.basis.basis, b.k);
+  const auto measured = measureModelErrors(build.data, scene, *inst.system, bases, reference, o.training.snapshotEvery,
+                                           o.training.dt, o.training.steps);
+  for (auto& q : defaults) {
+    q.verifiedMax = 0.0;
+    const auto it = measured.find(detail::concat(q.method, "/k", q.k, "/m", q.m));
+    if (it == measured.end() || it->second.empty()) q.verifiedMax = std::numeric_limits<double>::quiet_NaN();
+    else
+      for (const auto& p : it->second)  // a run that failed (NaN) counts as an infinite error
+        q.verifiedMax = std::max(q.verifiedMax, std::isfinite(p.error) ? p.error : std::numeric_limits<double>::infinity());
+  }
+}
+
 }  // namespace
+
+double onlineCostProxy(int k, int m) {
+  const double r = 2.0 * k;
+  return r * r * r / 3.0 + 2.0 * m * r * r;
+}
+
+std::vector<QueryDefault> chooseQueryDefaults(const std::vector<StoredHyperModel>& models,
+                                              const std::map<std::string, double>& largest, double target) {
+  std::map<std::string, QueryDefault> best;  // per method
+  for (const auto& x : models) {
+    const auto it = largest.find(x.key());
+    if (it == largest.end()) continue;  // not estimated (gp-adeim)
+    QueryDefault q{x.method, x.k, x.m, it->second, std::numeric_limits<double>::quiet_NaN(), it->second <= target};
+    const auto b = best.find(x.method);
+    const auto better = [&](const QueryDefault& a, const QueryDefault& c) {  // a before c?
+      if (a.met != c.met) return a.met;
+      if (!a.met) return a.estimatedMax < c.estimatedMax || (a.estimatedMax == c.estimatedMax && onlineCostProxy(a.k, a.m) < onlineCostProxy(c.k, c.m));
+      const double ca = onlineCostProxy(a.k, a.m), cc = onlineCostProxy(c.k, c.m);
+      return ca < cc || (ca == cc && std::make_pair(a.k, a.m) < std::make_pair(c.k, c.m));
+    };
+    if (b == best.end() || better(q, b->second)) best[x.method] = q;
+  }
+  std::vector<QueryDefault> out;
+  for (const auto& [method, q] : best) out.push_back(q);
+  return out;
+}
+
+std::vector<std::vector<double>> freshPoints(const ParameterBox& box, int count, unsigned long seed) {
+  return candidatePoints(box, count, seed ^ 0x9e3779b97f4a7c15UL);  // a stream of its own, not the candidates'
+}
 
 GreedyResult buildToTargetError(const Scene& scene, const RCP<const Comm>& comm, ModelBuildOptions o,
                                 const std::string& path, const GreedyOptions& g, const ArtifactsCache* cache,
@@ -85,12 +146,13 @@ GreedyResult buildToTargetError(const Scene& scene, const RCP<const Comm>& comm,
   const std::shared_ptr<const Scene> sceneRef(&scene, [](const Scene*) {});  // not owned: the caller's
   const double dt = o.training.dt, T = dt * static_cast<double>(o.training.steps);
   GreedyResult out;
+  std::map<std::string, double> largest;  // the last round's, per model
   for (;;) {
     o.training.parameters = params;
     o.greedyRounds = out.rounds;  // the file records the rounds so far
     out.build = buildReducedModelFile(scene, comm, o, path, cache, hook);
     std::vector<double> worst;
-    GreedyRound round = estimateRound(ReducedModel(path, sceneRef), candidates, T, dt, worst);
+    GreedyRound round = estimateRound(ReducedModel(path, sceneRef), candidates, T, dt, worst, largest);
     GPHR_REQUIRE(!round.model.empty(), InputError, "greedy training: no stored model of ", out.build.data.modelList(),
                  " has an error estimate (no training point gave both its error and its indicator)");
     round.fullSolves = static_cast<long>(params.size());
@@ -106,6 +168,15 @@ GreedyResult buildToTargetError(const Scene& scene, const RCP<const Comm>& comm,
     params.push_back(worst);
     candidates.erase(std::find(candidates.begin(), candidates.end(), worst));
   }
+  // Per method the cheapest model that met the target (else its best), confirmed by full solves
+  // at fresh points: the defaults of a query that names a method only.
+  o.queryDefaults = chooseQueryDefaults(out.build.data.models, largest, g.targetError);
+  confirmQueryDefaults(scene, comm, o, out.build, g, o.queryDefaults);
+  if (comm->getRank() == 0)
+    for (const auto& q : o.queryDefaults)
+      std::fprintf(stderr, "[gphr] greedy: query default %s k=%d m=%d: estimated max %.3e over the candidates%s, "
+                   "E_L2 max %.3e at %d fresh points (full solves)\n", q.method.c_str(), q.k, q.m, q.estimatedMax,
+                   q.met ? "" : " (target not met: the method's best)", q.verifiedMax, g.confirmPoints);
   // The file once more with every round in it: its stages are all in the cache (or in memory: the
   // training again without one), only the calibration and the write are redone.
   o.greedyRounds = out.rounds;

@@ -161,6 +161,7 @@ ModelBuildResult buildReducedModelFile(const Scene& scene, const RCP<const Comm>
                r.skipped.size(), " left out, said above); allowed: m the DEIM basis holds, budgets the training supports");
   data.targetError = options.file.targetError;
   data.greedy = options.greedyRounds;
+  data.queryDefaults = options.queryDefaults;
   data.trainingParameters = r.training.parameters;
   data.cachedStages = cached;
   if (options.file.indicatorDofs > 0) {

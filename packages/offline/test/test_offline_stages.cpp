@@ -7,11 +7,14 @@
 #include <Tpetra_Core.hpp>
 #include <Teuchos_CommHelpers.hpp>
 #include <hdf5.h>
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <thread>
+#include <tuple>
 #include <malloc.h>
 #include <unistd.h>
 
@@ -848,6 +851,64 @@ TEST(GreedyTraining, AddsTheWorstCandidateOfTheBestModel) {
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MIN, at[0], Teuchos::outArg(lo));
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, at[0], Teuchos::outArg(hi));
   EXPECT_EQ(lo, hi);
+}
+
+// The query defaults: per method the cheapest model (onlineCostProxy) whose largest estimate met
+// the target, else the method's smallest estimate; a model without an estimate (gp-adeim) gives none.
+TEST(GreedyTraining, QueryDefaultIsTheCheapestModelMeetingTheTarget) {
+  EXPECT_EQ(onlineCostProxy(3, 8), 6.0 * 6 * 6 / 3 + 2 * 8 * 36);  // 72 + 576
+  std::vector<StoredHyperModel> models(6);
+  const std::vector<std::tuple<const char*, int, int>> sizes = {
+      {"gp-deim", 3, 4}, {"gp-deim", 3, 8}, {"gp-deim", 5, 6}, {"gp-eqp", 3, 4}, {"gp-eqp", 3, 8}, {"gp-adeim", 3, 4}};
+  for (size_t i = 0; i < models.size(); ++i)
+    models[i].method = std::get<0>(sizes[i]), models[i].k = std::get<1>(sizes[i]), models[i].m = std::get<2>(sizes[i]);
+  const std::map<std::string, double> largest = {{"gp-deim/k3/m4", 0.02}, {"gp-deim/k3/m8", 0.005},
+                                                 {"gp-deim/k5/m6", 0.004}, {"gp-eqp/k3/m4", 0.5}, {"gp-eqp/k3/m8", 0.3}};
+  const auto d = chooseQueryDefaults(models, largest, 0.01);
+  ASSERT_EQ(d.size(), 2u);  // gp-deim, gp-eqp; none for gp-adeim
+  EXPECT_EQ(d[0].method, "gp-deim");  // k = 3, m = 8 (cost 648) before k = 5, m = 6 (cost 1533); m = 4 misses
+  EXPECT_EQ(std::make_pair(d[0].k, d[0].m), std::make_pair(3, 8));
+  EXPECT_TRUE(d[0].met);
+  EXPECT_EQ(d[0].estimatedMax, 0.005);
+  EXPECT_EQ(d[1].method, "gp-eqp");  // none meets 0.01: the smallest estimate, marked not met
+  EXPECT_EQ(std::make_pair(d[1].k, d[1].m), std::make_pair(3, 8));
+  EXPECT_FALSE(d[1].met);
+  EXPECT_TRUE(std::isnan(d[1].verifiedMax));
+}
+
+// A greedy build stores the defaults, confirmed by full solves at fresh points (neither candidates
+// nor training points): the estimate recomputed from the file at every candidate, and an E_L2 there.
+TEST(GreedyTraining, StoresConfirmedQueryDefaults) {
+  auto comm = Tpetra::getDefaultComm();
+  TempDir dir;
+  const auto scene = std::make_shared<Nls1d>(32);
+  ModelBuildOptions o = smallBuild(3, {4, 6});
+  GreedyOptions g;
+  g.targetError = 0.5;  // met by both models in the first round: the cheaper one, m = 4, is the default
+  g.candidates = 5;
+  g.seed = 4;
+  g.confirmPoints = 2;
+  const GreedyResult r = buildToTargetError(*scene, comm, o, dir.file("g.h5"), g);
+  ASSERT_TRUE(r.met);
+  const ReducedModel file(dir.file("g.h5"), scene);
+  ASSERT_EQ(file.data().queryDefaults.size(), 1u);
+  const QueryDefault& q = file.data().queryDefaults[0];
+  EXPECT_EQ(q.method, "gp-deim");
+  EXPECT_EQ(std::make_pair(q.k, q.m), std::make_pair(3, 4));
+  EXPECT_TRUE(q.met);
+  double largest = 0.0;
+  for (const auto& mu : candidatePoints(scene->parameterBox(), g.candidates, g.seed))
+    largest = std::max(largest, file.instantiate("gp-deim", 3, 4, mu).simulate(0.2, 0.01).errorEstimate);
+  EXPECT_DOUBLE_EQ(q.estimatedMax, largest);
+  // confirmed: a finite error of a model that works (E_L2 < 1), at points trained on by no one
+  EXPECT_TRUE(std::isfinite(q.verifiedMax) && q.verifiedMax > 0.0 && q.verifiedMax < 1.0) << q.verifiedMax;
+  const auto fresh = freshPoints(scene->parameterBox(), g.confirmPoints, g.seed);
+  ASSERT_EQ(fresh.size(), 2u);
+  for (const auto& mu : fresh) {
+    EXPECT_EQ(std::count(file.data().trainingParameters.begin(), file.data().trainingParameters.end(), mu), 0);
+    const auto c = candidatePoints(scene->parameterBox(), g.candidates, g.seed);
+    EXPECT_EQ(std::count(c.begin(), c.end(), mu), 0);
+  }
 }
 
 }  // namespace

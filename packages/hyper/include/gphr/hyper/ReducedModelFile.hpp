@@ -12,6 +12,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -87,6 +88,20 @@ struct TrainingRound {
   std::vector<double> added;  ///< the candidate added next (empty in the last round)
 };
 
+/// The model a query of a method runs where it leaves k or m open (gphr build --target-error):
+/// the method's cheapest model (onlineCostProxy) whose largest error estimate over the greedy
+/// candidates met the target, or, where none did, the one with the smallest.
+struct QueryDefault {
+  std::string method;  ///< gp-deim, gp-eqp, gp-eqp-refit
+  /// the model's sizes
+  /// @{
+  int k = 0, m = 0;
+  /// @}
+  double estimatedMax = 0.0;  ///< its largest error estimate over the greedy candidates
+  double verifiedMax = std::numeric_limits<double>::quiet_NaN();  ///< its largest E_L2 at fresh points (full solves); NaN: not confirmed
+  bool met = false;           ///< estimatedMax <= the file's target error
+};
+
 /// The contents of a reduced-model file (doc/model-file.md).
 struct ReducedModelData {
   int schemaVersion = kReducedModelSchema;  ///< Layout version (kReducedModelSchema).
@@ -119,6 +134,9 @@ struct ReducedModelData {
   /// The error a query is held to (build.targetError): a query whose estimate exceeds it is marked;
   /// 0: none set.
   double targetError = 0.0;
+  /// Per method, the model a query takes where it gives no k or m (empty: none; a greedy build's).
+  std::vector<QueryDefault> queryDefaults;
+  const QueryDefault* queryDefault(const std::string& method) const;  ///< the method's, or null
   /// The rounds of the greedy training that built the file (empty: a training set given whole).
   /// Provenance, outside the checksum: no query reads it.
   std::vector<TrainingRound> greedy;

@@ -22,6 +22,15 @@ struct CalibrationPoint {
   double error = 0.0;             ///< E_L2 against the training trajectory
 };
 
+/// Every model of `data` whose k has indicator rows and a basis in `bases`, run as a query at each
+/// parameter of `reference` (a training result: shifted states every `snapshotEvery`-th of `steps`
+/// steps of size dt), with its indicator and its E_L2 against that trajectory (NaN where the run
+/// failed). The calibration's measure; also the greedy build's confirmation at fresh points. Collective.
+std::map<std::string, std::vector<CalibrationPoint>> measureModelErrors(
+    const ReducedModelData& data, const Scene& scene, const HamiltonianSystem& like,
+    const std::map<int, RCP<const MultiVector>>& bases, const TrainingResult& reference, long snapshotEvery,
+    double dt, long steps);
+
 /// Calibrates every model of `data` whose k has indicator rows (see the file's description):
 /// bases[k] is A of k on `like`'s map (the build's shifted instance); the training's snapshots
 /// are the shifted states every `snapshotEvery`-th of `steps` steps of size dt. Returns the points

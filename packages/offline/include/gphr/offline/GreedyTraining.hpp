@@ -7,6 +7,7 @@
 /// estimate exceeds the target add its worst candidate to the training set and build again. The
 /// artifacts cache keeps every finished parameter's states (trainingStatesKey), so a round trains
 /// its new parameter only; the bases are recomputed from the grown set.
+#include <map>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@ struct GreedyOptions {
   int candidates = 64;       ///< candidate points of the box, uniform at random from `seed`
   unsigned long seed = 1;    ///< of the candidates: the same seed, the same points (and rounds)
   int maxPoints = 40;        ///< training points at most (the build stops there, target met or not)
+  int confirmPoints = 3;     ///< fresh points where full solves confirm the query defaults (0: none)
 };
 
 /// One round: the training set's size, the best model and its largest estimate over the
@@ -37,6 +39,19 @@ struct GreedyResult {
 std::vector<std::vector<double>> cornersAndCentre(const ParameterBox& box);
 /// `count` points uniform in the box from `seed` (std::mt19937_64, the same on every rank and machine).
 std::vector<std::vector<double>> candidatePoints(const ParameterBox& box, int count, unsigned long seed);
+
+/// The online cost of a model of sizes (k, m) per Newton iteration, for choosing between models
+/// (deterministic, unlike a timing): the reduced Jacobian assembled from m sampled rows, 2 m (2k)^2
+/// flops, and its LU, (2k)^3 / 3.
+double onlineCostProxy(int k, int m);
+/// Per method of `models` with an estimate in `largest` (model key -> largest estimate over the
+/// candidates): the cheapest model meeting `target` (ties: smaller k, then m), else the one with
+/// the smallest estimate. verifiedMax NaN (confirmQueryDefaults fills it).
+std::vector<QueryDefault> chooseQueryDefaults(const std::vector<StoredHyperModel>& models,
+                                              const std::map<std::string, double>& largest, double target);
+/// `count` points of the box from a stream of their own (seeded by `seed`, not the candidates'):
+/// where full solves confirm the query defaults.
+std::vector<std::vector<double>> freshPoints(const ParameterBox& box, int count, unsigned long seed);
 
 /// Trains greedily to g.targetError (see the file's description) and writes the model file at
 /// `path`; the file records the target, the rounds and the estimate reached (ReducedModelData::

@@ -26,6 +26,7 @@ struct ModelBuildOptions : OfflineOptions {
   double T = 0.0;             ///< the file's default horizon (0: the training's steps x dt)
   std::string config;         ///< provenance: the whole configuration as YAML
   std::vector<TrainingRound> greedyRounds;  ///< provenance: the greedy training's rounds (GreedyTraining.hpp)
+  std::vector<QueryDefault> queryDefaults;  ///< the file's query defaults (the greedy training's choice)
 };
 
 /// What the offline phase produced.
