@@ -1,28 +1,44 @@
 #!/usr/bin/env bash
 # Greedy training to a target error against the smallest tensor grid that meets it (issue 54),
-# measured side by side in one run, the machine printed: on the SWE box (beta in [1.1, 1.7],
-# gamma in [0.7, 1.3]; nx = NX, IMR, T = 1, dt = 0.005; gp-deim k = K, m = M), for
+# measured side by side in one run, the machine printed, on one of two boxes:
+#   SCENE=swe (default): the SWE box (beta in [1.1, 1.7], gamma in [0.7, 1.3]); nx = NX, IMR,
+#            T = 1, dt = 0.005; gp-deim k = K, m = M (defaults 16, 10, 40);
+#   SCENE=nls3: nls1d-pulse, three parameters (eps in [0.9, 1.1], the pulse's amplitude in
+#            [0.8, 1.2] and velocity in [0.3, 0.7]); n = N, AVF, T = 1, dt = 0.01; gp-deim k = K,
+#            m = M (defaults 128, 12, 24);
+# for
 #   greedy   gphr build --target-error EPS (corners and centre, then the worst of 64 candidates per
 #            round, seed 1), and
-#   grids    gphr build with training.points [g, g], g = 2, 3, ..., GMAX,
+#   grids    gphr build with training.points [g, ..., g], g = 2, 3, ..., GMAX,
 # the full solves, the offline seconds (gphr build's wall time, each from an empty artifacts
 # cache) and the max E_L2 of the model over 64 random held-out points (seed 7, other than the
 # candidates'; gphr validate). The smallest grid whose max E_L2 is <= EPS is the one to beat.
-# usage: bash bench/greedy.sh [BUILD_DIR]   (env: EPS=4e-5 NX=16 K=10 M=40 GMAX=5)
+# usage: bash bench/greedy.sh [BUILD_DIR]   (env: SCENE=swe EPS=4e-5 NX=16 K=10 M=40 GMAX=5;
+#                                            SCENE=nls3 EPS=1e-3 N=128 K=12 M=24 GMAX=4)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 . bench/machine.sh
 build=${1:-build}
 gphr=$PWD/$build/packages/driver/gphr
-EPS=${EPS:-4e-5}; NX=${NX:-16}; K=${K:-10}; M=${M:-40}; GMAX=${GMAX:-5}
+SCENE=${SCENE:-swe}
+case $SCENE in
+  swe)  EPS=${EPS:-4e-5}; NX=${NX:-16}; K=${K:-10}; M=${M:-40}; GMAX=${GMAX:-5}
+        SCENE_LINE="scene: {name: swe2d, nx: $NX}"; TIME_LINE="time: {T: 1.0, dt: 0.005}"
+        INTEGRATOR="{scheme: imr, jacobianLag: true}"; BOX="beta 1.1 1.7 gamma 0.7 1.3"; DT=0.005 ;;
+  nls3) EPS=${EPS:-1e-3}; N=${N:-128}; K=${K:-12}; M=${M:-24}; GMAX=${GMAX:-4}
+        SCENE_LINE="scene: {name: nls1d-pulse, n: $N}"; TIME_LINE="time: {T: 1.0, dt: 0.01}"
+        INTEGRATOR="{scheme: avf}"; BOX="eps 0.9 1.1 amplitude 0.8 1.2 velocity 0.3 0.7"; DT=0.01 ;;
+  *) echo "SCENE=$SCENE; allowed: swe, nls3"; exit 2 ;;
+esac
+set -- $BOX; P=$(( $# / 3 ))
 export OPENBLAS_NUM_THREADS=1
 out=bench-out/greedy; rm -rf "$out"; mkdir -p "$out"; cd "$out"
 config() {  # config FILE TRAINING
   cat > "$1" <<YAML
 gphr:
-  scene: {name: swe2d, nx: $NX}
-  time: {T: 1.0, dt: 0.005}
-  integrator: {scheme: imr, jacobianLag: true}
+  $SCENE_LINE
+  $TIME_LINE
+  integrator: $INTEGRATOR
   training: {$2snapshotEvery: 2}
   pipeline: {methods: [gp-deim], k: [$K], m: [$M]}
   hyper: {snapshotEvery: 2}
@@ -30,12 +46,14 @@ gphr:
   output: {progressSeconds: 0.0}
 YAML
 }
-/usr/bin/python3 - <<'PY'
-import random
+/usr/bin/python3 - "$DT" $BOX <<'PY'
+import random, sys
+dt, spec = sys.argv[1], sys.argv[2:]
+box = [(spec[i], float(spec[i + 1]), float(spec[i + 2])) for i in range(0, len(spec), 3)]
 r = random.Random(7)
-lines = ["validate:", "  defaults: {T: 1.0, dt: 0.005, saveEvery: 10}", "  points:"]
+lines = ["validate:", f"  defaults: {{T: 1.0, dt: {dt}, saveEvery: 10}}", "  points:"]
 for i in range(64):
-    lines.append(f"    h{i:02d}: {{beta: {r.uniform(1.1, 1.7):.6f}, gamma: {r.uniform(0.7, 1.3):.6f}}}")
+    lines.append(f"    h{i:02d}: {{" + ", ".join(f"{n}: {r.uniform(lo, hi):.6f}" for n, lo, hi in box) + "}")
 open("held.yaml", "w").write("\n".join(lines) + "\n")
 PY
 # measure NAME CONFIG [BUILD ARGS...]: full solves, offline seconds, max E_L2 over the held-out points
@@ -60,10 +78,10 @@ print(f"{name:10s} full solves {solves:3d}  offline {seconds:6.1f} s  max E_L2 {
 PY
 }
 echo "machine: $(machine_line "$gphr")"
-echo "SWE nx = $NX, gp-deim k = $K, m = $M, EPS = $EPS; 64 held-out points"
+echo "$SCENE_LINE, gp-deim k = $K, m = $M, EPS = $EPS; 64 held-out points"
 config greedy.yaml ""
 measure greedy greedy.yaml --target-error "$EPS"
 for g in $(seq 2 "$GMAX"); do
-  config "grid$g.yaml" "points: [$g, $g], "
+  config "grid$g.yaml" "points: [$(printf "$g, %.0s" $(seq 2 "$P"))$g], "
   measure "grid$g" "grid$g.yaml"
 done

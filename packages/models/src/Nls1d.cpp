@@ -26,12 +26,18 @@ struct NlsKernel {
 };
 }  // namespace
 
-Nls1d::Nls1d(GO n, double halfLength) : n_(n), L_(halfLength) {
+Nls1d::Nls1d(GO n, double halfLength, bool pulseParameters) : n_(n), L_(halfLength), pulse_(pulseParameters) {
   GPHR_REQUIRE(n >= 3, InputError, "nls1d: n = ", n, " is not allowed: n must be >= 3");
   GPHR_REQUIRE(halfLength > 0, InputError, "nls1d: half length ", halfLength, " must be > 0");
   box_.names = {"eps"};
   box_.bounds = {{0.9, 1.1}};
   box_.enters = {EntersRowKernel};
+  if (!pulse_) return;
+  // the pulse u0 = a sqrt(2) sech(x) e^{i c x}: its amplitude a and velocity c (the paper's a = 1,
+  // c = 1/2 at the box's centre), both in the initial state only
+  box_.names.insert(box_.names.end(), {"amplitude", "velocity"});
+  box_.bounds.insert(box_.bounds.end(), {{0.8, 1.2}, {0.3, 0.7}});
+  box_.enters.insert(box_.enters.end(), {EntersInitialState, EntersInitialState});
 }
 
 std::optional<SceneGrid> Nls1d::grid() const {
@@ -40,7 +46,8 @@ std::optional<SceneGrid> Nls1d::grid() const {
 }
 
 RCP<const RowEvaluator> Nls1d::rowKernel(const std::vector<double>& mu) const {
-  GPHR_REQUIRE(mu.size() == 1, InputError, "nls1d takes one parameter (eps), got ", mu.size());
+  GPHR_REQUIRE(mu.size() == box_.names.size(), InputError, name(), " takes ", box_.names.size(), " parameter(s), got ",
+               mu.size());
   return makeRowEvaluator(NlsKernel{mu[0]}, 4, 2);  // stencil (q_i, p_i)
 }
 
@@ -60,8 +67,10 @@ std::pair<RCP<HamiltonianSystem>, RCP<Vector>> Nls1d::rebuild(const HamiltonianS
 std::pair<RCP<HamiltonianSystem>, RCP<Vector>> Nls1d::assemble(const HamiltonianSystem* like,
                                                               const RCP<const Comm>& comm,
                                                               const std::vector<double>& mu) const {
-  GPHR_REQUIRE(mu.size() == 1, InputError, "nls1d takes one parameter (eps), got ", mu.size());
+  GPHR_REQUIRE(mu.size() == box_.names.size(), InputError, name(), " takes ", box_.names.size(), " parameter(s), got ",
+               mu.size());
   const double eps = mu[0], dx = 2 * L_ / n_, c = 1.0 / (dx * dx);
+  const double a = pulse_ ? mu[1] : 1.0, velocity = pulse_ ? mu[2] : 0.5;  // the pulse (paper: 1, 1/2)
   const RCP<const PhaseSpace> space = like ? like->spacePtr() : rcp<const PhaseSpace>(new PhaseSpace(n_, comm));
   const auto& map = space->map();
   // L = blockdiag(-Dxx, -Dxx), periodic second-order central differences; on like's graph the
@@ -80,9 +89,9 @@ std::pair<RCP<HamiltonianSystem>, RCP<Vector>> Nls1d::assemble(const Hamiltonian
         if (like) L->replaceGlobalValues(off + i, cols, vals);
         else L->insertGlobalValues(off + i, cols, vals);
       }
-      const double x = -L_ + i * dx, amp = std::sqrt(2.0) / std::cosh(x);
-      yv(il, 0) = amp * std::cos(0.5 * x);
-      yv(space->numLocalDofs() + il, 0) = amp * std::sin(0.5 * x);
+      const double x = -L_ + i * dx, amp = a * std::sqrt(2.0) / std::cosh(x);
+      yv(il, 0) = amp * std::cos(velocity * x);
+      yv(space->numLocalDofs() + il, 0) = amp * std::sin(velocity * x);
       if (like) continue;
       st.gids.push_back(i);
       st.gids.push_back(n_ + i);

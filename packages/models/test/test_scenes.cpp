@@ -22,6 +22,7 @@ struct Case {
 std::vector<Case> cases() {
   return {{"nls", std::make_shared<Nls1d>(64), {1.0932}, false},
           {"nls_shifted", std::make_shared<Nls1d>(64), {0.95}, true},
+          {"nls_pulse_shifted", std::make_shared<Nls1d>(64, M_PI / 0.11, true), {1.05, 1.15, 0.35}, true},
           {"swe", std::make_shared<Swe2d>(8), {1.6435, 0.7762}, false},
           {"swe_shifted", std::make_shared<Swe2d>(8), {1.2, 1.1}, true}};
 }
@@ -132,7 +133,9 @@ TEST(Shift, ShiftedHamiltonianEqualsOriginalAtTranslatedState) {
 // not rebuilt.
 TEST(Scenes, RebuildOnALayoutEqualsBuild) {
   for (const auto& c : cases()) {
-    const std::vector<double> other = c.mu.size() == 1 ? std::vector<double>{1.05} : std::vector<double>{1.4, 0.9};
+    const std::vector<double> other = c.mu.size() == 1   ? std::vector<double>{1.05}
+                                      : c.mu.size() == 2 ? std::vector<double>{1.4, 0.9}
+                                                         : std::vector<double>{0.92, 0.85, 0.6};
     const auto first = c.scene->instantiate(test::comm(), c.mu, c.shift);
     const auto fresh = c.scene->instantiate(test::comm(), other, c.shift);
     const auto reused = c.scene->instantiate(*first.system, other, c.shift);
@@ -289,6 +292,35 @@ TEST(Scenes, NlsHamiltonianAndInitialStateAreDocScenesFormulas) {
     const double x = -L + i * dx, amp = std::sqrt(2.0) / std::cosh(x);
     EXPECT_NEAR(v(l, 0), gid < n ? amp * std::cos(x / 2) : amp * std::sin(x / 2), 1e-15) << "entry " << gid;
   }
+}
+
+// nls1d-pulse is nls1d with the pulse's amplitude a and velocity c as parameters: at the paper's
+// a = 1, c = 1/2 the same system and y0 bit for bit; elsewhere y0 = a sqrt(2) sech(x) e^{i c x}
+// (to 1e-15: the formula evaluated the same way), and H, L and G do not depend on a or c.
+TEST(Scenes, NlsPulseIsNlsWithTheInitialPulseOfItsParameters) {
+  const int n = 48;
+  const double eps = 1.0932, L = M_PI / 0.11, dx = 2 * L / n;
+  const Nls1d pulse(n, L, true), plain(n);
+  EXPECT_EQ(pulse.name(), "nls1d-pulse");
+  EXPECT_EQ(pulse.parameterBox().names, (std::vector<std::string>{"eps", "amplitude", "velocity"}));
+  EXPECT_EQ(pulse.parameterBox().enters,
+            (std::vector<unsigned>{EntersRowKernel, EntersInitialState, EntersInitialState}));
+  auto [sysP, y0P] = pulse.build(test::comm(), {eps, 1.0, 0.5});
+  auto [sys, y0] = plain.build(test::comm(), {eps});
+  Vector d(*y0P, Teuchos::Copy);
+  d.update(-1.0, *y0, 1.0);
+  EXPECT_EQ(d.normInf(), 0.0);
+  EXPECT_EQ(sysP->hamiltonian(formulaState(*sysP)), sys->hamiltonian(formulaState(*sys)));
+  const double a = 1.15, c = 0.35;
+  auto [sysAc, y0Ac] = pulse.build(test::comm(), {eps, a, c});
+  EXPECT_EQ(sysAc->hamiltonian(formulaState(*sysAc)), sys->hamiltonian(formulaState(*sys)));
+  auto v = y0Ac->getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (size_t l = 0; l < v.extent(0); ++l) {
+    const long gid = y0Ac->getMap()->getGlobalElement(static_cast<LO>(l)), i = gid % n;
+    const double x = -L + i * dx, amp = a * std::sqrt(2.0) / std::cosh(x);
+    EXPECT_NEAR(v(l, 0), gid < n ? amp * std::cos(c * x) : amp * std::sin(c * x), 1e-15) << "entry " << gid;
+  }
+  EXPECT_THROW(pulse.build(test::comm(), {eps}), InputError);  // three parameters
 }
 
 TEST(Scenes, SweHamiltonianAndInitialStateAreDocScenesFormulas) {

@@ -86,9 +86,11 @@ class Scene {
 /// H = 1/2 q^T(-Dxx)q + 1/2 p^T(-Dxx)p - eps/4 sum_i (q_i^2 + p_i^2)^2  (not scaled by dx; doc/scenes.md).
 class Nls1d final : public Scene {
  public:
-  /// NLS with n grid points on [-halfLength, halfLength).
-  explicit Nls1d(GO n, double halfLength = 3.14159265358979323846 / 0.11);
-  std::string name() const override { return "nls1d"; }
+  /// NLS with n grid points on [-halfLength, halfLength). pulseParameters: the scene nls1d-pulse,
+  /// whose box adds the initial pulse's amplitude a and velocity c, u0 = a sqrt(2) sech(x) e^{i c x}
+  /// (the paper's a = 1, c = 1/2), to eps: three parameters, two of them in y0 only.
+  explicit Nls1d(GO n, double halfLength = 3.14159265358979323846 / 0.11, bool pulseParameters = false);
+  std::string name() const override { return pulse_ ? "nls1d-pulse" : "nls1d"; }
   const ParameterBox& parameterBox() const override { return box_; }
   std::pair<RCP<HamiltonianSystem>, RCP<Vector>> build(const RCP<const Comm>& comm,
                                                       const std::vector<double>& mu) const override;
@@ -104,6 +106,7 @@ class Nls1d final : public Scene {
                                                          const std::vector<double>& mu) const;
   GO n_;
   double L_;
+  bool pulse_ = false;  ///< nls1d-pulse: amplitude and velocity are parameters too
   ParameterBox box_;
 };
 
