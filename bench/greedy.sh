@@ -7,20 +7,20 @@
 #            [0.8, 1.2] and velocity in [0.3, 0.7]); n = N, AVF, T = 1, dt = 0.01; gp-deim k = K,
 #            m = M (defaults 128, 12, 24);
 # for
-#   greedy   gphr build --target-error EPS (corners and centre, then the worst of 64 candidates per
-#            round, seed 1), and
+#   greedy   gphr build --target-error EPS (build.greedyStart START: the corners and centre, or the
+#            centre alone; then the worst of 64 candidates per round, seed 1), and
 #   grids    gphr build with training.points [g, ..., g], g = 2, 3, ..., GMAX,
 # the full solves, the offline seconds (gphr build's wall time, each from an empty artifacts
 # cache) and the max E_L2 of the model over 64 random held-out points (seed 7, other than the
 # candidates'; gphr validate). The smallest grid whose max E_L2 is <= EPS is the one to beat.
-# usage: bash bench/greedy.sh [BUILD_DIR]   (env: SCENE=swe EPS=4e-5 NX=16 K=10 M=40 GMAX=5;
+# usage: bash bench/greedy.sh [BUILD_DIR]   (env: START=corners|centre; SCENE=swe EPS=4e-5 NX=16 K=10 M=40 GMAX=5;
 #                                            SCENE=nls3 EPS=1e-3 N=128 K=12 M=24 GMAX=4)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 . bench/machine.sh
 build=${1:-build}
 gphr=$PWD/$build/packages/driver/gphr
-SCENE=${SCENE:-swe}
+SCENE=${SCENE:-swe}; START=${START:-corners}
 case $SCENE in
   swe)  EPS=${EPS:-4e-5}; NX=${NX:-16}; K=${K:-10}; M=${M:-40}; GMAX=${GMAX:-5}
         SCENE_LINE="scene: {name: swe2d, nx: $NX}"; TIME_LINE="time: {T: 1.0, dt: 0.005}"
@@ -42,7 +42,7 @@ gphr:
   training: {$2snapshotEvery: 2}
   pipeline: {methods: [gp-deim], k: [$K], m: [$M]}
   hyper: {snapshotEvery: 2}
-  build: {withBasis: true}
+  build: {withBasis: true, greedyStart: $START}
   output: {progressSeconds: 0.0}
 YAML
 }
@@ -78,7 +78,7 @@ print(f"{name:10s} full solves {solves:3d}  offline {seconds:6.1f} s  max E_L2 {
 PY
 }
 echo "machine: $(machine_line "$gphr")"
-echo "$SCENE_LINE, gp-deim k = $K, m = $M, EPS = $EPS; 64 held-out points"
+echo "$SCENE_LINE, gp-deim k = $K, m = $M, EPS = $EPS; greedy start: $START; 64 held-out points"
 config greedy.yaml ""
 measure greedy greedy.yaml --target-error "$EPS"
 for g in $(seq 2 "$GMAX"); do

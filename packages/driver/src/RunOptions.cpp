@@ -323,6 +323,7 @@ RunOptions runOptionsFrom(const Teuchos::ParameterList& cfg) {
   o.greedy.seed = static_cast<unsigned long>(build.get<int>("candidateSeed"));
   o.greedy.maxPoints = build.get<int>("maxTrainingPoints");
   o.greedy.confirmPoints = build.get<int>("confirmPoints");
+  o.greedy.start = build.get<std::string>("greedyStart");
   return o;
 }
 

@@ -69,6 +69,9 @@ void requireAscending(const std::vector<T>& v, const std::string& what) {
                  ", ", v[i], ")");
 }
 
+// A query default as the file names it: "METHOD k=K m=M" (readQueryDefaults parses it back).
+std::string queryDefaultText(const QueryDefault& q) { return detail::concat(q.method, " k=", q.k, " m=", q.m); }
+
 std::string joined(const std::vector<std::string>& v) {
   std::string s;
   for (const auto& x : v) s += (s.empty() ? "" : ",") + x;
@@ -130,7 +133,7 @@ void writeProvenance(Hdf5File& f, const ReducedModelData& d) {
     std::string names;
     std::vector<double> errors;
     for (const auto& q : d.queryDefaults) {
-      names += detail::concat(names.empty() ? "" : ";", q.method, " k=", q.k, " m=", q.m);
+      names += (names.empty() ? "" : ";") + queryDefaultText(q);
       errors.insert(errors.end(), {q.estimatedMax, q.verifiedMax, q.met ? 1.0 : 0.0});
     }
     f.setAttribute("/", "query_defaults", names);
@@ -491,7 +494,7 @@ std::string modelDataChecksum(const ReducedModelData& d) {
   }
   h.number(d.targetError);
   for (const auto& q : d.queryDefaults) {  // none: nothing added (files without defaults verify as before)
-    h.text(detail::concat(q.method, " k=", q.k, " m=", q.m));
+    h.text(queryDefaultText(q));
     h.numbers(std::vector<double>{q.estimatedMax, q.verifiedMax, q.met ? 1.0 : 0.0});
   }
   for (const auto& m : d.models) {

@@ -10,6 +10,7 @@
 
 #include "gphr/core/Error.hpp"
 #include "gphr/core/Method.hpp"
+#include "gphr/core/Progress.hpp"
 #include "gphr/offline/ErrorCalibration.hpp"
 #include "gphr/online/ReducedModel.hpp"
 #include "gphr/reduction/SymplecticBasis.hpp"
@@ -28,6 +29,14 @@ std::vector<std::vector<double>> cornersAndCentre(const ParameterBox& box) {
   for (const auto& [lo, hi] : box.bounds) centre.push_back(0.5 * (lo + hi));
   out.push_back(centre);
   return out;
+}
+
+std::vector<std::vector<double>> greedyStart(const ParameterBox& box, const std::string& start) {
+  GPHR_REQUIRE(start == "corners" || start == "centre", InputError, "greedy start '", start,
+               "'; allowed: corners (the box's corners and centre), centre (the centre alone)");
+  auto points = cornersAndCentre(box);
+  if (start == "centre") points.erase(points.begin(), points.end() - 1);  // the centre is the last
+  return points;
 }
 
 std::vector<std::vector<double>> candidatePoints(const ParameterBox& box, int count, unsigned long seed) {
@@ -71,6 +80,7 @@ GreedyRound estimateRound(const ReducedModel& rm, const std::vector<std::vector<
 void confirmQueryDefaults(const Scene& scene, const RCP<const Comm>& comm, const ModelBuildOptions& o,
                           const ModelBuildResult& build, const GreedyOptions& g, std::vector<QueryDefault>& defaults) {
   if (g.confirmPoints <= 0 || defaults.empty()) return;
+  const ProgressPhase phase(detail::concat("greedy: full solves at ", g.confirmPoints, " fresh points"));
   TrainingOptions fresh = o.training;
   fresh.parameters = freshPoints(scene.parameterBox(), g.confirmPoints, g.seed);
   fresh.progress = false;
@@ -83,7 +93,7 @@ void confirmQueryDefaults(const Scene& scene, const RCP<const Comm>& comm, const
                                            o.training.dt, o.training.steps);
   for (auto& q : defaults) {
     q.verifiedMax = 0.0;
-    const auto it = measured.find(detail::concat(q.method, "/k", q.k, "/m", q.m));
+    const auto it = measured.find(build.data.model(q.method, q.k, q.m).key());
     if (it == measured.end() || it->second.empty()) q.verifiedMax = std::numeric_limits<double>::quiet_NaN();
     else
       for (const auto& p : it->second)  // a run that failed (NaN) counts as an infinite error
@@ -106,10 +116,11 @@ std::vector<QueryDefault> chooseQueryDefaults(const std::vector<StoredHyperModel
     if (it == largest.end()) continue;  // not estimated (gp-adeim)
     QueryDefault q{x.method, x.k, x.m, it->second, std::numeric_limits<double>::quiet_NaN(), it->second <= target};
     const auto b = best.find(x.method);
-    const auto better = [&](const QueryDefault& a, const QueryDefault& c) {  // a before c?
+    const auto better = [](const QueryDefault& a, const QueryDefault& c) {  // a before c?
       if (a.met != c.met) return a.met;
-      if (!a.met) return a.estimatedMax < c.estimatedMax || (a.estimatedMax == c.estimatedMax && onlineCostProxy(a.k, a.m) < onlineCostProxy(c.k, c.m));
       const double ca = onlineCostProxy(a.k, a.m), cc = onlineCostProxy(c.k, c.m);
+      // not met: the smaller estimate first; met: the cheaper first; then the smaller k, m
+      if (!a.met && a.estimatedMax != c.estimatedMax) return a.estimatedMax < c.estimatedMax;
       return ca < cc || (ca == cc && std::make_pair(a.k, a.m) < std::make_pair(c.k, c.m));
     };
     if (b == best.end() || better(q, b->second)) best[x.method] = q;
@@ -138,9 +149,10 @@ GreedyResult buildToTargetError(const Scene& scene, const RCP<const Comm>& comm,
                "for have none (gp-adeim needs a full system per point); allowed: gp-deim, gp-eqp or gp-eqp-refit "
                "among them");
   const ParameterBox& box = scene.parameterBox();
-  std::vector<std::vector<double>> params = cornersAndCentre(box), candidates = candidatePoints(box, g.candidates, g.seed);
+  std::vector<std::vector<double>> params = greedyStart(box, g.start),
+                                   candidates = candidatePoints(box, g.candidates, g.seed);
   GPHR_REQUIRE(g.maxPoints >= static_cast<int>(params.size()), InputError, "greedy training starts from ",
-               params.size(), " points (the box's corners and centre); allowed: build.maxTrainingPoints >= that, got ",
+               params.size(), " points (build.greedyStart '", g.start, "'); allowed: build.maxTrainingPoints >= that, got ",
                g.maxPoints);
   o.file.targetError = g.targetError;
   const std::shared_ptr<const Scene> sceneRef(&scene, [](const Scene*) {});  // not owned: the caller's
@@ -172,11 +184,16 @@ GreedyResult buildToTargetError(const Scene& scene, const RCP<const Comm>& comm,
   // at fresh points: the defaults of a query that names a method only.
   o.queryDefaults = chooseQueryDefaults(out.build.data.models, largest, g.targetError);
   confirmQueryDefaults(scene, comm, o, out.build, g, o.queryDefaults);
-  if (comm->getRank() == 0)
-    for (const auto& q : o.queryDefaults)
-      std::fprintf(stderr, "[gphr] greedy: query default %s k=%d m=%d: estimated max %.3e over the candidates%s, "
-                   "E_L2 max %.3e at %d fresh points (full solves)\n", q.method.c_str(), q.k, q.m, q.estimatedMax,
-                   q.met ? "" : " (target not met: the method's best)", q.verifiedMax, g.confirmPoints);
+  for (const auto& q : o.queryDefaults) {
+    char confirmed[96] = "not confirmed (build.confirmPoints: 0)";
+    if (g.confirmPoints > 0)
+      std::snprintf(confirmed, sizeof confirmed, "E_L2 max %.3e at %d fresh points (full solves)", q.verifiedMax,
+                    g.confirmPoints);
+    if (comm->getRank() == 0)
+      std::fprintf(stderr, "[gphr] greedy: query default %s k=%d m=%d: estimated max %.3e over the candidates%s, %s\n",
+                   q.method.c_str(), q.k, q.m, q.estimatedMax, q.met ? "" : " (target not met: the method's best)",
+                   confirmed);
+  }
   // The file once more with every round in it: its stages are all in the cache (or in memory: the
   // training again without one), only the calibration and the write are redone.
   o.greedyRounds = out.rounds;

@@ -143,6 +143,9 @@ Teuchos::ParameterList modelFileValidParameters() {
   setIntParameter(bld, "candidateSeed", 1, 0, 2147483647, "gphr build with targetError: the candidates' seed");
   setIntParameter(bld, "maxTrainingPoints", 40, 1, 10000,
                   "gphr build with targetError: training points at most (the corners and centre of the box first)");
+  setChoiceParameter(bld, "greedyStart", "corners", Teuchos::tuple<std::string>("corners", "centre"),
+                     "gphr build with targetError: the first training set: the box's corners and centre (2^p + 1 "
+                     "points), or its centre alone (the fewest full solves; every further point by the estimate)");
   setIntParameter(bld, "confirmPoints", 3, 0, 1000,
                   "gphr build with targetError: fresh points of the box (seeded, not trained on) where full solves "
                   "confirm each query default's error (E_L2 max in the file); 0: none");

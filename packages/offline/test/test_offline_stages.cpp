@@ -792,6 +792,9 @@ TEST(GreedyTraining, StartsAtTheCornersAndCentreAndSeedsItsCandidates) {
   box.bounds = {{0.0, 1.0}, {2.0, 4.0}};
   EXPECT_EQ(cornersAndCentre(box),
             (std::vector<std::vector<double>>{{0, 2}, {1, 2}, {0, 4}, {1, 4}, {0.5, 3}}));
+  EXPECT_EQ(greedyStart(box, "corners"), cornersAndCentre(box));
+  EXPECT_EQ(greedyStart(box, "centre"), (std::vector<std::vector<double>>{{0.5, 3}}));
+  EXPECT_THROW(greedyStart(box, "center"), InputError);
   const auto a = candidatePoints(box, 50, 7), b = candidatePoints(box, 50, 7), c = candidatePoints(box, 50, 8);
   EXPECT_EQ(a, b);  // the same seed, the same points
   EXPECT_NE(a, c);

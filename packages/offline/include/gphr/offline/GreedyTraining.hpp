@@ -22,6 +22,10 @@ struct GreedyOptions {
   unsigned long seed = 1;    ///< of the candidates: the same seed, the same points (and rounds)
   int maxPoints = 40;        ///< training points at most (the build stops there, target met or not)
   int confirmPoints = 3;     ///< fresh points where full solves confirm the query defaults (0: none)
+  /// The first training set: "corners" (the box's corners and centre, 2^p + 1 points: every edge
+  /// of the box trained from the start) or "centre" (the centre alone: the fewest full solves,
+  /// every further point chosen by the estimate).
+  std::string start = "corners";
 };
 
 /// One round: the training set's size, the best model and its largest estimate over the
@@ -37,6 +41,8 @@ struct GreedyResult {
 
 /// The box's corners and centre (2^p + 1 points; the centre alone for p = 0).
 std::vector<std::vector<double>> cornersAndCentre(const ParameterBox& box);
+/// The greedy training's first set for `start` (GreedyOptions::start); InputError for another word.
+std::vector<std::vector<double>> greedyStart(const ParameterBox& box, const std::string& start);
 /// `count` points uniform in the box from `seed` (std::mt19937_64, the same on every rank and machine).
 std::vector<std::vector<double>> candidatePoints(const ParameterBox& box, int count, unsigned long seed);
 
