@@ -374,7 +374,7 @@ bool plotErrorVsTotalTime(const RomStages& st, const std::string& runs, const st
 }
 
 // The data files and report.md; the names written go to `written`.
-void writeHyperData(const RunContext& ctx, const RunOptions& opt, const FomResult& fom, const RomStages& st, const ModelRun* terms,
+void writeHyperData(const RunOptions& opt, const FomResult& fom, const RomStages& st, const ModelRun* terms,
                     const std::map<std::string, std::string>& p, std::vector<std::string>& written) {
   writeRunsCsv(st, fom.tOnline, p.at("runs.csv"));
   written.push_back("runs.csv");
@@ -410,13 +410,13 @@ void writeHyperReportMd(const RunContext& ctx, const RunOptions& opt, const FomR
   writeTextFile(path, reportMd(ctx, opt, fom, st, line + ".\n"));
 }
 
-std::vector<std::string> writeHyperReport(const RunContext& ctx, const RunOptions& opt, const FomResult& fom, const RomStages& st,
+std::vector<std::string> writeHyperReport(const RunOptions& opt, const FomResult& fom, const RomStages& st,
                                           const std::map<std::string, std::string>& p, bool plots) {
   const ModelRun* terms = nullptr;  // the GP-DEIM run with the largest k, then m
   for (const auto& r : st.runs)
     if (r.info().fit == TermWeightFit::Deim && r.ok && (!terms || r.k > terms->k || (r.k == terms->k && r.m > terms->m))) terms = &r;
   std::vector<std::string> written;
-  writeHyperData(ctx, opt, fom, st, terms, p, written);
+  writeHyperData(opt, fom, st, terms, p, written);
   if (!plots || !haveGnuplot()) return written;
   const std::string runs = p.at("runs.csv");
   const auto plotted = [&](bool ok, const char* name) {

@@ -210,7 +210,7 @@ ReportWritten writeOnRoot(const RunContext& ctx, const RunOptions& opt, const Fo
   const ModelRun* firstRom = firstRomRun(rom);
   writeHistoryCsv(fom.hamiltonian, H0, nullptr, saveEvery, dt, files.csv.tempPath());
   if (firstRom) writeHistoryCsv(firstRom->hamiltonian, H0, &firstRom->errors, saveEvery, dt, files.romCsv.tempPath());
-  if (rom) w.hyperFiles = writeHyperReport(ctx, opt, fom, *rom, files.hyperPaths, plots);
+  if (rom) w.hyperFiles = writeHyperReport(opt, fom, *rom, files.hyperPaths, plots);
   const bool deimSv = std::find(w.hyperFiles.begin(), w.hyperFiles.end(), "deim_singular_values.csv") != w.hyperFiles.end();
   if (rom)
     writeSingularValues(rom->basis.singularValues, files.svCsv.tempPath(), files.svPng.tempPath(), plots,

@@ -70,7 +70,7 @@ TEST(ReducedEvaluation, AFrozenModelsErrorIsTheReferencesDistanceFromY0) {
   const auto inst = scene.instantiate(test::comm(), {1.0}, true);
   FrozenModel model(4);
   const ReducedEvaluation run =
-      evaluateReducedModel(settings, ref, *inst.system, *unitColumns(*inst.system, 4), model, {false, true, {}});
+      evaluateReducedModel(settings, ref, *inst.system, *unitColumns(*inst.system, 4), model, {false, true, {}, ""});
   // The lift is y0 at every step: eq:errNR is sqrt(sum ||y^j - y0||^2 / sum ||y^j||^2) over the saved steps.
   double num = 0.0, den = 0.0;
   const auto y0 = ref.trajectory->getVector(0);

@@ -19,7 +19,7 @@ namespace gphr {
 /// Root only. paths: "runs.csv", "error_vs_m.png", "pareto.png", "hamiltonian_terms.png",
 /// "deim_singular_values.csv" ... -> temporary file names. Returns the names of the files written.
 /// report.md comes after every picture (writeHyperReportMd), so that it names those drawn.
-std::vector<std::string> writeHyperReport(const RunContext& ctx, const RunOptions& options, const FomResult& fom, const RomStages& st,
+std::vector<std::string> writeHyperReport(const RunOptions& options, const FomResult& fom, const RomStages& st,
                                           const std::map<std::string, std::string>& paths,
                                           bool plots);
 
