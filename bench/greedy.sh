@@ -13,14 +13,20 @@
 # the full solves, the offline seconds (gphr build's wall time, each from an empty artifacts
 # cache) and the max E_L2 of the model over 64 random held-out points (seed 7, other than the
 # candidates'; gphr validate). The smallest grid whose max E_L2 is <= EPS is the one to beat.
-# usage: bash bench/greedy.sh [BUILD_DIR]   (env: START=corners|centre; SCENE=swe EPS=4e-5 NX=16 K=10 M=40 GMAX=5;
-#                                            SCENE=nls3 EPS=1e-3 N=128 K=12 M=24 GMAX=4)
+# NP ranks (default 1) run every build; IDOFS: build.indicatorDofs (default 16); PPR points per
+# greedy round (build.pointsPerRound, default 1: with NP > 1 and PPR > 1 the training's rank groups
+# integrate a round's points side by side).
+# The greedy build's query default follows its line (the file's `query_defaults`), and each line
+# gives, over the held-out points, the rank correlation of the query's error estimate with E_L2 and
+# the share of points where the estimate is within 3x of it.
+# usage: bash bench/greedy.sh [BUILD_DIR]   (env: START=corners|centre NP=1 PPR=1 IDOFS=16; SCENE=swe EPS=4e-5 NX=16
+#                                            K=10 M=40 GMAX=5; SCENE=nls3 EPS=1e-3 N=128 K=12 M=24 GMAX=4)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 . bench/machine.sh
 build=${1:-build}
 gphr=$PWD/$build/packages/driver/gphr
-SCENE=${SCENE:-swe}; START=${START:-corners}
+SCENE=${SCENE:-swe}; START=${START:-corners}; NP=${NP:-1}; PPR=${PPR:-1}; IDOFS=${IDOFS:-16}
 case $SCENE in
   swe)  EPS=${EPS:-4e-5}; NX=${NX:-16}; K=${K:-10}; M=${M:-40}; GMAX=${GMAX:-5}
         SCENE_LINE="scene: {name: swe2d, nx: $NX}"; TIME_LINE="time: {T: 1.0, dt: 0.005}"
@@ -42,7 +48,7 @@ gphr:
   training: {$2snapshotEvery: 2}
   pipeline: {methods: [gp-deim], k: [$K], m: [$M]}
   hyper: {snapshotEvery: 2}
-  build: {withBasis: true, greedyStart: $START}
+  build: {withBasis: true, greedyStart: $START, pointsPerRound: $PPR, indicatorDofs: $IDOFS}
   output: {progressSeconds: 0.0}
 YAML
 }
@@ -60,7 +66,9 @@ PY
 measure() {
   local name=$1 cfg=$2; shift 2
   local t0=$(date +%s.%N)
-  "$gphr" build "$cfg" --model "$name.h5" --output "art-$name" "$@" > "$name.build" 2> "$name.err"
+  if [ "$NP" = 1 ]; then "$gphr" build "$cfg" --model "$name.h5" --output "art-$name" "$@" > "$name.build" 2> "$name.err"
+  else mpirun --oversubscribe -np "$NP" "$gphr" build "$cfg" --model "$name.h5" --output "art-$name" "$@" \
+         > "$name.build" 2> "$name.err"; fi
   local t1=$(date +%s.%N)
   "$gphr" validate "$name.h5" held.yaml --output "v-$name" > /dev/null 2>&1
   /usr/bin/python3 - "$name" "$(echo "$t1 - $t0" | bc)" "$EPS" <<'PY'
@@ -69,16 +77,40 @@ name, seconds, eps = sys.argv[1], float(sys.argv[2]), float(sys.argv[3])
 rows = [r for r in csv.DictReader(open(f"v-{name}/validation.csv")) if r["method"] == "gp-deim"]
 worst = max(float(r["E_L2"]) if r["status"] == "ok" else float("inf") for r in rows)
 est = max(float(r["error_estimate"]) for r in rows)
+def ranks(v):
+    order = sorted(range(len(v)), key=lambda i: v[i])
+    out = [0.0] * len(v)
+    for pos, i in enumerate(order):
+        out[i] = pos
+    return out
+ok = [r for r in rows if r["status"] == "ok"]
+E, X = [float(r["E_L2"]) for r in ok], [float(r["error_estimate"]) for r in ok]
+rho = float("nan")
+if len(ok) > 2:
+    a, b = ranks(E), ranks(X)
+    ma, mb = sum(a) / len(a), sum(b) / len(b)
+    cov = sum((u - ma) * (v - mb) for u, v in zip(a, b))
+    rho = cov / (sum((u - ma) ** 2 for u in a) * sum((v - mb) ** 2 for v in b)) ** 0.5
+within = sum(1 for e, x in zip(E, X) if e / 3 <= x <= 3 * e) / max(len(ok), 1)
 with h5py.File(f"{name}.h5") as f:
     solves = int(f["greedy"][-1, 0]) if "greedy" in f else None
 if solves is None:
     solves = sum(1 for line in open(f"{name}.err") if "[gphr] train: parameter" in line and "done" in line)
 print(f"{name:10s} full solves {solves:3d}  offline {seconds:6.1f} s  max E_L2 {worst:.3e} ({worst / eps:.2f} EPS)  "
-      f"max estimate {est:.3e}  {'meets' if worst <= eps else 'misses'} EPS")
+      f"max estimate {est:.3e}  {'meets' if worst <= eps else 'misses'} EPS  "
+      f"rank corr {rho:.2f}, within 3x {100 * within:.0f} %")
+with h5py.File(f"{name}.h5") as f:
+    if "query_defaults" in f.attrs:  # a greedy build's choice, as gphr query takes it
+        names = f.attrs["query_defaults"]
+        names = (names.decode() if isinstance(names, bytes) else str(names)).split(";")
+        errs = list(f.attrs["query_default_errors"])
+        for i, q in enumerate(names):
+            print(f"{'':10s} query default {q}: estimated max {errs[3 * i]:.3e} over the candidates, "
+                  f"E_L2 max {errs[3 * i + 1]:.3e} at the build's fresh points, target {'met' if errs[3 * i + 2] else 'not met'}")
 PY
 }
 echo "machine: $(machine_line "$gphr")"
-echo "$SCENE_LINE, gp-deim k = $K, m = $M, EPS = $EPS; greedy start: $START; 64 held-out points"
+echo "$SCENE_LINE, gp-deim k = $K, m = $M, EPS = $EPS; greedy start: $START, $PPR point(s) a round; $NP rank(s); 64 held-out points"
 config greedy.yaml ""
 measure greedy greedy.yaml --target-error "$EPS"
 for g in $(seq 2 "$GMAX"); do

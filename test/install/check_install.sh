@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs GPHR from the build tree into a temporary prefix, builds examples/embedding
-# (GPHR::evaluation: it trains, builds and writes a model file of its own scene with the offline
-# library, queries it, and measures each query's E_L2 against the full model) and examples/query
+# (GPHR::evaluation: it trains greedily to a target error, builds and writes a model file of its
+# own three-parameter scene with the offline library, queries it, and measures each query's E_L2 against the full model) and examples/query
 # (GPHR::online) - their link lines are printed and must name the libraries they use and none of
 # the application's, gphr_driver - against the *installed* package, from projects that
 # enable LANGUAGES CXX only, as a C++-only consumer would; runs the embedding on 1 and 2 ranks, and
@@ -34,9 +34,15 @@ consumer() {
 }
 consumer examples/embedding "$src/examples/embedding" "$work/embed" fpu_lattice libgphr_evaluation.a \
   libgphr_offline.a libgphr_online.a
-# each of the three queries reports its E_L2 from the evaluation library and both estimates (within 3x), on 1 and 2 ranks
+# The greedy training meets its target with fewer full solves than the 3 x 3 x 3 grid, and each
+# of the three queries reports its E_L2 from the evaluation library and both estimates (within
+# 3x), on 1 and 2 ranks.
 embed() {
   (cd "$work" && "$@") | tee "$work/embed.txt"
+  local solves
+  solves=$(sed -n 's/.*greedy training to E_L2 <= 1e-02 over the box: \([0-9]*\) full solves .* target met; query default gp-deim k = 16, m = [0-9]*:.*/\1/p' "$work/embed.txt")
+  [ -n "$solves" ] && [ "$solves" -lt 27 ] \
+    || { echo "FAIL: the embedding's greedy training did not meet its target with fewer than 27 full solves"; exit 1; }
   [ "$(grep -c 'E_L2 = [0-9.e+-]* (ok), estimated [0-9.e+-]* (full residual), [0-9.e+-]* (the query.s error_estimate) -> ok' "$work/embed.txt")" -eq 3 ] \
     || { echo "FAIL: the embedding does not report 3 queries with E_L2 and status ok"; exit 1; }
 }

@@ -324,6 +324,7 @@ RunOptions runOptionsFrom(const Teuchos::ParameterList& cfg) {
   o.greedy.maxPoints = build.get<int>("maxTrainingPoints");
   o.greedy.confirmPoints = build.get<int>("confirmPoints");
   o.greedy.start = build.get<std::string>("greedyStart");
+  o.greedy.pointsPerRound = build.get<int>("pointsPerRound");
   return o;
 }
 

@@ -8,6 +8,8 @@
 #include <map>
 #include <random>
 
+#include <Teuchos_CommHelpers.hpp>
+
 #include "gphr/core/Error.hpp"
 #include "gphr/core/Method.hpp"
 #include "gphr/core/Progress.hpp"
@@ -49,31 +51,77 @@ std::vector<std::vector<double>> candidatePoints(const ParameterBox& box, int co
 
 namespace {
 
-// The largest estimate of each calibrated sample-mesh model of the file over the candidates
-// (`largest`, per model key), and where the best model's lies: the round's measure. A run without
-// an estimate counts as infinite (it failed).
-GreedyRound estimateRound(const ReducedModel& rm, const std::vector<std::vector<double>>& candidates, double T,
-                          double dt, std::vector<double>& worst, std::map<std::string, double>& largestOf) {
+// Each calibrated sample-mesh model's estimate at every candidate, the candidates spread over the
+// ranks (candidate c on rank c mod P; a query runs on one process and pins OpenBLAS to one thread,
+// so its estimate does not depend on the rank that ran it) and summed into place (a sum with zeros
+// is exact): the same numbers on every rank as one rank's. A run without an estimate counts as
+// infinite (it failed). Per model key, in the file's order. Collective.
+std::vector<std::pair<std::string, std::vector<double>>> estimatesAtCandidates(
+    const ReducedModel& rm, const RCP<const Comm>& comm, const std::vector<std::vector<double>>& candidates, double T,
+    double dt) {
+  const int P = comm->getSize(), rank = comm->getRank();
+  std::vector<std::pair<std::string, std::vector<double>>> out;
+  for (const auto& x : rm.data().models) {
+    if (x.onlineNeedsFullSystem() || !x.calibration.calibrated()) continue;  // gp-adeim: a full system per point
+    std::vector<double> mine(candidates.size(), 0.0), all(candidates.size(), 0.0);
+    for (size_t c = static_cast<size_t>(rank); c < candidates.size(); c += static_cast<size_t>(P)) {
+      const double e = rm.instantiate(x.method, x.k, x.m, candidates[c]).simulate(T, dt).errorEstimate;
+      mine[c] = std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
+    }
+    if (!candidates.empty())
+      Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, static_cast<int>(mine.size()), mine.data(), all.data());
+    out.emplace_back(x.key(), std::move(all));
+  }
+  return out;
+}
+
+// The round's measure: the largest estimate of each model over the candidates (`largestOf`, per
+// key), the best model (the smallest largest) and its estimates (`best`).
+GreedyRound measureRound(const std::vector<std::pair<std::string, std::vector<double>>>& estimates,
+                         std::map<std::string, double>& largestOf, std::vector<double>& best) {
   largestOf.clear();
   GreedyRound round;
   round.maxEstimate = std::numeric_limits<double>::infinity();
-  for (const auto& x : rm.data().models) {
-    if (x.onlineNeedsFullSystem() || !x.calibration.calibrated()) continue;  // gp-adeim: a full system per point
-    double largest = -1.0;
-    size_t at = 0;
-    for (size_t c = 0; c < candidates.size(); ++c) {
-      const double e = rm.instantiate(x.method, x.k, x.m, candidates[c]).simulate(T, dt).errorEstimate;
-      const double v = std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
-      if (v > largest) largest = v, at = c;
-    }
-    largestOf[x.key()] = largest;
-    if (largest < round.maxEstimate || round.model.empty()) {
-      round.maxEstimate = largest, round.model = x.key();
-      worst = candidates.empty() ? std::vector<double>() : candidates[at];
-    }
+  for (const auto& [key, e] : estimates) {
+    const double largest = e.empty() ? -1.0 : *std::max_element(e.begin(), e.end());
+    largestOf[key] = largest;
+    if (largest < round.maxEstimate || round.model.empty()) round.maxEstimate = largest, round.model = key, best = e;
   }
   return round;
 }
+
+}  // namespace
+
+std::vector<size_t> pointsToAdd(const ParameterBox& box, const std::vector<std::vector<double>>& candidates,
+                                const std::vector<double>& estimates, double target, int count) {
+  GPHR_REQUIRE(estimates.size() == candidates.size(), InputError, estimates.size(), " estimates for ",
+               candidates.size(), " candidates");
+  std::vector<size_t> order(candidates.size());
+  for (size_t c = 0; c < order.size(); ++c) order[c] = c;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return estimates[a] > estimates[b]; });
+  const size_t p = box.bounds.size();
+  // Within a round, points at least a cell of a count-point grid apart (0.5 / ceil(count^(1/p)) in
+  // the box scaled to the unit cube): the round's points spread over the box's bad regions, not
+  // piled onto the one a single new point would already mend.
+  const double radius = p == 0 ? 0.0 : 0.5 / std::ceil(std::pow(static_cast<double>(count), 1.0 / p) - 1e-12);
+  const auto distance = [&](size_t a, size_t b) {
+    double d2 = 0.0;
+    for (size_t i = 0; i < p; ++i) {
+      const double w = box.bounds[i].second - box.bounds[i].first, d = w > 0 ? (candidates[a][i] - candidates[b][i]) / w : 0.0;
+      d2 += d * d;
+    }
+    return std::sqrt(d2);
+  };
+  std::vector<size_t> out;
+  for (size_t c : order) {
+    if (static_cast<int>(out.size()) >= count || !(estimates[c] > target)) break;
+    if (std::all_of(out.begin(), out.end(), [&](size_t a) { return distance(a, c) >= radius; })) out.push_back(c);
+  }
+  if (out.empty() && !order.empty()) out.push_back(order.front());  // the worst, whatever its estimate
+  return out;
+}
+
+namespace {
 
 // E_L2 of each query default at `count` fresh points (full solves, not added to the training: no
 // cache), the largest into verifiedMax. Collective.
@@ -141,6 +189,8 @@ GreedyResult buildToTargetError(const Scene& scene, const RCP<const Comm>& comm,
                "target error ", g.targetError, "; allowed: 0 < target < 1 (a relative error E_L2)");
   GPHR_REQUIRE(g.candidates >= 1 && g.candidates <= 100000, InputError, "greedy candidates ", g.candidates,
                "; allowed: 1 to 100000");
+  GPHR_REQUIRE(g.pointsPerRound >= 1 && g.pointsPerRound <= 1000, InputError, "greedy points per round ",
+               g.pointsPerRound, "; allowed: 1 to 1000");
   GPHR_REQUIRE(o.file.indicatorDofs > 0, InputError,
                "greedy training needs the error indicator: build.indicatorDofs = 0; allowed: >= 1");
   GPHR_REQUIRE(std::any_of(o.methods.begin(), o.methods.end(),
@@ -163,22 +213,29 @@ GreedyResult buildToTargetError(const Scene& scene, const RCP<const Comm>& comm,
     o.training.parameters = params;
     o.greedyRounds = out.rounds;  // the file records the rounds so far
     out.build = buildReducedModelFile(scene, comm, o, path, cache, hook);
-    std::vector<double> worst;
-    GreedyRound round = estimateRound(ReducedModel(path, sceneRef), candidates, T, dt, worst, largest);
+    std::vector<double> best;  // the best model's estimate at each candidate
+    GreedyRound round = measureRound(estimatesAtCandidates(ReducedModel(path, sceneRef), comm, candidates, T, dt),
+                                     largest, best);
     GPHR_REQUIRE(!round.model.empty(), InputError, "greedy training: no stored model of ", out.build.data.modelList(),
                  " has an error estimate (no training point gave both its error and its indicator)");
     round.fullSolves = static_cast<long>(params.size());
     out.met = round.maxEstimate <= g.targetError;
-    const bool stop = out.met || static_cast<int>(params.size()) >= g.maxPoints || worst.empty();
-    if (!stop) round.added = worst;
+    const bool stop = out.met || static_cast<int>(params.size()) >= g.maxPoints || candidates.empty();
+    std::vector<size_t> added;
+    if (!stop) {
+      added = pointsToAdd(box, candidates, best, g.targetError,
+                          std::min(g.pointsPerRound, g.maxPoints - static_cast<int>(params.size())));
+      round.added = candidates[added.front()];  // the worst; the round's others follow it in the training set
+    }
     if (comm->getRank() == 0)
       std::fprintf(stderr, "[gphr] greedy: %zu training points, best model %s, largest estimate %.3e over %zu "
                    "candidates (target %.3e)%s\n", params.size(), round.model.c_str(), round.maxEstimate,
                    candidates.size(), g.targetError, out.met ? ": met" : stop ? ": stopped, not met" : "");
     out.rounds.push_back(round);
     if (stop) break;
-    params.push_back(worst);
-    candidates.erase(std::find(candidates.begin(), candidates.end(), worst));
+    for (size_t c : added) params.push_back(candidates[c]);
+    std::sort(added.begin(), added.end());
+    for (auto c = added.rbegin(); c != added.rend(); ++c) candidates.erase(candidates.begin() + static_cast<long>(*c));
   }
   // Per method the cheapest model that met the target (else its best), confirmed by full solves
   // at fresh points: the defaults of a query that names a method only.

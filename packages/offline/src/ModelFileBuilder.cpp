@@ -146,6 +146,9 @@ Teuchos::ParameterList modelFileValidParameters() {
   setChoiceParameter(bld, "greedyStart", "corners", Teuchos::tuple<std::string>("corners", "centre"),
                      "gphr build with targetError: the first training set: the box's corners and centre (2^p + 1 "
                      "points), or its centre alone (the fewest full solves; every further point by the estimate)");
+  setIntParameter(bld, "pointsPerRound", 1, 1, 1000,
+                  "gphr build with targetError: candidates added per round (the worst, then the next worst apart "
+                  "from it); more than one: the training's rank groups integrate them side by side");
   setIntParameter(bld, "confirmPoints", 3, 0, 1000,
                   "gphr build with targetError: fresh points of the box (seeded, not trained on) where full solves "
                   "confirm each query default's error (E_L2 max in the file); 0: none");

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <sstream>
 
 #include "gphr/core/ColumnFingerprint.hpp"
@@ -123,14 +124,15 @@ RCP<const MultiVector> readBlock(const Hdf5File& f, size_t j, const PhaseSpace& 
 class Progress {
  public:
   explicit Progress(bool show) : show_(show), clock_("train") { clock_.start(); }
-  void done(size_t j, size_t total, size_t computed, const std::vector<double>& mu, bool reused) {
+  /// Parameter j of `total` done (or reused); `computed` of `toCompute` integrated so far.
+  void done(size_t j, size_t total, size_t computed, size_t toCompute, const std::vector<double>& mu, bool reused) {
     if (!show_) return;
     const double el = clock_.totalElapsedTime(true);
     std::ostringstream m;
     for (double x : mu) m << (m.tellp() ? ", " : "") << x;
     progressLine("[gphr] train: parameter %zu/%zu (%s) %s, %.1f s elapsed, ~%.1f s left", j + 1, total,
                  m.str().c_str(), reused ? "reused from file" : "done", el,
-                 computed ? el / computed * (total - j - 1) : 0.0);
+                 computed ? el / computed * (toCompute - computed) : 0.0);
   }
 
  private:
@@ -254,8 +256,9 @@ std::vector<double> parameterFingerprint(const Comm& world, const Comm& group, s
   return all;
 }
 
-// One round of the training with the cache (collective over the cache's ranks): group g of G
-// integrates parameter first + g on `groupComm` (the round's parameters not yet done) while the
+// One round of the training with the cache (collective over the cache's ranks): group g
+// integrates parameter slots[g] on `groupComm` (none: max size_t; slots hold no parameter the
+// cache has done) while the
 // round's datasets fill block by block: at each of integrateInBlocks' blocks every rank of the
 // world opens the file, each dataset's rows are written by its group's ranks straight from their
 // rows (Hdf5File::writeStateRows; the other ranks select nothing, and a group with nothing to
@@ -272,14 +275,14 @@ std::vector<double> parameterFingerprint(const Comm& world, const Comm& group, s
 // 16 ranks. Moving each parameter to all ranks first by a Tpetra Import, then writing, took
 // 0.18-0.27 s a parameter of SWE 256^2 on the 2-core VM's 2 ranks, against 0.06 s for the write;
 // Teuchos timers in a local build, not kept.)
-void trainRound(const Scene& scene, const RCP<const Comm>& groupComm, int group, size_t G, size_t first,
-                const TrainingOptions& o, const ArtifactsCache& cache, const std::string& key,
-                const std::vector<char>& done, hsize_t fullDim) {
-  const size_t count = o.parameters.size(), last = std::min(first + G, count), j = first + static_cast<size_t>(group);
+void trainRound(const Scene& scene, const RCP<const Comm>& groupComm, int group, const std::vector<size_t>& slots,
+                const TrainingOptions& o, const ArtifactsCache& cache, const std::string& key, hsize_t fullDim) {
+  const size_t count = o.parameters.size(), none = std::numeric_limits<size_t>::max();
+  const size_t j = slots.at(static_cast<size_t>(group));
   const size_t columns = static_cast<size_t>(o.steps / o.snapshotEvery + 1);
   std::vector<size_t> round;
-  for (size_t c = first; c < last; ++c)
-    if (!done[c]) round.push_back(c);
+  for (size_t c : slots)
+    if (c != none) round.push_back(c);
   if (round.empty()) return;
   {
     const auto f = cache.open();
@@ -298,7 +301,7 @@ void trainRound(const Scene& scene, const RCP<const Comm>& groupComm, int group,
   size_t stored = 0;         // blocks this rank's group stored
   std::vector<double> print;  // their fingerprint (ColumnFingerprint.hpp), block by block
   GroupFailure failure;      // what its parameter threw, if anything (its full model's SolverError, say)
-  if (j < count && !done[j])
+  if (j != none)
     failure = failureOf(detail::concat("training parameter ", j + 1, " of ", count), "the full model failed: ", [&] {
       const SceneInstance inst = scene.instantiate(groupComm, o.parameters[j], true);
       integrateInBlocks(inst, o, [&](const MultiVector& block) {
@@ -322,24 +325,40 @@ void trainRound(const Scene& scene, const RCP<const Comm>& groupComm, int group,
   cache.seal(*f, names, key);  // one flush for the round, where the cache syncs to disk
 }
 
-// All parameters in rounds of G: rank groups (TrainingOptions::groupSize) when size < the ranks,
-// one group of all ranks (a round per parameter) otherwise.
-void trainInRounds(const Scene& scene, const RCP<const Comm>& comm, const TrainingOptions& o,
+// The parameters not in the cache in rounds of G: rank groups (TrainingOptions::groupSize) when
+// size < the ranks, one group of all ranks (a round per parameter) otherwise. Parameter c belongs to
+// group c mod G whatever the cache holds (so a resumed or grown training integrates each on the
+// same ranks as a whole one: the same bits), and round r trains the r-th of each group's own
+// parameters not yet done: parameters appended to a trained set (a greedy round's) go side by side.
+// Returns the rounds.
+long trainInRounds(const Scene& scene, const RCP<const Comm>& comm, const TrainingOptions& o,
                    const ArtifactsCache& cache, const std::string& key, const std::vector<char>& done, int size,
                    const PhaseSpace& ps) {
   const bool split = size < comm->getSize();
   const RankGroups groups(comm, split ? size : comm->getSize());
   const size_t G = static_cast<size_t>(groups.count()), count = o.parameters.size();
+  const size_t none = std::numeric_limits<size_t>::max();
+  std::vector<std::vector<size_t>> queue(G);  // per group, its parameters to train, in order
+  for (size_t c = 0; c < count; ++c)
+    if (!done[c]) queue[c % G].push_back(c);
+  size_t rounds = 0, toCompute = 0;
+  for (const auto& q : queue) rounds = std::max(rounds, q.size()), toCompute += q.size();
   Progress progress(o.progress && comm->getRank() == 0);
   size_t computed = 0;
-  for (size_t first = 0; first < count; first += G) {
-    trainRound(scene, split ? groups.sub() : comm, split ? groups.group() : 0, G, first, o, cache, key, done,
+  for (size_t c = 0; c < count; ++c)
+    if (done[c]) progress.done(c, count, computed, toCompute, o.parameters[c], true);
+  for (size_t r = 0; r < rounds; ++r) {
+    std::vector<size_t> slots(G, none);
+    for (size_t g = 0; g < G; ++g)
+      if (r < queue[g].size()) slots[g] = queue[g][r];
+    trainRound(scene, split ? groups.sub() : comm, split ? groups.group() : 0, slots, o, cache, key,
                static_cast<hsize_t>(ps.fullDim()));
-    for (size_t c = first; c < std::min(first + G, count); ++c)
-      progress.done(c, count, done[c] ? computed : ++computed, o.parameters[c], done[c]);
+    for (size_t c : slots)
+      if (c != none) progress.done(c, count, ++computed, toCompute, o.parameters[c], false);
   }
   if (split && o.progress && comm->getRank() == 0)
     std::fprintf(stderr, "[gphr] train: %zu groups of %d rank(s) integrated side by side\n", G, size);
+  return static_cast<long>(rounds);
 }
 
 }  // namespace
@@ -364,7 +383,7 @@ TrainingResult runTraining(const Scene& scene, const RCP<const Comm>& comm, cons
       } catch (const SolverError& e) {
         throw SolverError(detail::concat("training parameter ", j + 1, " of ", count, ": the full model failed: ", e.what()));
       }
-      progress.done(j, count, j + 1, o.parameters[j], false);
+      progress.done(j, count, j + 1, count, o.parameters[j], false);
     }
     res.snapshots = SnapshotSet(held);
     res.seconds = clock.stop();
@@ -377,7 +396,7 @@ TrainingResult runTraining(const Scene& scene, const RCP<const Comm>& comm, cons
                                    : trainingGroupSize(ps.fullDim(), comm->getSize(), static_cast<long>(count));
   res.groupSize = size;
   res.cachePath = cache->path();
-  trainInRounds(scene, comm, o, *cache, key, done, size, ps);
+  res.rounds = trainInRounds(scene, comm, o, *cache, key, done, size, ps);
   const std::string path = cache->path();
   const RCP<const HamiltonianSystem> system = probe.system;  // keeps the phase space of the blocks
   res.snapshots = SnapshotSet(std::vector<size_t>(count, columns),

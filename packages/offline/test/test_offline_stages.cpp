@@ -434,6 +434,14 @@ TEST(Training, AChangedSnapshotIsRefusedWhereItIsRead) {
 // each parameter is integrated on one rank (its own order of sums in GMRES and the norms), so the
 // states differ by the Newton tolerance (1e-10 on ||R||) per step at most; over 20 steps of states
 // of norm ~3 a relative 1e-8 bounds it. Both land in the cache in parameter order.
+// Five values of eps on groups of `groupSize` ranks.
+TrainingOptions fiveParameters(int groupSize) {
+  TrainingOptions o = smallTraining();
+  o.parameters = {{0.9}, {0.95}, {1.0}, {1.05}, {1.1}};
+  o.groupSize = groupSize;
+  return o;
+}
+
 TEST(Training, RankGroupsGiveTheSameSnapshots) {
   auto comm = Tpetra::getDefaultComm();
   TempDir dir;
@@ -457,6 +465,27 @@ TEST(Training, RankGroupsGiveTheSameSnapshots) {
   EXPECT_EQ(runTraining(scene, comm, o, &grouped, "key").reused, 5);  // resumed: every parameter kept
 }
 
+// Parameters appended to a trained set (a greedy round's) are integrated side by side by the rank
+// groups, each on the group it has in a whole training (parameter c on group c mod G): one round
+// for two new parameters on 2 and 3 ranks (two on 1), and the same bits as the whole training.
+TEST(Training, AppendedParametersGoSideBySideOnTheirOwnGroups) {
+  auto comm = Tpetra::getDefaultComm();
+  TempDir dir;
+  const Nls1d scene(64);
+  TrainingOptions o = fiveParameters(1);
+  const ArtifactsCache whole(dir.file("whole.h5"), comm, scene.name(), 128);
+  const TrainingResult all = runTraining(scene, comm, o, &whole, "key");
+  EXPECT_EQ(all.rounds, (5 + comm->getSize() - 1) / comm->getSize());
+  const ArtifactsCache grown(dir.file("grown.h5"), comm, scene.name(), 128);
+  TrainingOptions first = o;
+  first.parameters.resize(3);
+  EXPECT_EQ(runTraining(scene, comm, first, &grown, "key").reused, 0);
+  const TrainingResult more = runTraining(scene, comm, o, &grown, "key");
+  EXPECT_EQ(more.reused, 3);
+  EXPECT_EQ(more.rounds, comm->getSize() == 1 ? 2 : 1);  // parameters 3 and 4: groups 3 mod G and 4 mod G
+  for (size_t j = 0; j < 5; ++j) EXPECT_EQ(maxDifference(*more.snapshots[j], *all.snapshots[j]), 0.0) << j;
+}
+
 // The DEIM basis stage over rank groups (each chunk of the hierarchical POD on one group's ranks)
 // gives the basis all ranks together give: the chunks are the same, only the order of the sums in
 // each step's QR differs. Compared as U diag(sigma^2) U^T applied to a few vectors (blind to signs
@@ -467,9 +496,7 @@ TEST(DeimBasisStage, RankGroupsGiveTheBasisAllRanksGive) {
   if (comm->getSize() == 1) GTEST_SKIP() << "one rank: groups of one rank are all ranks together";
   TempDir dir;
   const Nls1d scene(64);
-  TrainingOptions o = smallTraining();
-  o.parameters = {{0.9}, {0.95}, {1.0}, {1.05}, {1.1}};
-  o.groupSize = 1;
+  TrainingOptions o = fiveParameters(1);
   const ArtifactsCache cache(dir.file("a.h5"), comm, scene.name(), 128);
   const TrainingResult training = runTraining(scene, comm, o, &cache, "key");
   const auto inst = scene.instantiate(comm, training.parameters[0], true);
@@ -835,6 +862,22 @@ TEST(GreedyTraining, AddsTheWorstCandidateOfTheBestModel) {
   }
   EXPECT_EQ(r.rounds[0].added, at);
   EXPECT_DOUBLE_EQ(r.rounds[0].maxEstimate, worst);
+  // two points per round: the worst, then pointsToAdd's second, both in the training set
+  GreedyOptions two = g;
+  two.pointsPerRound = 2;
+  two.maxPoints = 5;
+  const GreedyResult r2 = buildToTargetError(*scene, comm, o, dir.file("g2.h5"), two);
+  ASSERT_EQ(r2.rounds.size(), 2u);
+  EXPECT_EQ(r2.rounds[1].fullSolves, 5);
+  EXPECT_EQ(r2.rounds[0].added, at);
+  const auto candidates = candidatePoints(scene->parameterBox(), g.candidates, g.seed);
+  std::vector<double> estimates;
+  for (const auto& mu : candidates) estimates.push_back(first.instantiate("gp-deim", 3, 6, mu).simulate(0.2, 0.01).errorEstimate);
+  const auto picked = pointsToAdd(scene->parameterBox(), candidates, estimates, two.targetError, 2);
+  ASSERT_EQ(picked.size(), 2u);
+  ASSERT_EQ(r2.build.training.parameters.size(), 5u);
+  EXPECT_EQ(r2.build.training.parameters[3], candidates[picked[0]]);
+  EXPECT_EQ(r2.build.training.parameters[4], candidates[picked[1]]);
   // the file's record, read back
   const ReducedModel file(dir.file("g.h5"), scene);
   ASSERT_EQ(file.data().greedy.size(), 2u);
@@ -854,6 +897,23 @@ TEST(GreedyTraining, AddsTheWorstCandidateOfTheBestModel) {
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MIN, at[0], Teuchos::outArg(lo));
   Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, at[0], Teuchos::outArg(hi));
   EXPECT_EQ(lo, hi);
+}
+
+// A round's points: by estimate, the worst first, only those above the target, each at least
+// 0.5 / ceil(count^(1/p)) from the others (the box scaled to the unit cube), at most `count`.
+TEST(GreedyTraining, ARoundsPointsAreTheWorstSpreadApart) {
+  ParameterBox box;
+  box.names = {"a", "b"};
+  box.bounds = {{0.0, 1.0}, {0.0, 10.0}};
+  // radius for 4 points in 2 parameters: 0.5 / 2 = 0.25 of the unit square
+  const std::vector<std::vector<double>> c = {{0.1, 1}, {0.15, 1.5}, {0.9, 9}, {0.5, 5}, {0.6, 5}, {0.3, 8}};
+  const std::vector<double> e = {9, 8, 7, 6, 5, 1};
+  EXPECT_EQ(pointsToAdd(box, c, e, 0.5, 4), (std::vector<size_t>{0, 2, 3, 5}));  // 1: beside 0; 4: beside 3
+  EXPECT_EQ(pointsToAdd(box, c, e, 0.5, 2), (std::vector<size_t>{0, 2}));       // at most 2 (radius 0.5 / 2)
+  EXPECT_EQ(pointsToAdd(box, c, e, 6.5, 4), (std::vector<size_t>{0, 2}));       // only those above the target
+  EXPECT_EQ(pointsToAdd(box, c, e, 0.5, 1), (std::vector<size_t>{0}));          // one: the worst
+  EXPECT_EQ(pointsToAdd(box, c, e, 100, 3), (std::vector<size_t>{0}));          // none above: the worst alone
+  EXPECT_THROW(pointsToAdd(box, c, {1, 2}, 0.5, 2), InputError);
 }
 
 // The query defaults: per method the cheapest model (onlineCostProxy) whose largest estimate met

@@ -3,10 +3,11 @@
 /// Greedy training to a target error (issue 54; libROM's greedy sampler, pyMOR's weak greedy):
 /// start from the box's corners and centre, build the reduced-model file, estimate every stored
 /// sample-mesh model's error at a seeded set of candidate points of the box with the query's own
-/// error estimate (hyper/ErrorIndicator.hpp: no full solve), and while the best model's largest
-/// estimate exceeds the target add its worst candidate to the training set and build again. The
+/// error estimate (hyper/ErrorIndicator.hpp: no full solve; the candidates spread over the ranks),
+/// and while the best model's largest estimate exceeds the target add its worst candidate (or
+/// GreedyOptions::pointsPerRound of them) to the training set and build again. The
 /// artifacts cache keeps every finished parameter's states (trainingStatesKey), so a round trains
-/// its new parameter only; the bases are recomputed from the grown set.
+/// its new parameters only; the bases are recomputed from the grown set.
 #include <map>
 #include <string>
 #include <vector>
@@ -26,6 +27,11 @@ struct GreedyOptions {
   /// of the box trained from the start) or "centre" (the centre alone: the fewest full solves,
   /// every further point chosen by the estimate).
   std::string start = "corners";
+  /// Candidates added per round: the worst, then the next worst each at least a cell of a
+  /// pointsPerRound-point grid away from the round's others (pointsToAdd); only candidates whose
+  /// estimate exceeds the target. More than one: the training's rank groups integrate them side by
+  /// side (TrainingOptions::groupSize), and a round's bases serve more points.
+  int pointsPerRound = 1;
 };
 
 /// One round: the training set's size, the best model and its largest estimate over the
@@ -45,6 +51,12 @@ std::vector<std::vector<double>> cornersAndCentre(const ParameterBox& box);
 std::vector<std::vector<double>> greedyStart(const ParameterBox& box, const std::string& start);
 /// `count` points uniform in the box from `seed` (std::mt19937_64, the same on every rank and machine).
 std::vector<std::vector<double>> candidatePoints(const ParameterBox& box, int count, unsigned long seed);
+
+/// The candidates a round adds (indices into `candidates`, the worst first): by `estimates`
+/// descending, those above `target`, each at least 0.5 / ceil(count^(1/p)) from the others chosen
+/// (the box scaled to the unit cube), at most `count`; the worst alone where none exceeds the target.
+std::vector<size_t> pointsToAdd(const ParameterBox& box, const std::vector<std::vector<double>>& candidates,
+                                const std::vector<double>& estimates, double target, int count);
 
 /// The online cost of a model of sizes (k, m) per Newton iteration, for choosing between models
 /// (deterministic, unlike a timing): the reduced Jacobian assembled from m sampled rows, 2 m (2k)^2

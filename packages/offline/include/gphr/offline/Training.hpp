@@ -69,6 +69,9 @@ struct TrainingResult {
   /// Ranks per rank group of the training (TrainingOptions::groupSize, resolved; the DEIM basis
   /// stage chooses its own groups). 0 when the snapshots are held in memory (no groups).
   int groupSize = 0;
+  /// Rounds of integration with the cache: in each, every rank group integrates one parameter the
+  /// cache lacked, side by side (ceil of the most any group has to train). 0 when held in memory.
+  long rounds = 0;
   std::string cachePath;                          ///< the artifacts file the snapshots stream from ("": held)
   double seconds = 0.0;                           ///< Wall seconds of the stage.
 };
