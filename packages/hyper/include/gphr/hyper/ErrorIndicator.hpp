@@ -90,20 +90,22 @@ class ResidualIndicator {
   const std::vector<double>& lastResidual() const { return R_; }
 
  private:
-  void liftQ(const DenseVector& z, std::vector<double>& out) const;  ///< out = y0_Q + A_Q z
-  /// gN_ = grad N at Q, the row kernel run on the terms at y = y0 + A z.
-  void nonlinearGradientAtQ(const DenseVector& z);
-  std::vector<double> yref_, AQ_;
+  void liftU(const DenseVector& z, std::vector<double>& out) const;  ///< out = yU + AU z at every entry of U
+  /// gN_ = grad N at Q, the row kernel run on the terms at the lift vU (U's values).
+  void nonlinearGradientAtQ(const std::vector<double>& vU);
   IndicatorLinearRows linear_;
   QuadratureRule rule_;
-  // The terms' stencils overlap (a 5-point stencil: each entry under up to 5 rows), so the lift is
-  // formed once per distinct entry (yU_ + AU_ z) and scattered into the batch by entryOf_.
+  // U: the distinct entries of Q and of the terms' stencils (which overlap: a 5-point stencil puts
+  // each entry under up to 5 rows), Q's first; the lift is formed once per distinct entry and step
+  // (yU_ + AU_ z) and scattered into the batch by entryOf_.
   RCP<const RowEvaluator> kernel_;
   RowBatch batch_;
-  std::vector<double> yU_, AU_, vU_, weight_;  ///< per distinct entry: y0, A's row, lift; per term row: v
-  std::vector<int> entryOf_, rowOf_, slot_;  ///< per stencil entry: its distinct entry, its row, its index in Q (-1: none)
-  std::vector<double> gN_, e_, gbar_, R_, y_;
-  DenseVector zq_;
+  std::vector<double> yU_, AU_, weight_;  ///< per entry of U: y0, A's row (row-major); per term row: v
+  std::vector<double> vU0_, vU1_, vq_;    ///< the lifts at the step's two ends and at a quadrature node
+  std::vector<int> qU_;                   ///< per entry of Q: its index in U
+  std::vector<int> entryOf_, rowOf_, slot_;  ///< per stencil entry: its entry of U, its row, its index in Q (-1: none)
+  std::vector<double> gN_, e_, gbar_, R_;
+  DenseVector zbar_;
   int r_ = 0;
   double num_ = 0.0, den_ = 0.0;
   bool started_ = false;
