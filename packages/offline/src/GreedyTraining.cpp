@@ -2,6 +2,7 @@
 #include "gphr/offline/GreedyTraining.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -123,14 +124,15 @@ std::vector<size_t> pointsToAdd(const ParameterBox& box, const std::vector<std::
 
 namespace {
 
-// E_L2 of each query default at `count` fresh points (full solves, not added to the training: no
+// E_L2 of each query default at the fresh `points` (full solves, not added to the training here: no
 // cache), the largest into verifiedMax. Collective.
 void confirmQueryDefaults(const Scene& scene, const RCP<const Comm>& comm, const ModelBuildOptions& o,
-                          const ModelBuildResult& build, const GreedyOptions& g, std::vector<QueryDefault>& defaults) {
-  if (g.confirmPoints <= 0 || defaults.empty()) return;
-  const ProgressPhase phase(detail::concat("greedy: full solves at ", g.confirmPoints, " fresh points"));
+                          const ModelBuildResult& build, const std::vector<std::vector<double>>& points,
+                          std::vector<QueryDefault>& defaults) {
+  if (points.empty() || defaults.empty()) return;
+  const ProgressPhase phase(detail::concat("greedy: full solves at ", points.size(), " fresh points"));
   TrainingOptions fresh = o.training;
-  fresh.parameters = freshPoints(scene.parameterBox(), g.confirmPoints, g.seed);
+  fresh.parameters = points;
   fresh.progress = false;
   const TrainingResult reference = runTraining(scene, comm, fresh);
   const auto inst = scene.instantiate(comm, o.parameter.empty() ? cornersAndCentre(scene.parameterBox()).back()
@@ -146,6 +148,67 @@ void confirmQueryDefaults(const Scene& scene, const RCP<const Comm>& comm, const
     else
       for (const auto& p : it->second)  // a run that failed (NaN) counts as an infinite error
         q.verifiedMax = std::max(q.verifiedMax, std::isfinite(p.error) ? p.error : std::numeric_limits<double>::infinity());
+  }
+}
+
+// The greedy rounds from `params` (see buildToTargetError): build, estimate at the candidates,
+// add the worst, until the best model's largest estimate meets the target, maxPoints are trained or
+// no candidate is left. `out` gets the rounds, the last build and whether the target was met.
+void trainRounds(const Scene& scene, const RCP<const Comm>& comm, ModelBuildOptions& o, const std::string& path,
+                 const GreedyOptions& g, const ArtifactsCache* cache, const OfflineSequence::StageHook& hook,
+                 std::vector<std::vector<double>>& params, std::vector<std::vector<double>>& candidates,
+                 GreedyResult& out, std::map<std::string, double>& largest) {
+  const std::shared_ptr<const Scene> sceneRef(&scene, [](const Scene*) {});  // not owned: the caller's
+  const double dt = o.training.dt, T = dt * static_cast<double>(o.training.steps);
+  for (;;) {
+    o.training.parameters = params;
+    o.greedyRounds = out.rounds;  // the file records the rounds so far
+    out.build = buildReducedModelFile(scene, comm, o, path, cache, hook);
+    std::vector<double> best;  // the best model's estimate at each candidate
+    GreedyRound round = measureRound(estimatesAtCandidates(ReducedModel(path, sceneRef), comm, candidates, T, dt),
+                                     largest, best);
+    GPHR_REQUIRE(!round.model.empty(), InputError, "greedy training: no stored model of ", out.build.data.modelList(),
+                 " has an error estimate (no training point gave both its error and its indicator)");
+    round.fullSolves = static_cast<long>(params.size());
+    out.met = round.maxEstimate <= g.targetError;
+    const bool stop = out.met || static_cast<int>(params.size()) >= g.maxPoints || candidates.empty();
+    std::vector<size_t> added;
+    if (!stop) {
+      added = pointsToAdd(scene.parameterBox(), candidates, best, g.targetError,
+                          std::min(g.pointsPerRound, g.maxPoints - static_cast<int>(params.size())));
+      round.added = candidates[added.front()];  // the worst; the round's others follow it in the training set
+    }
+    if (comm->getRank() == 0)
+      std::fprintf(stderr, "[gphr] greedy: %zu training points, best model %s, largest estimate %.3e over %zu "
+                   "candidates (target %.3e)%s\n", params.size(), round.model.c_str(), round.maxEstimate,
+                   candidates.size(), g.targetError, out.met ? ": met" : stop ? ": stopped, not met" : "");
+    out.rounds.push_back(round);
+    if (stop) return;
+    for (size_t c : added) params.push_back(candidates[c]);
+    std::sort(added.begin(), added.end());
+    for (auto c = added.rbegin(); c != added.rend(); ++c) candidates.erase(candidates.begin() + static_cast<long>(*c));
+  }
+}
+
+// The fresh points of confirmation number `n` (0, 1, ...): the n-th g.confirmPoints of one
+// seeded stream (freshPoints), so that no confirmation reuses an earlier one's points.
+std::vector<std::vector<double>> confirmationPoints(const ParameterBox& box, const GreedyOptions& g, int n) {
+  if (g.confirmPoints <= 0) return {};
+  auto all = freshPoints(box, g.confirmPoints * (n + 1), g.seed);
+  all.erase(all.begin(), all.end() - g.confirmPoints);
+  return all;
+}
+
+void reportQueryDefaults(const Comm& comm, const std::vector<QueryDefault>& defaults, const GreedyOptions& g) {
+  for (const auto& q : defaults) {
+    char confirmed[96] = "not confirmed (build.confirmPoints: 0)";
+    if (g.confirmPoints > 0)
+      std::snprintf(confirmed, sizeof confirmed, "E_L2 max %.3e at %d fresh points (full solves)", q.verifiedMax,
+                    g.confirmPoints);
+    if (comm.getRank() == 0)
+      std::fprintf(stderr, "[gphr] greedy: query default %s k=%d m=%d: estimated max %.3e over the candidates%s, %s\n",
+                   q.method.c_str(), q.k, q.m, q.estimatedMax, q.met ? "" : " (target not met: the method's best)",
+                   confirmed);
   }
 }
 
@@ -205,55 +268,39 @@ GreedyResult buildToTargetError(const Scene& scene, const RCP<const Comm>& comm,
                params.size(), " points (build.greedyStart '", g.start, "'); allowed: build.maxTrainingPoints >= that, got ",
                g.maxPoints);
   o.file.targetError = g.targetError;
-  const std::shared_ptr<const Scene> sceneRef(&scene, [](const Scene*) {});  // not owned: the caller's
-  const double dt = o.training.dt, T = dt * static_cast<double>(o.training.steps);
+  const auto start = std::chrono::steady_clock::now();
   GreedyResult out;
   std::map<std::string, double> largest;  // the last round's, per model
-  for (;;) {
-    o.training.parameters = params;
-    o.greedyRounds = out.rounds;  // the file records the rounds so far
-    out.build = buildReducedModelFile(scene, comm, o, path, cache, hook);
-    std::vector<double> best;  // the best model's estimate at each candidate
-    GreedyRound round = measureRound(estimatesAtCandidates(ReducedModel(path, sceneRef), comm, candidates, T, dt),
-                                     largest, best);
-    GPHR_REQUIRE(!round.model.empty(), InputError, "greedy training: no stored model of ", out.build.data.modelList(),
-                 " has an error estimate (no training point gave both its error and its indicator)");
-    round.fullSolves = static_cast<long>(params.size());
-    out.met = round.maxEstimate <= g.targetError;
-    const bool stop = out.met || static_cast<int>(params.size()) >= g.maxPoints || candidates.empty();
-    std::vector<size_t> added;
-    if (!stop) {
-      added = pointsToAdd(box, candidates, best, g.targetError,
-                          std::min(g.pointsPerRound, g.maxPoints - static_cast<int>(params.size())));
-      round.added = candidates[added.front()];  // the worst; the round's others follow it in the training set
-    }
+  for (int confirmation = 0;; ++confirmation) {
+    trainRounds(scene, comm, o, path, g, cache, hook, params, candidates, out, largest);
+    // Per method the cheapest model that met the target (else its best), confirmed by full solves
+    // at fresh points: the defaults of a query that names a method only.
+    o.queryDefaults = chooseQueryDefaults(out.build.data.models, largest, g.targetError);
+    const auto fresh = confirmationPoints(box, g, confirmation);
+    confirmQueryDefaults(scene, comm, o, out.build, fresh, o.queryDefaults);
+    reportQueryDefaults(*comm, o.queryDefaults, g);
+    // The estimate is calibrated on the training points: where the full solves at the fresh points
+    // say a default that met the target by its estimate does not, those points join the training
+    // (solved again there: the confirmation keeps no states) and the rounds go on, with fresh
+    // points of their own next time.
+    const bool missed = !fresh.empty() && out.met && std::any_of(o.queryDefaults.begin(), o.queryDefaults.end(), [&](const QueryDefault& q) {
+      return q.met && !(q.verifiedMax <= g.targetError);
+    });
+    if (!missed) break;
+    const bool room = static_cast<int>(params.size() + fresh.size()) <= g.maxPoints;
     if (comm->getRank() == 0)
-      std::fprintf(stderr, "[gphr] greedy: %zu training points, best model %s, largest estimate %.3e over %zu "
-                   "candidates (target %.3e)%s\n", params.size(), round.model.c_str(), round.maxEstimate,
-                   candidates.size(), g.targetError, out.met ? ": met" : stop ? ": stopped, not met" : "");
-    out.rounds.push_back(round);
-    if (stop) break;
-    for (size_t c : added) params.push_back(candidates[c]);
-    std::sort(added.begin(), added.end());
-    for (auto c = added.rbegin(); c != added.rend(); ++c) candidates.erase(candidates.begin() + static_cast<long>(*c));
-  }
-  // Per method the cheapest model that met the target (else its best), confirmed by full solves
-  // at fresh points: the defaults of a query that names a method only.
-  o.queryDefaults = chooseQueryDefaults(out.build.data.models, largest, g.targetError);
-  confirmQueryDefaults(scene, comm, o, out.build, g, o.queryDefaults);
-  for (const auto& q : o.queryDefaults) {
-    char confirmed[96] = "not confirmed (build.confirmPoints: 0)";
-    if (g.confirmPoints > 0)
-      std::snprintf(confirmed, sizeof confirmed, "E_L2 max %.3e at %d fresh points (full solves)", q.verifiedMax,
-                    g.confirmPoints);
-    if (comm->getRank() == 0)
-      std::fprintf(stderr, "[gphr] greedy: query default %s k=%d m=%d: estimated max %.3e over the candidates%s, %s\n",
-                   q.method.c_str(), q.k, q.m, q.estimatedMax, q.met ? "" : " (target not met: the method's best)",
-                   confirmed);
+      std::fprintf(stderr, "[gphr] greedy: the full solves at the fresh points exceed the target %.3e%s\n",
+                   g.targetError, room ? ": they join the training and the rounds go on"
+                                       : ": stopped (build.maxTrainingPoints), the target is not confirmed");
+    if (!room) break;
+    out.rounds.back().added = fresh.front();  // the round's record: the first of the points it adds
+    params.insert(params.end(), fresh.begin(), fresh.end());
+    out.met = false;
   }
   // The file once more with every round in it: its stages are all in the cache (or in memory: the
   // training again without one), only the calibration and the write are redone.
   o.greedyRounds = out.rounds;
+  o.earlierSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.build = buildReducedModelFile(scene, comm, o, path, cache, hook);
   return out;
 }

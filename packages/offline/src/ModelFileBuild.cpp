@@ -175,7 +175,7 @@ ModelBuildResult buildReducedModelFile(const Scene& scene, const RCP<const Comm>
                                              options.training.snapshotEvery, options.training.dt,
                                              options.training.steps);
   }
-  data.offlineSeconds = clock.totalElapsedTime(true);
+  data.offlineSeconds = options.earlierSeconds + clock.totalElapsedTime(true);
   {
     const StageClocks::Scope stage(seq.clocks(), "write");
     writeReducedModelFile(path, comm, data, bases, &inst.system->space());

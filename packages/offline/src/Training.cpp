@@ -353,6 +353,7 @@ long trainInRounds(const Scene& scene, const RCP<const Comm>& comm, const Traini
       if (r < queue[g].size()) slots[g] = queue[g][r];
     trainRound(scene, split ? groups.sub() : comm, split ? groups.group() : 0, slots, o, cache, key,
                static_cast<hsize_t>(ps.fullDim()));
+    std::sort(slots.begin(), slots.end());  // reported in the set's order (none, the largest, last)
     for (size_t c : slots)
       if (c != none) progress.done(c, count, ++computed, toCompute, o.parameters[c], false);
   }

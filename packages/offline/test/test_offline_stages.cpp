@@ -974,5 +974,55 @@ TEST(GreedyTraining, StoresConfirmedQueryDefaults) {
   }
 }
 
+// A confirmation that contradicts the estimate: at this seed the one candidate's estimate reads
+// 1.1e-5 and the E_L2 at the 6 fresh points reach 3.1e-5 (measured; smooth, non-chaotic figures), so
+// a target of 1.8e-5, 1.7x from each, is met by the estimate and missed by the full solves: the
+// fresh points join the training, the rounds go on, and the next confirmation
+// takes the next 6 points of the fresh stream; with maxTrainingPoints 9 there is no room for a
+// third, and the build stops there.
+TEST(GreedyTraining, AConfirmationThatMissesTrainsItsPointsAndGoesOn) {
+  auto comm = Tpetra::getDefaultComm();
+  TempDir dir;
+  const auto scene = std::make_shared<Nls1d>(32);
+  ModelBuildOptions o = smallBuild(3, {4, 6});
+  GreedyOptions g;
+  g.targetError = 1.8e-5;
+  g.candidates = 1;
+  g.seed = 3;
+  g.confirmPoints = 6;
+  g.maxPoints = 9;
+  const GreedyResult r = buildToTargetError(*scene, comm, o, dir.file("g.h5"), g);
+  const auto& box = scene->parameterBox();
+  const auto stream = freshPoints(box, 12, g.seed);
+  const std::vector<std::vector<double>> first(stream.begin(), stream.begin() + 6), second(stream.begin() + 6, stream.end());
+  EXPECT_EQ(first, freshPoints(box, 6, g.seed));  // the first confirmation's points: the stream's first 6
+  ASSERT_EQ(r.rounds.size(), 2u);
+  EXPECT_EQ(r.rounds[0].fullSolves, 3);
+  EXPECT_LE(r.rounds[0].maxEstimate, g.targetError);  // met by the estimate ...
+  EXPECT_EQ(r.rounds[0].added, first.front());        // ... and its confirmation's points added
+  EXPECT_EQ(r.rounds[1].fullSolves, 9);
+  std::vector<std::vector<double>> trained = cornersAndCentre(box);
+  trained.insert(trained.end(), first.begin(), first.end());
+  const ReducedModel file(dir.file("g.h5"), scene);
+  EXPECT_EQ(file.data().trainingParameters, trained);
+  ASSERT_EQ(file.data().queryDefaults.size(), 1u);
+  // the default's verified figure is the second confirmation's: E_L2 at the next 6 points, none trained
+  const QueryDefault& q = file.data().queryDefaults[0];
+  for (const auto& mu : second) EXPECT_EQ(std::count(trained.begin(), trained.end(), mu), 0);
+  EXPECT_TRUE(std::isfinite(q.verifiedMax) && q.verifiedMax > 0.0) << q.verifiedMax;
+  EXPECT_EQ(file.data().greedy.size(), 2u);
+  // the file's offline seconds count the whole training (three builds and two confirmations), not
+  // only the last build's (which repeats no training: every stage from memory)
+  EXPECT_GT(file.data().offlineSeconds, r.build.seconds);
+  // without a confirmation the estimate's word is final: one round, nothing verified
+  GreedyOptions unconfirmed = g;
+  unconfirmed.confirmPoints = 0;
+  const GreedyResult u = buildToTargetError(*scene, comm, o, dir.file("u.h5"), unconfirmed);
+  EXPECT_TRUE(u.met);
+  EXPECT_EQ(u.rounds.size(), 1u);
+  ASSERT_EQ(u.build.data.queryDefaults.size(), 1u);
+  EXPECT_TRUE(std::isnan(u.build.data.queryDefaults[0].verifiedMax));
+}
+
 }  // namespace
 }  // namespace gphr

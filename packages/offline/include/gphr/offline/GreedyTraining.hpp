@@ -22,7 +22,10 @@ struct GreedyOptions {
   int candidates = 64;       ///< candidate points of the box, uniform at random from `seed`
   unsigned long seed = 1;    ///< of the candidates: the same seed, the same points (and rounds)
   int maxPoints = 40;        ///< training points at most (the build stops there, target met or not)
-  int confirmPoints = 3;     ///< fresh points where full solves confirm the query defaults (0: none)
+  /// Fresh points where full solves confirm the query defaults (0: none). Where they show a default
+  /// that met the target by its estimate above it, they join the training and the rounds go on
+  /// (then the next confirmPoints of the fresh stream confirm), while maxPoints allow.
+  int confirmPoints = 3;
   /// The first training set: "corners" (the box's corners and centre, 2^p + 1 points: every edge
   /// of the box trained from the start) or "centre" (the centre alone: the fewest full solves,
   /// every further point chosen by the estimate).
@@ -71,7 +74,9 @@ std::vector<QueryDefault> chooseQueryDefaults(const std::vector<StoredHyperModel
 /// where full solves confirm the query defaults.
 std::vector<std::vector<double>> freshPoints(const ParameterBox& box, int count, unsigned long seed);
 
-/// Trains greedily to g.targetError (see the file's description) and writes the model file at
+/// Trains greedily to g.targetError (see the file's description), confirms the query defaults with
+/// full solves at fresh points (a confirmation that misses the target trains those points and
+/// goes on: GreedyOptions::confirmPoints) and writes the model file at
 /// `path`; the file records the target, the rounds and the estimate reached (ReducedModelData::
 /// greedy). options.training.parameters is replaced by the greedy set. Collective over `comm`.
 GreedyResult buildToTargetError(const Scene& scene, const RCP<const Comm>& comm, ModelBuildOptions options,

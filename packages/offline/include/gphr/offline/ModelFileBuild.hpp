@@ -27,6 +27,9 @@ struct ModelBuildOptions : OfflineOptions {
   std::string config;         ///< provenance: the whole configuration as YAML
   std::vector<TrainingRound> greedyRounds;  ///< provenance: the greedy training's rounds (GreedyTraining.hpp)
   std::vector<QueryDefault> queryDefaults;  ///< the file's query defaults (the greedy training's choice)
+  /// Provenance: wall seconds of the offline work before this build (a greedy training's earlier
+  /// rounds and its confirmations), added to the file's offline seconds: its break-even counts them.
+  double earlierSeconds = 0.0;
 };
 
 /// What the offline phase produced.
