@@ -939,6 +939,16 @@ TEST(GreedyTraining, QueryDefaultIsTheCheapestModelMeetingTheTarget) {
   EXPECT_TRUE(std::isnan(d[1].verifiedMax));
 }
 
+// A greedy training's target, candidates, seed and fresh points.
+GreedyOptions greedyOptions(double target, int candidates, unsigned long seed, int confirmPoints) {
+  GreedyOptions g;
+  g.targetError = target;
+  g.candidates = candidates;
+  g.seed = seed;
+  g.confirmPoints = confirmPoints;
+  return g;
+}
+
 // A greedy build stores the defaults, confirmed by full solves at fresh points (neither candidates
 // nor training points): the estimate recomputed from the file at every candidate, and an E_L2 there.
 TEST(GreedyTraining, StoresConfirmedQueryDefaults) {
@@ -946,11 +956,8 @@ TEST(GreedyTraining, StoresConfirmedQueryDefaults) {
   TempDir dir;
   const auto scene = std::make_shared<Nls1d>(32);
   ModelBuildOptions o = smallBuild(3, {4, 6});
-  GreedyOptions g;
-  g.targetError = 0.5;  // met by both models in the first round: the cheaper one, m = 4, is the default
-  g.candidates = 5;
-  g.seed = 4;
-  g.confirmPoints = 2;
+  // target 0.5: met by both models in the first round: the cheaper one, m = 4, is the default
+  const GreedyOptions g = greedyOptions(0.5, 5, 4, 2);
   const GreedyResult r = buildToTargetError(*scene, comm, o, dir.file("g.h5"), g);
   ASSERT_TRUE(r.met);
   const ReducedModel file(dir.file("g.h5"), scene);
@@ -985,11 +992,7 @@ TEST(GreedyTraining, AConfirmationThatMissesTrainsItsPointsAndGoesOn) {
   TempDir dir;
   const auto scene = std::make_shared<Nls1d>(32);
   ModelBuildOptions o = smallBuild(3, {4, 6});
-  GreedyOptions g;
-  g.targetError = 1.8e-5;
-  g.candidates = 1;
-  g.seed = 3;
-  g.confirmPoints = 6;
+  GreedyOptions g = greedyOptions(1.8e-5, 1, 3, 6);
   g.maxPoints = 9;
   const GreedyResult r = buildToTargetError(*scene, comm, o, dir.file("g.h5"), g);
   const auto& box = scene->parameterBox();
