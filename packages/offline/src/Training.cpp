@@ -257,9 +257,9 @@ std::vector<double> parameterFingerprint(const Comm& world, const Comm& group, s
 }
 
 // One round of the training with the cache (collective over the cache's ranks): group g
-// integrates parameter slots[g] on `groupComm` (none: max size_t; slots hold no parameter the
-// cache has done) while the
-// round's datasets fill block by block: at each of integrateInBlocks' blocks every rank of the
+// integrates parameter slots[g] on `groupComm` (none: max size_t; no slot holds a parameter the
+// cache has done) while the round's datasets fill block by block: at each of integrateInBlocks'
+// blocks every rank of the
 // world opens the file, each dataset's rows are written by its group's ranks straight from their
 // rows (Hdf5File::writeStateRows; the other ranks select nothing, and a group with nothing to
 // integrate takes part with nothing) and the file is closed. At the end the round's parameters are
