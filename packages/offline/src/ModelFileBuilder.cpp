@@ -142,7 +142,8 @@ Teuchos::ParameterList modelFileValidParameters() {
                   "estimated each round");
   setIntParameter(bld, "candidateSeed", 1, 0, 2147483647, "gphr build with targetError: the candidates' seed");
   setIntParameter(bld, "maxTrainingPoints", 40, 1, 10000,
-                  "gphr build with targetError: training points at most (the corners and centre of the box first)");
+                  "gphr build with targetError: training points at most (greedyStart's first, the confirmations' "
+                  "joined points included)");
   setChoiceParameter(bld, "greedyStart", "corners", Teuchos::tuple<std::string>("corners", "centre"),
                      "gphr build with targetError: the first training set: the box's corners and centre (2^p + 1 "
                      "points), or its centre alone (the fewest full solves; every further point by the estimate)");
@@ -150,8 +151,9 @@ Teuchos::ParameterList modelFileValidParameters() {
                   "gphr build with targetError: candidates added per round (the worst, then the next worst apart "
                   "from it); more than one: the training's rank groups integrate them side by side");
   setIntParameter(bld, "confirmPoints", 3, 0, 1000,
-                  "gphr build with targetError: fresh points of the box (seeded, not trained on) where full solves "
-                  "confirm each query default's error (E_L2 max in the file); 0: none");
+                  "gphr build with targetError: fresh points of the box (seeded, not candidates) where full solves "
+                  "confirm each query default's error (E_L2 max in the file); where they find the target missed, "
+                  "they join the training and the rounds go on; 0: none");
   return bld;
 }
 
