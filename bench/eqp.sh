@@ -22,7 +22,7 @@ gphr=$build/packages/driver/gphr
 out=bench-out/eqp_${case}_np${np}${TAG:+_$TAG}; mkdir -p "$out"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=1
 echo "machine: $(machine_line "$gphr"); ranks $np"
-c=$out/config.yaml
+c=$out.yaml  # beside the output: gphr refuses to write over its input
 list() { echo "$1" | tr ' ' ','; }
 case $case in
   swe)

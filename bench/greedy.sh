@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Greedy training to a target error against the smallest tensor grid that meets it (issue 54),
+# Greedy training to a target error against the smallest tensor grid that meets it,
 # measured side by side in one run, the machine printed, on one of two boxes:
 #   SCENE=swe (default): the SWE box (beta in [1.1, 1.7], gamma in [0.7, 1.3]); nx = NX, IMR,
 #            T = 1, dt = 0.005; gp-deim k = K, m = M (defaults 16, 10, 40);

@@ -20,7 +20,7 @@ gphr=$build/packages/driver/gphr
 out=bench-out/hyper_${case}_np${np}_$svd; mkdir -p "$out"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=1
 echo "machine: $(machine_line "$gphr"); ranks $np; DEIM svd $svd"
-c=$out/config.yaml
+c=$out.yaml  # beside the output: gphr refuses to write over its input
 case $case in
   nls)
     sed -e "s|^  integrator:.*|  integrator: {scheme: avf, jacobianLag: true}|" bench/configs/nls_paper.yaml > "$c"

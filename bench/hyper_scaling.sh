@@ -42,7 +42,7 @@ for mode in $modes; do
       esac
       mkdir -p "$out"
       [ "$round" -eq 1 ] && rm -f "$out"/round_*.json
-      cat > "$out/config.yaml" <<YAML
+      cat > "$out.yaml" <<YAML  # beside the output: gphr refuses to write over its input
 gphr:
   scene: {name: swe2d, nx: $nx}
   parameters: {beta: 1.6435, gamma: 0.7762}
@@ -54,8 +54,8 @@ gphr:
   hyper: {snapshotEvery: 1, svd: randomized, powerIterations: 0}
   output: {saveEvery: 10, plots: false, progressSeconds: 60.0}
 YAML
-      if [ "$np" -eq 1 ]; then "$gphr" run "$out/config.yaml" --output "$out" > "$out/run.log" 2>&1
-      else mpirun --oversubscribe -np "$np" "$gphr" run "$out/config.yaml" --output "$out" > "$out/run.log" 2>&1; fi
+      if [ "$np" -eq 1 ]; then "$gphr" run "$out.yaml" --output "$out" > "$out/run.log" 2>&1
+      else mpirun --oversubscribe -np "$np" "$gphr" run "$out.yaml" --output "$out" > "$out/run.log" 2>&1; fi
       cp "$out/summary.json" "$out/round_$round.json"
       echo "  $mode nx $nx round $round done" >&2
     done

@@ -40,12 +40,12 @@ run() {  # run NAME RANKS BODY_LINES...: one gphr run in $out/NAME; exit code in
   local name=$1 np=$2; shift 2
   local dir=$out/$name
   rm -rf "$dir"; mkdir -p "$dir"
-  config "$@" > "$dir/config.yaml"
+  config "$@" > "$dir.yaml"  # beside the output: gphr refuses to write over its input
   cut -d' ' -f1 /proc/loadavg > "$dir/load"
   if [ "$name" != "${name#route_}" ]; then cp "$artifacts" "$dir/artifacts.h5"; fi
   local rc=0
-  if [ "$np" -eq 1 ]; then "$gphr" run "$dir/config.yaml" --output "$dir" > "$dir/run.log" 2>&1 || rc=$?
-  else mpirun --oversubscribe -np "$np" "$gphr" run "$dir/config.yaml" --output "$dir" > "$dir/run.log" 2>&1 || rc=$?; fi
+  if [ "$np" -eq 1 ]; then "$gphr" run "$dir.yaml" --output "$dir" > "$dir/run.log" 2>&1 || rc=$?
+  else mpirun --oversubscribe -np "$np" "$gphr" run "$dir.yaml" --output "$dir" > "$dir/run.log" 2>&1 || rc=$?; fi
   echo "$rc" > "$dir/rc"
   echo "  $name: exit $rc, $(grep -m1 '\[gphr\] reduce\|gphr: error' "$dir/run.log" || true)" >&2
 }

@@ -22,10 +22,16 @@ RomStages runOfflineStages(const RunContext& ctx, const RunOptions& options) {
   st.training = st.offline->training();
   const BasisStageResult& b = st.offline->basis();
   st.basis = b.basis, st.basisCached = b.cached, st.basisSeconds = b.seconds, st.basisCpuSeconds = b.cpuSeconds;
+  // The captured share is a ratio of sums of squared singular values, exact to a few hundred eps:
+  // below 1e-12 what is left out is round-off (printed as such rather than as -4.0e-15).
+  const double leftOut = 1.0 - st.basis.energyCaptured;
+  char left[64];
+  if (leftOut < 1e-12) std::snprintf(left, sizeof left, "below round-off (< 1e-12)");
+  else std::snprintf(left, sizeof left, "%.1e", leftOut);
   if (ctx.comm->getRank() == 0)
-    std::fprintf(stderr, "[gphr] reduce: %s basis, 2k = %d, snapshot energy left out 1 - captured = %.1e%s, %.1f s "
+    std::fprintf(stderr, "[gphr] reduce: %s basis, 2k = %d, snapshot energy left out 1 - captured = %s%s, %.1f s "
                  "(%.1f s CPU; POD steps: %d tsqr, %d stacked, %d tree, %d replicated)\n", st.basis.method.c_str(),
-                 2 * st.basis.k, 1.0 - st.basis.energyCaptured, st.basisCached ? " (cached)" : "", st.basisSeconds, st.basisCpuSeconds,
+                 2 * st.basis.k, left, st.basisCached ? " (cached)" : "", st.basisSeconds, st.basisCpuSeconds,
                  st.basis.podSteps.tsqr, st.basis.podSteps.stacked, st.basis.podSteps.tree, st.basis.podSteps.replicated);
   return st;
 }

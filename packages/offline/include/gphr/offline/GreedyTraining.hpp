@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Greedy training to a target error (issue 54; libROM's greedy sampler, pyMOR's weak greedy):
+/// Greedy training to a target error (libROM's greedy sampler, pyMOR's weak greedy):
 /// start from the box's corners and centre, build the reduced-model file, estimate every stored
 /// sample-mesh model's error at a seeded set of candidate points of the box with the query's own
 /// error estimate (hyper/ErrorIndicator.hpp: no full solve; the candidates spread over the ranks),
