@@ -9,6 +9,9 @@
 #   delta      delta = delta0 in 5, 10, 20                                 (tab:delta)
 #   gamma      gamma in 5, 10, 20, 50                                      (tab:gamma)
 #   sampling   random / residual / projected rules, m_s in 150, 300, r = r-bar (fig:schro_samplingstrats)
+#   updatetol  adeim.updateTol in 3e-6 .. 4e-5 (the indicator's 10th to 95th percentile here): updates
+#              skipped while the DEIM fit's relative residual at the sampling rows stays below it
+#              (its accuracy-vs-time curve; 0, the paper's rule, is the nls case)
 #   ctime      E_L2 vs m and vs total time, 2k in 160, 280, 400, adaptive and not (fig:error_vs_ctime_2k400);
 #              tau_r = 1e-12 as the paper sets for these figures (m_s = 250 stands in for its absolute tau_s = 1e-10)
 # The residual monitor (an extra O(d) product per update) is off except for the sampling case,
@@ -57,12 +60,14 @@ run() {  # run NAME YAML_LINES...: one gphr run in bench-out/adeim_<case>_np<R>/
   local name=$1; shift
   local out=bench-out/adeim_${case}_np$np$suffix/$name
   mkdir -p "$out"
-  config "$@" > "$out/config.yaml"
+  config "$@" > "$out.yaml"  # beside the output: gphr refuses to write over its input
   [ -s "$base/artifacts.h5" ] && cp "$base/artifacts.h5" "$out/artifacts.h5"
   local before after
   before=$(cpu_ticks)
-  if [ "$np" -eq 1 ]; then "$gphr" run "$out/config.yaml" --output "$out" > "$out/run.log" 2>&1
-  else mpirun --oversubscribe -np "$np" "$gphr" run "$out/config.yaml" --output "$out" > "$out/run.log" 2>&1; fi
+  local rc=0
+  if [ "$np" -eq 1 ]; then "$gphr" run "$out.yaml" --output "$out" --verbose > "$out/run.log" 2>&1 || rc=$?
+  else mpirun --oversubscribe -np "$np" "$gphr" run "$out.yaml" --output "$out" --verbose > "$out/run.log" 2>&1 || rc=$?; fi
+  if [ "$rc" -ne 0 ]; then echo "$name: gphr exited with $rc; $out/run.log ends:" >&2; grep -m3 "error" "$out/run.log" >&2; exit 1; fi
   after=$(cpu_ticks)
   # A run that had to train again (the training or integrator config differs from the cached
   # artifacts', e.g. after a new integrator default) refreshes the cache for the runs after it
@@ -85,10 +90,16 @@ for r in s["runs"][1:]:
     extra = ""
     if r["method"] == "gp-adeim":
         extra = " updates %d rank %.1f m_s %.0f t_upd %.2f" % (g("updates"), g("update_rank_mean"), g("num_samples_mean"), g("t_updates_s"))
+        if r.get("updates_skipped"):
+            extra += " skipped %d" % r["updates_skipped"]
     print("%-14s %-8s 2k=%3d m=%3s %-9s E_L2 %.3e dH_T %.3e t_off %7.2f t_on %7.2f t_tot %7.2f (FOM %.2f)%s"
           % (name, r["method"], 2 * r["k"], r.get("m", "-"), r["status"], g("E_L2"), g("H_err_final"),
              g("t_hyper_offline_s"), g("t_online_s"), g("t_total_s"), fom["t_online_s"], extra))
 PY
+  # The per-stage roofline of the GP-ADEIM update (the NLS scene's sizes; run.log holds the timer table).
+  if grep -q "gphr: gp-adeim window at P" "$out/run.log" && [ -s "$calibration.before" ]; then
+    python3 bench/adeim_roofline.py "$out/run.log" "$out/summary.json" "$out.yaml" "$np" "$calibration.before"
+  fi
   echo "$before $after" | awk -v n="$name" '{t = $3 - $1; if (t > 0) printf "%-14s machine: %.1f%% of the CPU time stolen by the hypervisor during this run\n", n, 100 * ($4 - $2) / t}'
 }
 
@@ -103,8 +114,13 @@ adeim() {  # adeim "KEY: VALUE, ..." -> the adeim section: the paper's settings,
 # The same code printed factorCoefficients 2.35-3.18 ms and computeAdeimUpdate 3.54-3.62 ms in quiet
 # hours, when the paper run took 10.9-15.3 s; 3.4 and 6.0 ms in a slow hour (doc/benchmarks.md,
 # 'adeim_update_micro').
+calibration=bench-out/adeim_${case}_np$np$suffix/calibration
 calibrate() {
-  if [ -x "$build/bench/adeim_update_micro" ]; then echo "calibration ($1): $("$build/bench/adeim_update_micro" 100)"; fi
+  if [ -x "$build/bench/adeim_update_micro" ]; then
+    mkdir -p "$(dirname "$calibration")"
+    "$build/bench/adeim_update_micro" 100 > "$calibration.$1"
+    echo "calibration ($1): $(cat "$calibration.$1")"
+  fi
 }
 calibrate before
 trap 'calibrate after' EXIT
@@ -124,6 +140,8 @@ case $case in
   sampling) for ms in 150 300; do for rule in random residual projected; do
               run "${rule}_$ms" "  pipeline: {methods: [gp-adeim], m: [100]}" \
                 "$(adeim "numSamples: $ms, rankTol: 0.0, sampling: $rule, monitorResidual: true")"; done; done ;;
+  updatetol) for t in ${UPDATE_TOLS:-3.0e-6 1.0e-5 2.0e-5 4.0e-5}; do
+               run "updatetol_$t" "  pipeline: {methods: [gp-adeim], m: [100]}" "$(adeim "updateTol: $t")"; done ;;
   ctime) run ctime "  pipeline: {methods: [gp-deim, gp-adeim], k: [80, 140, 200], m: [${M_CTIME:-25, 50, 100}]}" \
            "$(adeim "sampling: projected")" ;;
   *) echo "unknown case $case"; exit 2 ;;

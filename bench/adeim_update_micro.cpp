@@ -85,4 +85,10 @@ int main(int argc, char** argv) {
               up.rank == cf.rank() && cf.rank() == m ? "" : " [r < r_C or r_C < m: the full-rank counts below are approximate]");
   roofline("factorCoefficients", fFactor, bFactor, tFactor);
   roofline("computeAdeimUpdate", fUpdate, bUpdate, tUpdate);
+  // The memory roof: a copy of 64 MB (far beyond the caches), bytes read plus bytes written. With
+  // the DGEMM rate above it places each stage of adeim_paper.sh's per-stage roofline.
+  std::vector<double> src(std::size_t(1) << 23, 1.0), dst(src.size());
+  const double tCopy = medianMs(std::max(3, repeats / 20), [&] { std::copy(src.begin(), src.end(), dst.begin()); });
+  std::printf("memory bandwidth (copy of %zu MB): %.1f GB/s\n", src.size() * 8 >> 20,
+              2.0 * 8.0 * static_cast<double>(src.size()) / (tCopy * 1e6));
 }

@@ -148,7 +148,8 @@ def check_gp_adeim(s, rom, a):
     for r in runs:
         check_keys_and_numbers(r, ("E_L2", "E_fin", "t_online_s", "H_model_err_max", "t_total_s", "t_updates_s"))
         updates = (a.steps - r["delta0"]) // r["delta"] + 1
-        require(r["updates"] == updates, "gp-adeim m=%d: %r updates, expected %d" % (r["m"], r["updates"], updates))
+        ran = r["updates"] + r.get("updates_skipped", 0)  # run or skipped (adeim.updateTol)
+        require(ran == updates, "gp-adeim m=%d: %r updates, expected %d" % (r["m"], ran, updates))
         if a.scheme == "avf":  # the sum over all steps bounds each update interval's
             require_avf_drift(r, r["H_model_err_max"], h0, "gp-adeim m=%d: a local H_hr" % r["m"])
     low = min(runs, key=lambda r: r["m"])
@@ -161,7 +162,7 @@ def check_gp_adeim(s, rom, a):
 
 ADEIM_COLUMNS = ("run", "k", "m", "update", "step", "t", "rank", "coefficient_rank", "m_s", "resampled",
                  "sampled_residual_before", "sampled_residual_after", "full_residual", "window_norm", "cond1_PtU", "update_s",
-                 "dH_total", "eps_fom", "eps_hr", "deim_end", "deim_start", "bound", "paper_bound")
+                 "dH_total", "eps_fom", "eps_hr", "deim_end", "deim_start", "bound", "paper_bound", "skipped", "indicator")
 
 
 def adeim_updates(a):
@@ -186,7 +187,8 @@ def adeim_updates(a):
         require(abs(r["t_total_s"] - total) <= 1e-12 * total,
                 "gp-adeim m=%d: t_total_s %r != t_hyper_offline_s + t_online_s = %r" % (r["m"], r["t_total_s"], total))
         mine = [x for x in rows if int(x["k"]) == r["k"] and int(x["m"]) == r["m"]]
-        require(len(mine) == r["updates"], "gp-adeim m=%d: %d CSV rows for %d updates" % (r["m"], len(mine), r["updates"]))
+        checks = r["updates"] + r.get("updates_skipped", 0)  # a skipped update (adeim.updateTol) has its row too
+        require(len(mine) == checks, "gp-adeim m=%d: %d CSV rows for %d updates" % (r["m"], len(mine), checks))
         starts = 0.0
         for x in mine:
             f = {k: float(v) for k, v in x.items() if k != "run"}
@@ -194,6 +196,12 @@ def adeim_updates(a):
             # m_s >= m unless d - m rows are fewer (S lies outside P)
             require(0 <= f["rank"] <= f["coefficient_rank"] <= r["m"] and f["m_s"] >= 1,
                     "%s: rank %g, coefficient rank %g, m %d, m_s %g" % (where, f["rank"], f["coefficient_rank"], r["m"], f["m_s"]))
+            # A skipped update (adeim.updateTol) changed nothing and had its indicator computed; -1
+            # marks an indicator not computed (updateTol 0, the default, or the first update).
+            require(f["skipped"] in (0, 1) and (f["indicator"] == -1 or f["indicator"] >= 0),
+                    "%s: skipped %g, indicator %g" % (where, f["skipped"], f["indicator"]))
+            require(not f["skipped"] or (f["rank"] == 0 and f["indicator"] >= 0),
+                    "%s: skipped with rank %g, indicator %g" % (where, f["rank"], f["indicator"]))
             require(f["sampled_residual_after"] <= f["sampled_residual_before"] * (1 + 1e-12),
                     "%s: the residual at S rose from %g to %g" % (where, f["sampled_residual_before"], f["sampled_residual_after"]))
             if f["full_residual"] >= 0:

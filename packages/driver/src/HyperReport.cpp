@@ -106,7 +106,8 @@ void writeAdeimUpdates(const FomResult& fom, const std::vector<ModelRun>& runs, 
   std::ofstream os(csv);
   os.precision(10);
   os << "run,k,m,update,step,t,rank,coefficient_rank,m_s,resampled,sampled_residual_before,sampled_residual_after,"
-        "full_residual,window_norm,cond1_PtU,update_s,dH_total,eps_fom,eps_hr,deim_end,deim_start,bound,paper_bound\n";
+        "full_residual,window_norm,cond1_PtU,update_s,dH_total,eps_fom,eps_hr,deim_end,deim_start,bound,paper_bound,"
+        "skipped,indicator\n";
   for (const auto& r : runs) {
     if (!r.info().adaptive() || r.modelHamiltonian.empty()) continue;
     const double H0 = fom.hamiltonian.front();
@@ -124,7 +125,8 @@ void writeAdeimUpdates(const FomResult& fom, const std::vector<ModelRun>& runs, 
          << u.sampledBefore << "," << u.sampledAfter << "," << u.fullResidual << "," << u.windowNorm << "," << u.condPtU
          << "," << u.seconds << ","
          << std::abs(fom.hamiltonian[l] - Hlift) << "," << epsFom << "," << epsHr << "," << end << "," << start << ","
-         << epsFom + paperSum + starts << "," << epsFom + paperSum << "\n";
+         << epsFom + paperSum + starts << "," << epsFom + paperSum << "," << (u.skipped ? 1 : 0) << "," << u.indicator
+         << "\n";
       starts += start;
       segStart = u.hrAfter;
     }

@@ -153,10 +153,18 @@ double localHamiltonianDrift(const ModelRun& run) {
 }
 
 void setAdeimSummary(ModelRun& run, const AdeimOptions& o, double tInitial, double tPair) {
+  // The means are over the updates that ran; the time counts the skipped ones' indicators too.
   double tUpdates = 0.0, rankSum = 0.0, samples = 0.0;
-  for (const auto& u : run.adeimUpdates) tUpdates += u.seconds, rankSum += u.rank, samples += u.numSamples;
-  const double n = std::max<size_t>(1, run.adeimUpdates.size());
-  run.metrics.set(Metric::Updates, static_cast<long>(run.adeimUpdates.size()))
+  long skipped = 0;
+  for (const auto& u : run.adeimUpdates) {
+    tUpdates += u.seconds;
+    if (u.skipped) ++skipped;
+    else rankSum += u.rank, samples += u.numSamples;
+  }
+  const long ran = static_cast<long>(run.adeimUpdates.size()) - skipped;
+  const double n = std::max<long>(1, ran);
+  run.metrics.set(Metric::Updates, ran)
+      .set(Metric::UpdatesSkipped, skipped)
       .set(Metric::UpdateRankMean, rankSum / n)
       .set(Metric::NumSamplesMean, samples / n)
       .set(Metric::TUpdatesS, tUpdates)

@@ -78,6 +78,7 @@ const MetricInfo kMetrics[] = {
     {"eqp_selections", Integer},
     {"eqp_cached", Flag},
     {"updates", Integer},
+    {"updates_skipped", Integer},
     {"update_rank_mean", Number},
     {"num_samples_mean", Number},
     {"initial_basis", Text},

@@ -2,6 +2,7 @@
 
 #include <Teuchos_BLAS.hpp>
 #include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_OrdinalTraits.hpp>
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -62,6 +63,9 @@ bool better(const Candidate& a, const Candidate& b) {
 }
 }  // namespace
 
+// Each rank offers its K best rows (K = m_s, or the cap with tau_s), sorted; one gather of the
+// offers as (score, gid) pairs in doubles (gids exact below 2^53) and the same selection on every
+// rank. The excluded rows are marked by local index (no set lookups per row).
 std::vector<GO> largestScoreRows(const Map& rowMap, const std::vector<double>& scores, const std::vector<GO>& exclude,
                                  const SampleCount& count) {
   const LO nl = static_cast<LO>(rowMap.getNodeNumElements());
@@ -70,38 +74,42 @@ std::vector<GO> largestScoreRows(const Map& rowMap, const std::vector<double>& s
   const int K = count.fixed > 0 ? count.fixed : count.atMost;
   GPHR_REQUIRE(K > 0 && count.atLeast <= std::max(K, count.atLeast), InputError, "sampling: asked for ", K,
                " rows (at least ", count.atLeast, ")");
-  const std::set<GO> skip(exclude.begin(), exclude.end());
+  std::vector<char> skip(nl, 0);
+  for (GO g : exclude) {
+    const LO l = rowMap.getLocalElement(g);
+    if (l != Teuchos::OrdinalTraits<LO>::invalid()) skip[l] = 1;
+  }
   std::vector<Candidate> local;
+  local.reserve(nl);
   for (LO i = 0; i < nl; ++i) {
-    const GO g = rowMap.getGlobalElement(i);
-    GPHR_REQUIRE(std::isfinite(scores[i]), SolverError, "sampling: non-finite residual at row ", g);
-    if (!skip.count(g)) local.push_back({scores[i], static_cast<long long>(g)});
+    GPHR_REQUIRE(std::isfinite(scores[i]), SolverError, "sampling: non-finite residual at row ",
+                 rowMap.getGlobalElement(i));
+    if (!skip[i]) local.push_back({scores[i], static_cast<long long>(rowMap.getGlobalElement(i))});
   }
   const size_t keep = std::min(local.size(), static_cast<size_t>(K));
-  std::partial_sort(local.begin(), local.begin() + keep, local.end(), better);
-  local.resize(K, Candidate{-1.0, -1});  // padded: every rank sends K candidates
-  std::vector<double> s(K), allS;
-  std::vector<long long> g(K), allG;
-  for (int i = 0; i < K; ++i) s[i] = local[i].score, g[i] = local[i].gid;
+  if (keep < local.size()) std::nth_element(local.begin(), local.begin() + keep, local.end(), better);
+  std::sort(local.begin(), local.begin() + keep, better);
+  std::vector<double> offer(2 * static_cast<size_t>(K), -1.0), all;  // (score, gid); gid -1: no row
+  for (size_t i = 0; i < keep; ++i) offer[2 * i] = local[i].score, offer[2 * i + 1] = static_cast<double>(local[i].gid);
   const int np = rowMap.getComm()->getSize();
-  allS.resize(static_cast<size_t>(np) * K);
-  allG.resize(allS.size());
-  Teuchos::gatherAll(*rowMap.getComm(), K, s.data(), np * K, allS.data());
-  Teuchos::gatherAll(*rowMap.getComm(), K, g.data(), np * K, allG.data());
-  std::vector<Candidate> all;
-  for (size_t i = 0; i < allS.size(); ++i)
-    if (allG[i] >= 0) all.push_back({allS[i], allG[i]});
-  std::sort(all.begin(), all.end(), better);
-  size_t n = std::min(all.size(), static_cast<size_t>(K));
-  if (count.fixed <= 0 && !all.empty()) {
-    const double floor = count.relTol * all.front().score;
+  all.resize(static_cast<size_t>(np) * offer.size());
+  Teuchos::gatherAll(*rowMap.getComm(), static_cast<int>(offer.size()), offer.data(), static_cast<int>(all.size()),
+                     all.data());
+  std::vector<Candidate> merged;
+  merged.reserve(all.size() / 2);
+  for (size_t i = 0; i < all.size(); i += 2)
+    if (all[i + 1] >= 0.0) merged.push_back({all[i], static_cast<long long>(all[i + 1])});
+  size_t n = std::min(merged.size(), static_cast<size_t>(K));
+  std::partial_sort(merged.begin(), merged.begin() + n, merged.end(), better);
+  if (count.fixed <= 0 && !merged.empty()) {
+    const double floor = count.relTol * merged.front().score;
     size_t above = 0;
-    while (above < all.size() && all[above].score > floor) ++above;
+    while (above < n && merged[above].score > floor) ++above;
     n = std::min(n, std::max(above, static_cast<size_t>(count.atLeast)));
-    n = std::min(n, all.size());
   }
   std::vector<GO> rows;
-  for (size_t i = 0; i < n; ++i) rows.push_back(static_cast<GO>(all[i].gid));
+  rows.reserve(n);
+  for (size_t i = 0; i < n; ++i) rows.push_back(static_cast<GO>(merged[i].gid));
   std::sort(rows.begin(), rows.end());
   return rows;
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "gphr/core/Error.hpp"
 #include "gphr/reduction/DenseQr.hpp"
@@ -165,8 +166,13 @@ DenseMatrix pseudoInverse(const DenseMatrix& T, const DenseMatrix& Ct, const std
 // below needs only an orthonormal basis of the row space and T, not singular vectors.
 CoefficientFactor factorCoefficients(const DenseMatrix& PtU, const DenseMatrix& PtF, double tol) {
   GPHR_REQUIRE(tol >= 0.0, InputError, "GP-ADEIM: coefficientTol = ", tol, " (need >= 0)");
+  return factorCoefficients(deimCoefficients(PtU, PtF), tol);
+}
+
+CoefficientFactor factorCoefficients(DenseMatrix C, double tol) {
+  GPHR_REQUIRE(tol >= 0.0, InputError, "GP-ADEIM: coefficientTol = ", tol, " (need >= 0)");
   CoefficientFactor f;
-  f.C = deimCoefficients(PtU, PtF);
+  f.C = std::move(C);
   const int m = f.C.numRows(), wbar = f.C.numCols(), k = std::min(m, wbar);
   DenseMatrix Ct(wbar, m, false);  // every entry written below
   for (int j = 0; j < wbar; ++j)

@@ -331,6 +331,9 @@ TEST(GpAdeimParts, OptionsAreValidated) {
   pl = Teuchos::ParameterList("adeim");
   pl.set("rankTol", 2.0);  // outside [0, 1]
   expectError(pl, "rankTol");
+  pl = Teuchos::ParameterList("adeim");
+  pl.set("updateTol", -1e-3);  // negative
+  expectError(pl, "updateTol");
   const AdeimOptions o = adeimOptionsFrom(Teuchos::ParameterList("adeim"), 10);
   EXPECT_EQ(o.initialWindow, 5);
   EXPECT_EQ(o.maxSamples, 40);
@@ -364,6 +367,7 @@ TEST(GpAdeimParts, OptionsAreRead) {
   pl.set("orthonormalize", false);
   pl.set("monitorResidual", false);
   pl.set("seed", 12345);
+  pl.set("updateTol", 1e-4);
   const AdeimOptions d, o = adeimOptionsFrom(pl, 10);
   EXPECT_EQ(o.initialWindow, 7);
   EXPECT_EQ(o.updateEvery, 3);
@@ -382,6 +386,8 @@ TEST(GpAdeimParts, OptionsAreRead) {
   EXPECT_FALSE(o.orthonormalize);
   EXPECT_FALSE(o.monitorResidual);
   EXPECT_EQ(o.seed, 12345u);
+  EXPECT_EQ(o.updateTol, 1e-4);
+  EXPECT_EQ(d.updateTol, 0.0);  // the paper's rule: every delta steps
   // the values above differ from the defaults, so the checks could fail
   EXPECT_NE(d.sampleTol, o.sampleTol);
   EXPECT_NE(d.update.rankTol, o.update.rankTol);
@@ -479,6 +485,70 @@ TEST_F(GpAdeim, AdaptationTracksTheReducedModelBetterThanTheFixedBasis) {
     const double eAdaptive = test::maxRelDiff(test::adaptiveTrajectory(*moving, "imr", kDt, 200).z, ref);
     EXPECT_LT(eAdaptive, 0.5 * eFixed) << "m = " << m << ": fixed " << eFixed << ", adaptive " << eAdaptive;
   }
+}
+
+// adeim.updateTol. (1) Above any indicator: only the first update runs (no sampling rows before
+// it), so the model equals one whose delta puts every later update beyond the horizon (the same
+// arithmetic: 1e-13 allows for nothing but round-off). (2) Below any indicator: every update runs
+// as with updateTol = 0, bit for bit (the indicator only reads), each after an indicator > 0.
+// (3) At the median of (2)'s indicators: an update is skipped exactly when its indicator is at or
+// below updateTol, some are and some are not, and the skipped ones leave U unchanged.
+TEST_F(GpAdeim, UpdateTolSkipsExactlyTheUpdatesWhoseIndicatorIsBelowIt) {
+  auto& hc = nls();
+  const long steps = 200;
+  AdeimOptions o = test::adeimOptions(5, 5, 5, 12);
+  auto run = [&](double tol, AdeimOptions base) {
+    base.updateTol = tol;
+    auto model = adaptive(base, *hc.deim.U);
+    auto r = test::adaptiveTrajectory(*model, "imr", kDt, steps);
+    return std::make_pair(model, r);
+  };
+  const auto [never, zNever] = run(1e6, o);
+  AdeimOptions once = test::adeimOptions(5, 1000, 1000, 12);
+  const auto [first, zFirst] = run(0.0, once);
+  ASSERT_EQ(first->updates().size(), 1u);
+  ASSERT_EQ(never->updates().size(), static_cast<size_t>((steps - 5) / 5 + 1));
+  EXPECT_FALSE(never->updates().front().skipped);
+  for (size_t j = 1; j < never->updates().size(); ++j) EXPECT_TRUE(never->updates()[j].skipped) << j;
+  EXPECT_LE(test::maxRelDiff(zNever.z, zFirst.z), 1e-13);
+
+  const auto [plain, zPlain] = run(0.0, o);
+  const auto [all, zAll] = run(1e-300, o);
+  EXPECT_EQ(test::maxRelDiff(zAll.z, zPlain.z), 0.0);
+  std::vector<double> indicators;
+  for (size_t j = 1; j < all->updates().size(); ++j) {
+    EXPECT_FALSE(all->updates()[j].skipped) << j;
+    EXPECT_GT(all->updates()[j].indicator, 0.0) << j;
+    indicators.push_back(all->updates()[j].indicator);
+  }
+  std::nth_element(indicators.begin(), indicators.begin() + indicators.size() / 2, indicators.end());
+  const double median = indicators[indicators.size() / 2];
+  auto some = adaptive([&] { AdeimOptions x = o; x.updateTol = median; return x; }(), *hc.deim.U);
+  int skipped = 0, ran = 0, unchanged = 0;
+  auto localU = [&] {
+    auto u = some->deimBasis().getLocalViewHost(Tpetra::Access::ReadOnly);
+    return std::vector<double>(u.data(), u.data() + u.span());
+  };
+  std::vector<double> previous = localU();  // this rank's rows of U after the last step
+  test::adaptiveTrajectory(*some, "imr", kDt, steps, [&](long j) {
+    const std::vector<double> now = localU();
+    if (!some->updates().empty() && some->updates().back().step == j && some->updates().back().skipped) {
+      EXPECT_EQ(now, previous) << "step " << j;
+      ++unchanged;
+    }
+    previous = now;
+  });
+  for (size_t j = 1; j < some->updates().size(); ++j) {
+    const AdeimUpdateRecord& u = some->updates()[j];
+    EXPECT_EQ(u.skipped, u.indicator <= median) << j;
+    (u.skipped ? skipped : ran) += 1;
+    if (u.skipped) {
+      EXPECT_EQ(u.rank, 0) << j;
+    }
+  }
+  EXPECT_GT(skipped, 0);
+  EXPECT_GT(ran, 0);
+  EXPECT_EQ(unchanged, skipped);
 }
 
 // max |U^T U - I| of the model's current DEIM basis (collective).

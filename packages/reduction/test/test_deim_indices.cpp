@@ -210,6 +210,39 @@ TEST(DeimPointUpdate, IsTheGreedyStepForOneColumn) {
   EXPECT_THROW(replaceDeimIndices(*U, P, {m}), InputError);
 }
 
+// Ties go to the smallest gid: column 0 has |u| = 1 exactly at five rows (on different ranks,
+// and in different and equal positions modulo 4, the pivot search's lanes) and |u| < 1 elsewhere,
+// so the first index is row 7 on any rank count, and the sequence is the textbook's (which takes
+// the first of equal residuals). The same basis on a map whose gids fall with the local index
+// (the pivot search's second scan) gives the same gids.
+TEST(GreedyDeim, TiesGoToTheSmallestGid) {
+  const GO d = 97;
+  const int m = 20;
+  const std::vector<GO> ones = {90, 41, 11, 7, 8};
+  auto fill = [&](MultiVector& U) {
+    const Map& map = *U.getMap();
+    auto u = U.getLocalViewHost(Tpetra::Access::OverwriteAll);
+    for (LO i = 0; i < static_cast<LO>(map.getNodeNumElements()); ++i) {
+      const GO g = map.getGlobalElement(i);
+      for (int j = 0; j < m; ++j) u(i, j) = hashed(9, g, j);
+      const bool one = std::find(ones.begin(), ones.end(), g) != ones.end();
+      u(i, 0) = one ? (g % 2 ? -1.0 : 1.0) : 0.5 * u(i, 0);
+    }
+  };
+  auto U = rcp(new MultiVector(rcp(new Map(d, 0, test::comm())), m));
+  fill(*U);
+  const std::vector<GO> P = selectDeimIndices(*U, m, "deim");
+  ASSERT_EQ(P.front(), 7);
+  EXPECT_EQ(P, textbookDeim(*U, m));
+  // The same rows, each rank's gids in falling order.
+  const Map& contiguous = *U->getMap();
+  std::vector<GO> mine;
+  for (LO i = static_cast<LO>(contiguous.getNodeNumElements()) - 1; i >= 0; --i) mine.push_back(contiguous.getGlobalElement(i));
+  auto V = rcp(new MultiVector(rcp(new Map(d, Teuchos::ArrayView<const GO>(mine), 0, test::comm())), m));
+  fill(*V);
+  EXPECT_EQ(selectDeimIndices(*V, m, "deim"), P);
+}
+
 TEST(GreedyDeim, RankDeficientBasisIsAClearError) {
   const auto U = basis(50, 6, 4);
   Tpetra::deep_copy(*U->getVectorNonConst(4), *U->getVector(1));  // column 5 repeats column 2

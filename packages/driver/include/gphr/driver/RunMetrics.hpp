@@ -32,7 +32,7 @@ enum class Metric : int {
   // empirical quadrature fits
   EqpTerms, EqpFitResidual, EqpFitResidualExactRows, EqpWeightMin, EqpWeightMax, EqpStop, EqpSelections, EqpCached,
   // GP-ADEIM
-  Updates, UpdateRankMean, NumSamplesMean, InitialBasis, Sampling, Delta0, Delta, Window, Gamma,
+  Updates, UpdatesSkipped, UpdateRankMean, NumSamplesMean, InitialBasis, Sampling, Delta0, Delta, Window, Gamma,
   // offline and total times
   TTrainingS, TBasisS, TBasisCpuS, TDeimBasisS, TDeimBasisComputeS, TDeimPairS, TEqpTrainingS, TEqpFitS, TEqpMeshS, TInitialBasisS, TUpdatesS, TOfflineS, THyperOfflineS, TTotalS,
   // the POD routes of the basis

@@ -78,6 +78,8 @@ struct CoefficientFactor {
 };
 /// Factors C_j = (P^T U_j)^{-1} P^T F_j as CoefficientFactor describes.
 CoefficientFactor factorCoefficients(const DenseMatrix& PtU, const DenseMatrix& PtF, double coefficientTol);
+/// The same from C_j itself (deimCoefficients' result, taken over).
+CoefficientFactor factorCoefficients(DenseMatrix C, double coefficientTol);
 
 /// PtU: P^T U_j (m x m); PtF: P^T F_j (m x wbar); StU: S^T U_j (m_s x m); StF: S^T F_j (m_s x wbar).
 /// InputError on mismatched sizes or a singular P^T U; never NaN: a zero residual or a zero C gives

@@ -39,6 +39,11 @@ struct AdeimOptions {
   bool orthonormalize = true;  ///< U_{j+1} <- an orthonormal basis of its span (O(d m^2)): in column-pivoted QR order,
                                ///< or for indices = partial the nearest one (U G^{-1/2}), column by column
   unsigned long long seed = 20240601;  ///< Seed of the random sampling rule.
+  /// An update runs only when the indicator ||S_j^T R_j||_F / ||S_j^T F_j||_F, the DEIM fit's
+  /// relative residual at the current sampling rows, exceeds updateTol; otherwise U, P and S stay
+  /// (a skipped update). 0: every delta steps, the paper's rule (the default). The first update
+  /// always runs (no sampling rows yet).
+  double updateTol = 0.0;
 };
 
 /// The `adeim` section: keys, defaults, ranges, documentation.
@@ -71,6 +76,8 @@ struct AdeimUpdateRecord {
   double hrBefore = 0.0;      ///< H_hr^j(z^{ell_{j+1}})   (the local model ending here)
   double hrAfter = 0.0;       ///< H_hr^{j+1}(z^{ell_{j+1}})
   double seconds = 0.0;       ///< wall time of this adaptation
+  bool skipped = false;       ///< updateTol: the indicator stayed at or below it; nothing changed
+  double indicator = -1.0;    ///< ||S_j^T R_j||_F / ||S_j^T F_j||_F before the update (updateTol > 0); -1: not computed
 };
 
 /// GP-ADEIM, the adaptive gradient-preserving hyper-reduced model (see the file's description).
@@ -97,8 +104,9 @@ class GpAdeimModel final : public ReducedHamiltonian {
                ReducedLinearPart linear, AdeimOptions options);
   bool isUpdateStep(long step) const;
   void windowSnapshots(ReducedRowKernel& kernel, std::vector<double>& F);  ///< row-major rows x (2k w)
+  double updateIndicator(const DenseMatrix& C, int wbar);  ///< ||S^T (U C - F)||_F / ||S^T F||_F (collective)
   void resample(const CoefficientFactor& cf, long updateNo);
-  ReducedRowKernel& samplingKernel();  ///< the sample mesh of S, built on demand
+  ReducedRowKernel& ownSampledKernel();  ///< this rank's rows of S, built on demand (no communication)
   AdeimUpdate updateSampledRows(const CoefficientFactor& cf, int wbar, std::vector<double>& F);
   /// ||U_{j+1} C_j - F_j||_F and ||F_j||_F over all d rows (the residual monitor).
   std::pair<double, double> fullResidual(const CoefficientFactor& cf);
@@ -115,9 +123,9 @@ class GpAdeimModel final : public ReducedHamiltonian {
   AdeimOptions opt_;
   std::vector<GO> P_, S_;
   DenseMatrix PtU_;                 ///< P_^T U_ (m x m) once gathered; empty before the first update
-  RCP<ReducedRowKernel> sampling_;  ///< the rows S (built on demand: samplingKernel)
-  bool samplingStale_ = true;       ///< S_ changed since sampling_ was built
   RCP<ReducedRowKernel> owned_;     ///< this rank's rows of G (resampling, monitoring)
+  RCP<ReducedRowKernel> ownSampled_;  ///< this rank's rows of S, copied from owned_; null after S changes
+  std::vector<LO> ownSampledRows_;    ///< their local rows (U's local order)
   std::deque<DenseVector> window_;
   std::vector<double> ownedF_;      ///< F_j on this rank's rows (row-major), when computed
   bool ownedFValid_ = false;
