@@ -79,8 +79,8 @@ run() {  # run NAME YAML_LINES...: one gphr run in bench-out/adeim_<case>_np<R>/
   if [ -z "$suffix" ] && { [ ! -s "$base/artifacts.h5" ] || grep -q "training again" "$out/run.log"; }; then
     cp "$out/artifacts.h5" "$base/artifacts.h5"
   fi
-  python3 - "$out/summary.json" "$name" <<'PY'
-import json, sys
+  python3 - "$out/summary.json" "$name" "$out/adeim_updates.csv" <<'PY'
+import csv, json, os, sys
 s = json.load(open(sys.argv[1])); name = sys.argv[2]
 fom = s["runs"][0]
 for r in s["runs"][1:]:
@@ -92,6 +92,12 @@ for r in s["runs"][1:]:
         extra = " updates %d rank %.1f m_s %.0f t_upd %.2f" % (g("updates"), g("update_rank_mean"), g("num_samples_mean"), g("t_updates_s"))
         if r.get("updates_skipped"):
             extra += " skipped %d" % r["updates_skipped"]
+        # adeim.updateTol's indicator where it was computed: its 5th, 50th and 95th percentiles
+        ind = sorted(float(x["indicator"]) for x in csv.DictReader(open(sys.argv[3])) if float(x["indicator"]) >= 0
+                     and int(x["k"]) == r["k"] and int(x["m"]) == r["m"]) if os.path.exists(sys.argv[3]) else []
+        if ind:
+            q = lambda f: ind[min(len(ind) - 1, int(f * len(ind)))]
+            extra += " indicator p5/p50/p95 %.2e/%.2e/%.2e" % (q(0.05), q(0.5), q(0.95))
     print("%-14s %-8s 2k=%3d m=%3s %-9s E_L2 %.3e dH_T %.3e t_off %7.2f t_on %7.2f t_tot %7.2f (FOM %.2f)%s"
           % (name, r["method"], 2 * r["k"], r.get("m", "-"), r["status"], g("E_L2"), g("H_err_final"),
              g("t_hyper_offline_s"), g("t_online_s"), g("t_total_s"), fom["t_online_s"], extra))

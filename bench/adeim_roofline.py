@@ -33,7 +33,7 @@ def stages(z):
     return [
         ("window at P", "F_j at P (m x wbar), C_j = (P^T U)^-1 P^T F_j (GETRF, GETRI, GEMM)",
          2 * t * M * W + 2 * M**3 + 2 * M * M * W, 8 * (t * M * k2 + 2 * M * W + 2 * M * M)),
-        ("update indicator", "S^T F_j on the sample mesh of S, ||S^T (U C - F)|| (adeim.updateTol)",
+        ("update indicator", "S^T F_j on the own rows of S, ||S^T (U C - F)|| (adeim.updateTol)",
          2 * t * S * W + 2 * Sl * M * W, 8 * (t * S * k2 + S * W + Sl * M + M * W)),
         ("coefficient factor", "pivoted QR of C_j^T (GEQP3), T^+ (TRTRI), Q_1 (ORMQR)",
          (2 * W * M * M - 2 / 3 * M**3) + M**3 / 3 + (4 * W * M * M - 2 * M**3), 8 * (M * W + W * M + 2 * M * M)),
@@ -66,7 +66,6 @@ def main():
     peak = float(re.search(r"DGEMM [^:]*: ([\d.]+) GFlop/s", cal).group(1))
     bw = float(re.search(r"memory bandwidth \(copy[^)]*\): ([\d.]+) GB/s", cal).group(1))
     z = sizes(json.load(open(summary)), open(config).read(), int(ranks))
-    total_updates = None
     rows = []
     def timer_mean(name):  # (mean over the ranks, calls) of a timer, or None
         mt = re.search(r"gphr: gp-adeim %s\s+\S+ \(\d+\)\s+([\d.e+-]+) \((\d+)\)" % re.escape(name), text)
@@ -77,7 +76,6 @@ def main():
         if any(p is None for p in parts):
             continue
         mean, calls = parts[0][0] - sum(p[0] for p in parts[1:]), parts[0][1]
-        total_updates = total_updates or calls
         ms = 1e3 * mean / calls
         tc, tm = flops / (peak * 1e9) * 1e3, nbytes / (bw * 1e9) * 1e3
         bound = "latency" if ms > 4 * max(tc, tm) else ("compute" if tc >= tm else "memory")

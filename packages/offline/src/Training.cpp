@@ -259,14 +259,13 @@ std::vector<double> parameterFingerprint(const Comm& world, const Comm& group, s
 // One round of the training with the cache (collective over the cache's ranks): group g
 // integrates parameter slots[g] on `groupComm` (none: max size_t; no slot holds a parameter the
 // cache has done) while the round's datasets fill block by block: at each of integrateInBlocks'
-// blocks every rank of the
-// world opens the file, each dataset's rows are written by its group's ranks straight from their
-// rows (Hdf5File::writeStateRows; the other ranks select nothing, and a group with nothing to
-// integrate takes part with nothing) and the file is closed. At the end the round's parameters are
-// sealed together (their marks; one flush to the disk first where the cache syncs). So the
-// training holds one block of states per rank, not a trajectory; the file is closed between
-// blocks, and a kill loses the unfinished round only (its datasets carry no complete mark). A
-// group whose full model fails (a SolverError: Newton did not converge) stops integrating but
+// blocks every rank of the world opens the file, each dataset's rows are written by its group's
+// ranks straight from their rows (Hdf5File::writeStateRows; the other ranks select nothing, and a
+// group with nothing to integrate takes part with nothing) and the file is closed. At the end the
+// round's parameters are sealed together (their marks; one flush to the disk first where the cache
+// syncs). So the training holds one block of states per rank, not a trajectory; the file is
+// closed between blocks, and a kill loses the unfinished round only (its datasets carry no complete
+// mark). A group whose full model fails (a SolverError: Newton did not converge) stops integrating but
 // still takes part in the round's remaining block writes, and all ranks then agree on the failure
 // and throw it, naming the parameter: no group is left waiting in a collective write for one that
 // stopped.
