@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# gp-eqp against GP-DEIM and the ROM (issue 26, the targets of its section 4), measured side by
+# gp-eqp against GP-DEIM and the ROM (the targets in doc/eqp.md), measured side by
 # side in one `gphr run` per case:
 #   swe  SWE 20 x 20, T = 2, IMR, 3 x 3 training (every 10th state kept), 2k = 40, methods rom,
 #        gp-deim, gp-eqp, gp-eqp-refit (GP-DEIM's terms, least-squares weights), m in M (default

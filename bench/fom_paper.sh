@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Benchmark of the full model at the paper's configurations (issue: foundation), side by side in
+# Benchmark of the full model at the paper's configurations, side by side in
 # one run: NLS/AVF, SWE/IMR, SWE/AVF on 1 and 2 MPI ranks, each with both Newton drivers
 # (integrator.newtonSolver: nox and gphr), next to the paper's MATLAB times, plus a short
 # preconditioner comparison (T shortened) that justifies the default.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Benchmark of GP-DEIM at the paper's settings (issue: GP-DEIM), FOM, ROM and hyper-reduced online
+# Benchmark of GP-DEIM at the paper's settings, FOM, ROM and hyper-reduced online
 # times measured side by side in one `gphr run` per case:
 #   nls      Sec. 5.2: n = 2048, T = 30, AVF, 11 training parameters, 2k = 400, m in M_NLS (100)
 #   swe-imr  Sec. 5.1 (tab:2dsw_ctimes, fig:2dsw_errors_avf_imr): 50 x 50, T = 10, 5 x 5 training,

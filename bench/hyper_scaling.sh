@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# GP-DEIM online cost against the full size (issue: GP-DEIM, "HR online time per step for SWE
-# 64^2 ... 512^2 at fixed k, m within 1.2x of each other, while the ROM's grows with n"): one short
-# SWE run per grid (IMR, 100 steps, training at the box centre with every state kept for the DEIM
+# GP-DEIM online cost against the full size (the target: the hyper-reduced online time per step
+# for SWE 64^2 ... 512^2 at fixed k, m within 1.2x of each other, while the ROM's grows with n):
+# one short SWE run per grid (IMR, 100 steps, training at the box centre with every state kept for the DEIM
 # snapshots, 2k = 20; with 2k = 40, m = 100 the 128^2 and 256^2 models lost convexity and
 # diverged, and the DEIM basis of one short run has few directions above the randomized range
 # finder's floor), FOM, ROM and GP-DEIM side by side in each run. Each reduced online run is

@@ -1,17 +1,17 @@
 #!/usr/bin/env bash
-# Issue 31's scaling run on a lent 16-core machine in one call of the `device` tool
+# The scaling run (bench/scaling.sh at SIZE=large) on a lent 16-core machine in one call of the `device` tool
 # (../shared/device/README.md): unpacks the carried bundle (.devbundle/gphr.tar.xz, made here by
 # make_bundle.sh from a Release build), runs bench/scaling.sh with the bundle's gphr and mpirun
 # (CRITICAL=1: the compute critical path beside the wall seconds), and leaves under $OUT per case
 # the CSVs and the printed tables (node16-CASE.csv, -mpi.csv, .txt) and runs.tar, every rank
 # count's stage tables and log - also when the call is cut off (a rank count that finished is
 # kept; scaling.sh writes its CSVs at the end only). Without a bundle it runs the local build (a dry run here).
-# usage: OUT=DIR [CASES="swe"] [RANKS="16 1 8 4"] [SIZE=issue] bash bench/node_scaling.sh
+# usage: OUT=DIR [CASES="swe"] [RANKS="16 1 8 4"] [SIZE=large] bash bench/node_scaling.sh
 #   on the device:  run(command='OUT=$OUT CASES=swe bash bench/node_scaling.sh', carry=[".devbundle"])
 set -uo pipefail
 cd "$(dirname "$0")/.."
 : "${OUT:?set OUT to the directory that comes back}"
-CASES=${CASES:-swe}; RANKS=${RANKS:-"16 1 8 4"}; SIZE=${SIZE:-issue}
+CASES=${CASES:-swe}; RANKS=${RANKS:-"16 1 8 4"}; SIZE=${SIZE:-large}
 mkdir -p "$OUT"
 if [ -f .devbundle/gphr.tar.xz ]; then
   mkdir -p /tmp/gb && tar -C /tmp/gb -xJf .devbundle/gphr.tar.xz || { echo "cannot unpack the bundle" >&2; exit 2; }

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Benchmark of the offline training, the symplectic basis and the Galerkin reduced model at the
-# paper's settings (issue: offline training and Galerkin ROM), side by side in one run per case:
+# paper's settings, side by side in one run per case:
 #   nls      11 training parameters in [0.9, 1.1], AVF, 2k in {100, 200, 400}, test eps = 1.0932
 #   swe-avf  5 x 5 training parameters, AVF, 2k in {80, 160}, test (1.6435, 0.7762)
 #   swe-imr  the same with IMR

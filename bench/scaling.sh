@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# Strong scaling of the offline phase and of the full model over a list of rank counts (issue 31,
-# item 5; doc/scaling.md holds the cost model, bench/scaling_model.py checks it against this CSV).
-# Cases (SIZE=issue, the issue's table; SIZE=small, each shrunk to seconds for a quick check):
+# Strong scaling of the offline phase and of the full model over a list of rank counts
+# (doc/scaling.md holds the cost model, bench/scaling_model.py checks it against this CSV).
+# Cases (SIZE=large, the sizes doc/scaling.md models; SIZE=small, each shrunk to seconds for a quick check):
 #   nls    gphr build, NLS n = 2048, T = 10, dt = 0.01, AVF, training [5] (every 10th state kept),
 #          k = 80 (2k = 160), gp-deim m = 130                       small: n = 512, T = 2, k = 20, m = 40
 #   swe    gphr build, SWE 256^2, IMR (lagged Jacobian), 2 x 2 training of 80 steps (dt = 0.005),
 #          k = 20 (2k = 40), gp-deim m = 40 and 80, a DEIM snapshot every 5th state  small: 64^2
-#          (the issue's 1-rank stage times, DEIM basis 65.5 s of 141.5, fit every 5th state; with every
+#          (1-rank stage times when this case was set, DEIM basis 65.5 s of 141.5, fit every 5th state; with every
 #          state the DEIM basis took 270.6 s of 363.7 on the 2-core VM)
 #   fom    gphr run of the full model alone, SWE 512^2, IMR, 40 steps   small: 128^2
 #   query  64 gphr query runs (--threads 1) of the nls case's model at T = 5   small: T = 2
@@ -18,21 +18,21 @@
 # OUT_CSV's -mpi.csv twin, and the largest rank count's leading functions are printed per stage:
 # where a stage waits); every case also has a whole-process row per rank (GPHR_PROCESS_CLOCKS),
 # fom a "time loop" row (summary.json t_online_s) and query a "queries" row (query_summary.json).
-# Environment: RANKS (default "1 2 4 8"), SIZE (issue | small), CASES (default "nls swe fom query"),
+# Environment: RANKS (default "1 2 4 8"), SIZE (large | small), CASES (default "nls swe fom query"),
 # CRITICAL=1 (each stage's compute critical path as well, GPHR_CRITICAL_PATH=1: one extra 8-byte
 # allreduce per collective call; its columns "crit max" and "crit x" estimate the wall seconds with
 # a core per rank where the ranks outnumber the cores, doc/scaling.md "Critical path"),
 # G (the gphr binary; default build/packages/driver/gphr), OUT_CSV (default
 # bench-out/scaling/scaling-SIZE.csv), MPIRUN (default mpirun), BIND (mpirun --bind-to: none, the
-# default and the issue's, or core). Runs with rank counts above the core count are oversubscribed
+# default, or core). Runs with rank counts above the core count are oversubscribed
 # (said in the output); OPENBLAS_NUM_THREADS=1.
 # usage: [RANKS="1 2 4 8"] [SIZE=small] bash bench/scaling.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 . bench/machine.sh
-RANKS=${RANKS:-"1 2 4 8"}; SIZE=${SIZE:-issue}; CASES=${CASES:-"nls swe fom query"}
+RANKS=${RANKS:-"1 2 4 8"}; SIZE=${SIZE:-large}; CASES=${CASES:-"nls swe fom query"}
 G=${G:-$PWD/build/packages/driver/gphr}; MPIRUN=${MPIRUN:-mpirun}; BIND=${BIND:-none}
-case $SIZE in issue|small) ;; *) echo "SIZE=$SIZE; allowed: issue, small" >&2; exit 2 ;; esac
+case $SIZE in large|small) ;; *) echo "SIZE=$SIZE; allowed: large, small" >&2; exit 2 ;; esac
 [ -x "$G" ] || { echo "no gphr binary at '$G' (set G)" >&2; exit 2; }
 work=bench-out/scaling/$SIZE; mkdir -p "$work"
 OUT_CSV=${OUT_CSV:-bench-out/scaling/scaling-$SIZE.csv}
@@ -48,7 +48,7 @@ for p in $RANKS; do
   [ "$p" -gt "$cores" ] && echo "note: $p ranks on $cores cores run oversubscribed: wall seconds include waiting for a core; compare compute seconds"
 done
 
-if [ "$SIZE" = issue ]; then
+if [ "$SIZE" = large ]; then
   nls_n=2048 nls_T=10.0 nls_k=80 nls_m=130 swe_nx=256 fom_nx=512 q_T=5.0
 else
   nls_n=512 nls_T=2.0 nls_k=20 nls_m=40 swe_nx=64 fom_nx=128 q_T=2.0

@@ -118,7 +118,7 @@ def check(a):
 def check_gp_deim(s, rom, a):
     """GP-DEIM runs for every m asked: each ran (status ok, finite numbers), AVF conserved its own
     H_hr to the same bound as the full model (H_model_err_max), and at the largest m the error is
-    within RATIO of the reduced model's (the issue's 10% target is the benchmark's; here the
+    within RATIO of the reduced model's (the 10% target is the benchmark's; here the
     default scene's measured ratio 1.0000 at m = 40 gets the same 10%)."""
     want = sorted(a.gp_deim[:-1])
     ratio = a.gp_deim[-1]

@@ -182,7 +182,7 @@ for m in summary["models"]:
     worst = max((float(r["E_L2"]), r["point"]) for r in rows if r["model"] == m["model"])[1]
     assert m["worst_point"] == worst, (m["worst_point"], worst)
 # the error estimate beside every finished run, and how well it orders the runs (the NLS models
-# here: estimates within 1.1x; 0.9 is the bar for the rank correlation)
+# here: estimates within 1.1x; 0.9 is the bar for the rank correlation)
 est = summary["error_estimate"]
 assert est["runs"] == sum(1 for r in rows if r["status"] == "ok"), est
 assert all(float(r["E_L2_estimate"]) > 0 for r in rows if r["status"] == "ok")

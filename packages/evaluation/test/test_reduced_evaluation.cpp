@@ -174,7 +174,7 @@ TEST(ReducedEvaluation, TheErrorEstimateFollowsTheErrorOfTheBasis) {
     ASSERT_LT(errors[i + 1], 0.5 * errors[i]);  // the error falls with k: the estimate can be checked
     EXPECT_LT(estimates[i + 1], 0.5 * estimates[i]) << "estimate at the " << i + 2 << "th k";
   }
-  // within a factor 3 of the error either way (the target for an estimate); 1.5 where the
+  // within a factor 3 of the error either way (the documented promise of an estimate); 1.5 where the
   // error is small enough (k = 8, E_L2 < 1e-2) for the first-order equation to hold
   for (size_t i = 0; i < errors.size(); ++i) {
     EXPECT_GT(estimates[i], errors[i] / 3.0) << "k index " << i;

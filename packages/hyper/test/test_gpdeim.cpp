@@ -271,8 +271,8 @@ TEST(GpDeim, AvfConservesHyperReducedHamiltonian) {
 
 TEST(GpDeim, LaggedJacobianNewtonGivesTheSameTrajectoryWithFewerFactorisations) {
   // Both solve every step to ||R|| <= 1e-12; the solutions then differ by at most ~ ||K^{-1}||
-  // 1e-12 per step, accumulated over 200 steps of a stable scheme: 1e-9 relative is the bound the
-  // issue sets.
+  // 1e-12 per step, accumulated over 200 steps of a stable scheme: 1e-9 relative is the
+  // bound asserted.
   auto hc = test::nlsCase(48, 4, test::comm());
   auto hr = test::gpDeimModel(hc, 16);
   GalerkinRom rom(hc.test.system, hc.basis.A);

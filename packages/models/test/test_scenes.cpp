@@ -1,7 +1,7 @@
 // Finite-difference checks of the assemblies every model path relies on, for both scenes:
 // grad H against H, J_G against G, Hess N against grad N. Central differences with step h
 // have truncation error O(h^2 |f'''|) and round-off O(eps_mach |f| / h); with h = 1e-5 relative
-// to the point both stay below 1e-8 relative here, so the 1e-6 bound has a margin of
+// to the point both stay below 1e-8 relative here, so the 1e-6 bound asserted has a margin of
 // 100 without being loose enough to pass a wrong sign or a missing term (those give O(1)).
 #include <gtest/gtest.h>
 
@@ -37,7 +37,7 @@ RCP<Vector> point(const SceneInstance& s) {
   return y;
 }
 
-constexpr double kTol = 1e-6;  // the bound; see the header comment for the margin
+constexpr double kTol = 1e-6;  // see the header comment for the margin
 
 class SceneFD : public ::testing::TestWithParam<int> {};
 

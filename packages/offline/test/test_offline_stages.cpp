@@ -567,7 +567,7 @@ double peakGrowthOfStages(const Nls1d& scene, const TrainingResult& training) {
 }
 
 // Streamed from the cache, the stages after training read the states in column blocks: six
-// training parameters cost what two cost (within the 1.2; held in memory they cost about
+// training parameters cost what two cost (within 1.2x; held in memory they cost about
 // three times as much, each parameter 2n x 401 doubles, 3.3 MB on one rank), and trajectories 4x
 // as long add far less than the 1200 more states of one parameter on this rank's rows, which a
 // stage reading a parameter at a time holds (9.8 MB on one rank, 3.3 MB on each of three): at most
@@ -667,7 +667,7 @@ double peakHeapGrowthOf(Work&& work) {
 // The training with a cache writes each parameter's states block by block as they are
 // integrated (integrateInBlocks): a trajectory 4x as long costs the training no more heap. (Held
 // whole until the parameter finished, the states were 401 and 1601 columns of 1024 doubles, 3.3
-// and 13.1 MB on one rank: the longer run grew about 3x.) The 1.2 is the bound for the
+// and 13.1 MB on one rank: the longer run grew about 3x.) The 1.2 is the bound for the
 // snapshot count.
 TEST(Training, HoldsOneBlockOfStatesHoweverLongTheTrajectory) {
   auto comm = Tpetra::getDefaultComm();

@@ -1,4 +1,4 @@
-// The GP-DEIM query path allocates nothing of size n or d (issue acceptance): every heap
+// The GP-DEIM query path allocates nothing of size n or d: every heap
 // allocation of this process goes through the malloc family below, which records the largest
 // request made while a region is tracked. Loading a reduced-model file, instantiating a model at a
 // parameter (interpolated set-up) and running it must stay far below one vector of size d = n;

@@ -75,7 +75,7 @@ TEST(ReducedModelFile, RoundTripReproducesTheInProcessModel) {
   // At the test parameter (eps = 1.0, between interpolation nodes) and at another one: the NLS
   // parameter enters only the row kernel and c (affine in eps), which the interpolant reproduces
   // to round-off, so both trajectories agree with the in-process models to round-off. 1e-12 is
-  // the issue's bound; measured below 1e-14.
+  // the bound asserted; measured below 1e-14.
   for (double eps : {1.0, 0.93}) {
     auto inst = scene->instantiate(comm(), {eps}, true);
     auto inRun = buildGpDeimModel(*inst.system, *hc.basis.A, *hc.deim.U, 8);
@@ -262,7 +262,7 @@ TEST(ReducedModelFile, StoredSectionsAndStencilWidthsAreCheckedAtLoad) {
       EXPECT_EQ(what.find('\n'), std::string::npos) << what;                     // one line
       EXPECT_LT(what.size(), 600u) << what;  // no value repeated whole
     }
-    // A bound, not a timing: 3,000 nesting levels took 27.7 s before the limits (the issue).
+    // A bound, not a timing: 3,000 nesting levels took 27.7 s before the limits.
     EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0) << words;
   };
   {  // the good file loads, and its adeim options are the stored ones

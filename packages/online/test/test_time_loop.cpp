@@ -118,7 +118,7 @@ TEST(TimeLoop, WholeSteps) {
 
 }  // namespace
 
-// A model whose state stays finite while its energy is not a number (the box that made
+// A model whose state stays finite while its energy is not a number (a parameter box that made
 // every H_hr NaN: status ok, drift 0) is not `ok` where H is observed: an observer that evaluates H
 // through finiteHamiltonian (OnlineModel::simulate's, gphr run's) ends the run at step 0. Models
 // without a Hamiltonian (the classic DEIM baselines: NaN by design) are run without it.

@@ -2,7 +2,7 @@
 /// @file
 /// Per-stage clocks of the offline phase (doc/scaling.md): wall seconds, CPU seconds of the
 /// process, seconds inside MPI calls (wall and CPU) and the peak resident memory, on each rank.
-/// The issue asks for each stage's compute time per rank with waits excluded: oversubscribed ranks
+/// Each stage's compute time per rank is wanted with waits excluded: oversubscribed ranks
 /// spin inside MPI, so wall time and even CPU time count the waits. "Compute seconds" is therefore
 /// the process's CPU seconds minus the CPU seconds spent inside MPI calls.
 ///

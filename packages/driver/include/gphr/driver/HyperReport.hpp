@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The speed-accuracy part of the report (issue: GP-DEIM): runs.csv (one row per evaluated model),
+/// The speed-accuracy part of the report: runs.csv (one row per evaluated model),
 /// report.md (tables, speed-ups measured in this run, the cheapest (k, m) per error level) and the
 /// gnuplot figures of the paper: error vs m with the ROM's error as a line
 /// (fig:2dsw_errors_avf_imr), error vs online time (the Pareto front), the Hamiltonian error terms
