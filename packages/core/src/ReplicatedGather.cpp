@@ -23,9 +23,12 @@ std::vector<T> sumAll(const Comm& comm, const std::vector<T>& local) {
 // reduction, so the check costs no extra collective), and every rank throws together.
 template <class T>
 void requireOwnedOnce(const Map& map, const std::vector<GO>& gids, const T* owners, const char* what) {
-  for (size_t i = 0; i < gids.size(); ++i)
-    GPHR_REQUIRE(owners[i] == T(1), InputError, what, ": global id ", gids[i],
+  for (size_t i = 0; i < gids.size(); ++i) {
+    GPHR_REQUIRE(owners[i] != T(0), InputError, what, ": global id ", gids[i],
                  " is not an entry of the map (allowed: 0 to ", map.getMaxAllGlobalIndex(), ")");
+    GPHR_REQUIRE(owners[i] == T(1), InputError, what, ": global id ", gids[i], " is owned by ", owners[i],
+                 " ranks (the map must be one-to-one)");
+  }
 }
 
 // The gathers of rows: this rank finds the rows `gids` it owns (their positions i and local
